@@ -1,0 +1,27 @@
+#include "engine/physics/physics_result.h"
+
+#include "engine/physics/physics_events.h"
+
+namespace cleave::physics {
+
+const char* toString(PhysicsStatus status) {
+  switch (status) {
+    case PhysicsStatus::Ok: return "ok";
+    case PhysicsStatus::InvalidArgument: return "invalid argument";
+    case PhysicsStatus::StaleHandle: return "stale handle";
+    case PhysicsStatus::DegenerateShape: return "degenerate shape";
+    case PhysicsStatus::UnsupportedCombination: return "unsupported combination";
+  }
+  return "unknown status";
+}
+
+const char* toString(TriggerEventKind kind) {
+  switch (kind) {
+    case TriggerEventKind::Begin: return "begin";
+    case TriggerEventKind::Stay: return "stay";
+    case TriggerEventKind::End: return "end";
+  }
+  return "unknown trigger event";
+}
+
+}  // namespace cleave::physics

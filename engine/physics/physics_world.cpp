@@ -1,0 +1,652 @@
+// PhysicsWorld over Bullet's btDiscreteDynamicsWorld.
+//
+// Pipeline of one step: Bullet's own stepSimulation with maxSubSteps = 0 (exactly one substep of
+// dt, no accumulator, no motion-state interpolation; bodies have no motion state, transforms are
+// read from the bodies), then one pass over the dispatcher's contact manifolds builds both event
+// arrays: body-body manifolds become ContactEvents, trigger-body manifolds become trigger touches.
+// A touch needs a narrowphase contact point no farther apart than kTouchDistance; broadphase (AABB)
+// pairs alone never count, because the AABB of a large static ground overlaps everything on it.
+//
+// Back-references: every Bullet collision object carries its slot index in userIndex and its kind
+// (body or trigger) in userIndex2; the generation is read from the slot table.
+#include "engine/physics/physics_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+#include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionDispatch/btGhostObject.h>
+#include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
+
+#include "engine/physics/detail/bullet_convert.h"
+#include "engine/physics/detail/shape_builder.h"
+#include "engine/physics/detail/slot_pool.h"
+
+namespace cleave::physics {
+namespace {
+
+using detail::toBt;
+using detail::toGlm;
+
+constexpr int kKindBody = 1;
+constexpr int kKindTrigger = 2;
+// Contact points farther apart than this (metres) are speculative and do not count as touching.
+constexpr btScalar kTouchDistance = 0.001f;
+constexpr double kMaxStep = 1.0;
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::quat& q) {
+  return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
+}
+// A usable rotation: finite and not (nearly) zero. Returns it normalised.
+std::optional<glm::quat> normalisedRotation(const glm::quat& q) {
+  if (!finite(q)) return std::nullopt;
+  const float norm = glm::length(q);
+  if (!(norm > 1e-6f)) return std::nullopt;
+  return q / norm;
+}
+
+struct ShapeRecord {
+  detail::BuiltShape built;
+  uint32_t users = 0;           // bodies and triggers using the shape
+  bool handleReleased = false;  // destroyShape was called; freed when users reaches 0
+};
+
+struct BodyRecord {
+  std::unique_ptr<btRigidBody> body;
+  uint32_t shapeIndex = 0;
+  float mass = 0.0f;
+  uint64_t userData = 0;
+};
+
+struct TriggerRecord {
+  std::unique_ptr<btPairCachingGhostObject> ghost;
+  uint32_t shapeIndex = 0;
+  uint64_t userData = 0;
+  bool persistent = true;
+  bool spent = false;  // one-shot trigger after its step: out of the collision world
+};
+
+void hashBytes(uint64_t& hash, const void* data, size_t size) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < size; ++i) {
+    hash ^= bytes[i];
+    hash *= 0x100000001b3ull;
+  }
+}
+void hashVector(uint64_t& hash, const btVector3& v) {
+  const float xyz[3] = {v.x(), v.y(), v.z()};  // the 4th lane is padding
+  hashBytes(hash, xyz, sizeof(xyz));
+}
+
+}  // namespace
+
+struct PhysicsWorld::Impl {
+  // Declaration order is construction order; ~Impl empties the world before members go.
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher{&config};
+  btGhostPairCallback ghostPairCallback;
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+
+  detail::SlotPool<ShapeRecord> shapes;
+  detail::SlotPool<BodyRecord> bodies;
+  detail::SlotPool<TriggerRecord> triggers;
+
+  std::vector<TriggerEvent> triggerEvents;
+  std::vector<ContactEvent> contactEvents;
+  std::vector<std::pair<TriggerId, BodyId>> touching;  // sorted; touches of the last step
+  uint64_t steps = 0;
+
+  explicit Impl(const WorldDef& def) {
+    btGImpactCollisionAlgorithm::registerAlgorithm(&dispatcher);
+    broadphase.getOverlappingPairCache()->setInternalGhostPairCallback(&ghostPairCallback);
+    const glm::vec3 gravity = finite(def.gravity) ? def.gravity : WorldDef{}.gravity;
+    world.setGravity(toBt(gravity));
+    world.getSolverInfo().m_numIterations =
+        def.solverIterations >= 1 ? def.solverIterations : WorldDef{}.solverIterations;
+  }
+
+  ~Impl() {
+    bodies.forEach([&](uint32_t, uint32_t, BodyRecord& r) { world.removeRigidBody(r.body.get()); });
+    triggers.forEach([&](uint32_t, uint32_t, TriggerRecord& r) {
+      if (!r.spent) world.removeCollisionObject(r.ghost.get());
+    });
+  }
+
+  ShapeRecord* liveShape(ShapeId id) {
+    ShapeRecord* record = shapes.get(id.index, id.generation);
+    return record && !record->handleReleased ? record : nullptr;
+  }
+  BodyRecord* body(BodyId id) { return bodies.get(id.index, id.generation); }
+  TriggerRecord* trigger(TriggerId id) { return triggers.get(id.index, id.generation); }
+
+  void releaseShapeUser(uint32_t index) {
+    ShapeRecord* record = shapes.atIndex(index);
+    if (record == nullptr) return;
+    --record->users;
+    if (record->users == 0 && record->handleReleased) shapes.erase(index);
+  }
+
+  BodyId bodyIdAt(uint32_t index) const { return BodyId{index, bodies.generationAt(index)}; }
+  TriggerId triggerIdAt(uint32_t index) const {
+    return TriggerId{index, triggers.generationAt(index)};
+  }
+
+  void forgetTouches(auto&& predicate) {
+    std::erase_if(touching, predicate);
+  }
+
+  void collectEvents();
+};
+
+void PhysicsWorld::Impl::collectEvents() {
+  contactEvents.clear();
+  triggerEvents.clear();
+  std::vector<std::pair<TriggerId, BodyId>> now;
+
+  const int manifoldCount = dispatcher.getNumManifolds();
+  for (int m = 0; m < manifoldCount; ++m) {
+    const btPersistentManifold* manifold = dispatcher.getManifoldByIndexInternal(m);
+    const btCollisionObject* a = manifold->getBody0();
+    const btCollisionObject* b = manifold->getBody1();
+    const int kindA = a->getUserIndex2();
+    const int kindB = b->getUserIndex2();
+
+    if (kindA == kKindBody && kindB == kKindBody) {
+      ContactEvent event;
+      float deepest = 0.0f;
+      bool any = false;
+      for (int p = 0; p < manifold->getNumContacts(); ++p) {
+        const btManifoldPoint& point = manifold->getContactPoint(p);
+        if (point.getDistance() > kTouchDistance) continue;
+        event.impulse += point.getAppliedImpulse();
+        ++event.pointCount;
+        const float depth = std::max(0.0f, -point.getDistance());
+        if (!any || depth > deepest) {
+          deepest = depth;
+          event.point = toGlm((point.getPositionWorldOnA() + point.getPositionWorldOnB()) * 0.5f);
+          // Bullet's normal is on B, pointing from B towards A.
+          event.normal = -toGlm(point.m_normalWorldOnB);
+        }
+        any = true;
+      }
+      if (!any) continue;
+      event.depth = deepest;
+      event.bodyA = bodyIdAt(uint32_t(a->getUserIndex()));
+      event.bodyB = bodyIdAt(uint32_t(b->getUserIndex()));
+      if (event.bodyB.index < event.bodyA.index) {
+        std::swap(event.bodyA, event.bodyB);
+        event.normal = -event.normal;
+      }
+      contactEvents.push_back(event);
+    } else if ((kindA == kKindTrigger) != (kindB == kKindTrigger)) {
+      const btCollisionObject* ghost = kindA == kKindTrigger ? a : b;
+      const btCollisionObject* other = kindA == kKindTrigger ? b : a;
+      if (other->getUserIndex2() != kKindBody) continue;
+      bool touches = false;
+      for (int p = 0; p < manifold->getNumContacts() && !touches; ++p) {
+        touches = manifold->getContactPoint(p).getDistance() <= kTouchDistance;
+      }
+      if (touches) {
+        now.emplace_back(triggerIdAt(uint32_t(ghost->getUserIndex())),
+                         bodyIdAt(uint32_t(other->getUserIndex())));
+      }
+    }
+  }
+
+  // Compound and GImpact shapes give one manifold per child pair: merge them per body pair, keeping
+  // the deepest point. Sorting by handle makes the order independent of Bullet's internals.
+  std::stable_sort(contactEvents.begin(), contactEvents.end(),
+                   [](const ContactEvent& x, const ContactEvent& y) {
+                     return std::pair(x.bodyA, x.bodyB) < std::pair(y.bodyA, y.bodyB);
+                   });
+  size_t out = 0;
+  for (size_t i = 0; i < contactEvents.size(); ++i) {
+    if (out > 0 && contactEvents[out - 1].bodyA == contactEvents[i].bodyA &&
+        contactEvents[out - 1].bodyB == contactEvents[i].bodyB) {
+      ContactEvent& merged = contactEvents[out - 1];
+      const ContactEvent& next = contactEvents[i];
+      merged.impulse += next.impulse;
+      merged.pointCount += next.pointCount;
+      if (next.depth > merged.depth) {
+        merged.depth = next.depth;
+        merged.point = next.point;
+        merged.normal = next.normal;
+      }
+    } else {
+      contactEvents[out++] = contactEvents[i];
+    }
+  }
+  contactEvents.resize(out);
+
+  std::sort(now.begin(), now.end());
+  now.erase(std::unique(now.begin(), now.end()), now.end());
+  // Merge the sorted touch lists of the previous and this step into Begin / Stay / End.
+  size_t i = 0, j = 0;
+  while (i < touching.size() || j < now.size()) {
+    if (j == now.size() || (i < touching.size() && touching[i] < now[j])) {
+      triggerEvents.push_back({touching[i].first, touching[i].second, TriggerEventKind::End});
+      ++i;
+    } else if (i == touching.size() || now[j] < touching[i]) {
+      triggerEvents.push_back({now[j].first, now[j].second, TriggerEventKind::Begin});
+      ++j;
+    } else {
+      triggerEvents.push_back({now[j].first, now[j].second, TriggerEventKind::Stay});
+      ++i;
+      ++j;
+    }
+  }
+  touching = std::move(now);
+}
+
+PhysicsWorld::PhysicsWorld(const WorldDef& def) : impl_(std::make_unique<Impl>(def)) {}
+PhysicsWorld::~PhysicsWorld() = default;
+PhysicsWorld::PhysicsWorld(PhysicsWorld&&) noexcept = default;
+PhysicsWorld& PhysicsWorld::operator=(PhysicsWorld&&) noexcept = default;
+
+// ---- world ----
+
+PhysicsStatus PhysicsWorld::setGravity(glm::vec3 gravity) {
+  if (!finite(gravity)) return PhysicsStatus::InvalidArgument;
+  impl_->world.setGravity(toBt(gravity));
+  return PhysicsStatus::Ok;
+}
+
+glm::vec3 PhysicsWorld::gravity() const { return toGlm(impl_->world.getGravity()); }
+
+PhysicsStatus PhysicsWorld::step(double dt) {
+  Impl& w = *impl_;
+  if (!std::isfinite(dt) || dt <= 0.0 || dt > kMaxStep) {
+    w.contactEvents.clear();
+    w.triggerEvents.clear();
+    return PhysicsStatus::InvalidArgument;
+  }
+  // maxSubSteps = 0: exactly one internal step of dt (Bullet's "variable timestep" path).
+  w.world.stepSimulation(btScalar(dt), 0, btScalar(dt));
+  w.collectEvents();
+  // One-shot triggers have had their step: take them out of the collision world.
+  w.triggers.forEach([&](uint32_t index, uint32_t, TriggerRecord& r) {
+    if (r.persistent || r.spent) return;
+    r.spent = true;
+    w.world.removeCollisionObject(r.ghost.get());
+    w.forgetTouches([&](const auto& touch) { return touch.first.index == index; });
+  });
+  ++w.steps;
+  return PhysicsStatus::Ok;
+}
+
+uint64_t PhysicsWorld::stepCount() const { return impl_->steps; }
+
+// ---- shapes ----
+
+Result<ShapeId> PhysicsWorld::createShape(const ShapeDef& def) {
+  detail::BuildOutcome outcome = detail::buildShape(def);
+  if (outcome.status != PhysicsStatus::Ok) {
+    return Result<ShapeId>::failure(outcome.status, std::move(outcome.reason));
+  }
+  ShapeRecord record;
+  record.built = std::move(outcome.built);
+  const auto key = impl_->shapes.insert(std::move(record));
+  return Result<ShapeId>::success(ShapeId{key.index, key.generation});
+}
+
+bool PhysicsWorld::destroyShape(ShapeId shape) {
+  ShapeRecord* record = impl_->liveShape(shape);
+  if (record == nullptr) return false;
+  record->handleReleased = true;
+  if (record->users == 0) impl_->shapes.erase(shape.index);
+  return true;
+}
+
+bool PhysicsWorld::isValid(ShapeId shape) const { return impl_->liveShape(shape) != nullptr; }
+
+std::optional<ShapeType> PhysicsWorld::shapeType(ShapeId shape) const {
+  const ShapeRecord* record = impl_->liveShape(shape);
+  if (record == nullptr) return std::nullopt;
+  return record->built.type;
+}
+
+std::optional<float> PhysicsWorld::shapeMargin(ShapeId shape) const {
+  const ShapeRecord* record = impl_->liveShape(shape);
+  if (record == nullptr) return std::nullopt;
+  return record->built.margin;
+}
+
+std::optional<uint32_t> PhysicsWorld::hullVertexCount(ShapeId shape) const {
+  const ShapeRecord* record = impl_->liveShape(shape);
+  if (record == nullptr) return std::nullopt;
+  return record->built.hullVertices;
+}
+
+uint32_t PhysicsWorld::liveShapeCount() const { return impl_->shapes.size(); }
+
+// ---- bodies ----
+
+Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
+  using R = Result<BodyId>;
+  Impl& w = *impl_;
+  ShapeRecord* shape = w.liveShape(def.shape);
+  if (shape == nullptr) {
+    return R::failure(PhysicsStatus::StaleHandle,
+                      "createBody: the shape handle is null or destroyed");
+  }
+  if (!std::isfinite(def.mass) || def.mass < 0.0f) {
+    return R::failure(PhysicsStatus::InvalidArgument,
+                      "createBody: mass must be finite and >= 0 (0 = static)");
+  }
+  const bool dynamic = def.mass > 0.0f;
+  if (dynamic && shape->built.type == ShapeType::StaticMesh) {
+    return R::failure(PhysicsStatus::UnsupportedCombination,
+                      "createBody: a static mesh shape cannot have mass; use a concave mesh "
+                      "(GImpact), a convex hull or a compound for dynamic bodies");
+  }
+  const std::optional<glm::quat> rotation = normalisedRotation(def.rotation);
+  if (!finite(def.position) || !rotation) {
+    return R::failure(PhysicsStatus::InvalidArgument,
+                      "createBody: position must be finite and rotation a finite, non-zero "
+                      "quaternion");
+  }
+  if (!finite(def.linearVelocity) || !finite(def.angularVelocity)) {
+    return R::failure(PhysicsStatus::InvalidArgument, "createBody: velocities must be finite");
+  }
+  if (!std::isfinite(def.friction) || def.friction < 0.0f) {
+    return R::failure(PhysicsStatus::InvalidArgument,
+                      "createBody: friction must be finite and >= 0");
+  }
+  if (!(def.restitution >= 0.0f && def.restitution <= 1.0f) ||
+      !(def.linearDamping >= 0.0f && def.linearDamping <= 1.0f) ||
+      !(def.angularDamping >= 0.0f && def.angularDamping <= 1.0f)) {
+    return R::failure(PhysicsStatus::InvalidArgument,
+                      "createBody: restitution and damping must be in [0, 1]");
+  }
+  btVector3 inertia(0, 0, 0);
+  if (def.localInertia) {
+    const glm::vec3 i = *def.localInertia;
+    if (!dynamic) {
+      return R::failure(PhysicsStatus::InvalidArgument,
+                        "createBody: an inertia override needs mass > 0 (static bodies have none)");
+    }
+    if (!finite(i) || i.x <= 0.0f || i.y <= 0.0f || i.z <= 0.0f) {
+      return R::failure(PhysicsStatus::InvalidArgument,
+                        "createBody: inertia moments must be finite and > 0");
+    }
+    inertia = toBt(i);
+  } else if (dynamic) {
+    shape->built.shape->calculateLocalInertia(def.mass, inertia);
+  }
+
+  btRigidBody::btRigidBodyConstructionInfo info(def.mass, nullptr, shape->built.shape.get(),
+                                                inertia);
+  info.m_startWorldTransform = detail::toBt(def.position, *rotation);
+  info.m_friction = def.friction;
+  info.m_restitution = def.restitution;
+  info.m_linearDamping = def.linearDamping;
+  info.m_angularDamping = def.angularDamping;
+  auto body = std::make_unique<btRigidBody>(info);
+  if (dynamic) {
+    body->setLinearVelocity(toBt(def.linearVelocity));
+    body->setAngularVelocity(toBt(def.angularVelocity));
+  }
+  btRigidBody* raw = body.get();
+  BodyRecord record;
+  record.body = std::move(body);
+  record.shapeIndex = def.shape.index;
+  record.mass = def.mass;
+  record.userData = def.userData;
+  const auto key = w.bodies.insert(std::move(record));
+  raw->setUserIndex(int(key.index));
+  raw->setUserIndex2(kKindBody);
+  w.world.addRigidBody(raw);
+  if (dynamic && !def.allowSleep) {
+    raw->setActivationState(DISABLE_DEACTIVATION);
+  } else if (dynamic && !def.startAwake) {
+    raw->setActivationState(ISLAND_SLEEPING);
+  }
+  ++shape->users;
+  return R::success(BodyId{key.index, key.generation});
+}
+
+bool PhysicsWorld::destroyBody(BodyId body) {
+  Impl& w = *impl_;
+  BodyRecord* record = w.body(body);
+  if (record == nullptr) return false;
+  w.world.removeRigidBody(record->body.get());
+  const uint32_t shapeIndex = record->shapeIndex;
+  w.bodies.erase(body.index);
+  w.releaseShapeUser(shapeIndex);
+  w.forgetTouches([&](const auto& touch) { return touch.second == body; });
+  return true;
+}
+
+bool PhysicsWorld::isValid(BodyId body) const { return impl_->body(body) != nullptr; }
+
+uint32_t PhysicsWorld::bodyCount() const { return impl_->bodies.size(); }
+
+std::optional<BodyTransform> PhysicsWorld::bodyTransform(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  if (record == nullptr) return std::nullopt;
+  const btTransform& t = record->body->getWorldTransform();
+  return BodyTransform{toGlm(t.getOrigin()), toGlm(t.getRotation())};
+}
+
+std::optional<glm::vec3> PhysicsWorld::linearVelocity(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  if (record == nullptr) return std::nullopt;
+  return toGlm(record->body->getLinearVelocity());
+}
+
+std::optional<glm::vec3> PhysicsWorld::angularVelocity(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  if (record == nullptr) return std::nullopt;
+  return toGlm(record->body->getAngularVelocity());
+}
+
+std::optional<BodyState> PhysicsWorld::bodyState(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  if (record == nullptr) return std::nullopt;
+  BodyState state;
+  state.transform = *bodyTransform(body);
+  state.linearVelocity = toGlm(record->body->getLinearVelocity());
+  state.angularVelocity = toGlm(record->body->getAngularVelocity());
+  state.mass = record->mass;
+  state.awake = isAwake(body);
+  state.userData = record->userData;
+  return state;
+}
+
+std::optional<float> PhysicsWorld::bodyMass(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  if (record == nullptr) return std::nullopt;
+  return record->mass;
+}
+
+std::optional<glm::vec3> PhysicsWorld::bodyLocalInertia(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  if (record == nullptr) return std::nullopt;
+  const btVector3 inverse = record->body->getInvInertiaDiagLocal();
+  auto invert = [](btScalar x) { return x > 0.0f ? 1.0f / x : 0.0f; };
+  return glm::vec3(invert(inverse.x()), invert(inverse.y()), invert(inverse.z()));
+}
+
+std::optional<uint64_t> PhysicsWorld::bodyUserData(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  if (record == nullptr) return std::nullopt;
+  return record->userData;
+}
+
+bool PhysicsWorld::isAwake(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  return record != nullptr && record->mass > 0.0f && record->body->isActive();
+}
+
+bool PhysicsWorld::setBodyTransform(BodyId body, const BodyTransform& transform) {
+  BodyRecord* record = impl_->body(body);
+  const std::optional<glm::quat> rotation = normalisedRotation(transform.rotation);
+  if (record == nullptr || !finite(transform.position) || !rotation) return false;
+  record->body->setCenterOfMassTransform(detail::toBt(transform.position, *rotation));
+  if (record->mass > 0.0f) record->body->activate(true);
+  impl_->world.updateSingleAabb(record->body.get());
+  return true;
+}
+
+bool PhysicsWorld::setVelocity(BodyId body, glm::vec3 linear, glm::vec3 angular) {
+  BodyRecord* record = impl_->body(body);
+  if (record == nullptr || record->mass <= 0.0f || !finite(linear) || !finite(angular)) {
+    return false;
+  }
+  record->body->setLinearVelocity(toBt(linear));
+  record->body->setAngularVelocity(toBt(angular));
+  record->body->activate(true);
+  return true;
+}
+
+bool PhysicsWorld::applyImpulse(BodyId body, glm::vec3 impulse, glm::vec3 worldPoint) {
+  BodyRecord* record = impl_->body(body);
+  if (record == nullptr || record->mass <= 0.0f || !finite(impulse) || !finite(worldPoint)) {
+    return false;
+  }
+  btRigidBody& rigid = *record->body;
+  rigid.applyImpulse(toBt(impulse), toBt(worldPoint) - rigid.getCenterOfMassPosition());
+  rigid.activate(true);
+  return true;
+}
+
+bool PhysicsWorld::activate(BodyId body) {
+  BodyRecord* record = impl_->body(body);
+  if (record == nullptr || record->mass <= 0.0f) return false;
+  record->body->activate(true);
+  return true;
+}
+
+// ---- triggers ----
+
+Result<TriggerId> PhysicsWorld::createTrigger(const TriggerDef& def) {
+  using R = Result<TriggerId>;
+  Impl& w = *impl_;
+  ShapeRecord* shape = w.liveShape(def.shape);
+  if (shape == nullptr) {
+    return R::failure(PhysicsStatus::StaleHandle,
+                      "createTrigger: the shape handle is null or destroyed");
+  }
+  if (shape->built.type == ShapeType::ConcaveMesh || shape->built.type == ShapeType::StaticMesh) {
+    return R::failure(PhysicsStatus::UnsupportedCombination,
+                      "createTrigger: trigger shapes must be convex or compound, not meshes");
+  }
+  const std::optional<glm::quat> rotation = normalisedRotation(def.rotation);
+  if (!finite(def.position) || !rotation) {
+    return R::failure(PhysicsStatus::InvalidArgument,
+                      "createTrigger: position must be finite and rotation a finite, non-zero "
+                      "quaternion");
+  }
+  auto ghost = std::make_unique<btPairCachingGhostObject>();
+  ghost->setCollisionShape(shape->built.shape.get());
+  ghost->setWorldTransform(detail::toBt(def.position, *rotation));
+  ghost->setCollisionFlags(ghost->getCollisionFlags() |
+                           btCollisionObject::CF_NO_CONTACT_RESPONSE);
+  // Triggers never sleep, so they also see sleeping bodies.
+  ghost->setActivationState(DISABLE_DEACTIVATION);
+  btPairCachingGhostObject* raw = ghost.get();
+  TriggerRecord record;
+  record.ghost = std::move(ghost);
+  record.shapeIndex = def.shape.index;
+  record.userData = def.userData;
+  record.persistent = def.persistent;
+  const auto key = w.triggers.insert(std::move(record));
+  raw->setUserIndex(int(key.index));
+  raw->setUserIndex2(kKindTrigger);
+  int mask = btBroadphaseProxy::AllFilter & ~btBroadphaseProxy::SensorTrigger;
+  if (!def.detectStatic) mask &= ~btBroadphaseProxy::StaticFilter;
+  w.world.addCollisionObject(raw, btBroadphaseProxy::SensorTrigger, mask);
+  ++shape->users;
+  return R::success(TriggerId{key.index, key.generation});
+}
+
+bool PhysicsWorld::destroyTrigger(TriggerId trigger) {
+  Impl& w = *impl_;
+  TriggerRecord* record = w.trigger(trigger);
+  if (record == nullptr) return false;
+  if (!record->spent) w.world.removeCollisionObject(record->ghost.get());
+  const uint32_t shapeIndex = record->shapeIndex;
+  w.triggers.erase(trigger.index);
+  w.releaseShapeUser(shapeIndex);
+  w.forgetTouches([&](const auto& touch) { return touch.first == trigger; });
+  return true;
+}
+
+bool PhysicsWorld::isValid(TriggerId trigger) const { return impl_->trigger(trigger) != nullptr; }
+
+bool PhysicsWorld::setTriggerTransform(TriggerId trigger, const BodyTransform& transform) {
+  TriggerRecord* record = impl_->trigger(trigger);
+  const std::optional<glm::quat> rotation = normalisedRotation(transform.rotation);
+  if (record == nullptr || !finite(transform.position) || !rotation) return false;
+  record->ghost->setWorldTransform(detail::toBt(transform.position, *rotation));
+  if (!record->spent) impl_->world.updateSingleAabb(record->ghost.get());
+  return true;
+}
+
+std::optional<BodyTransform> PhysicsWorld::triggerTransform(TriggerId trigger) const {
+  const TriggerRecord* record = impl_->trigger(trigger);
+  if (record == nullptr) return std::nullopt;
+  const btTransform& t = record->ghost->getWorldTransform();
+  return BodyTransform{toGlm(t.getOrigin()), toGlm(t.getRotation())};
+}
+
+std::optional<uint64_t> PhysicsWorld::triggerUserData(TriggerId trigger) const {
+  const TriggerRecord* record = impl_->trigger(trigger);
+  if (record == nullptr) return std::nullopt;
+  return record->userData;
+}
+
+bool PhysicsWorld::isTriggerSpent(TriggerId trigger) const {
+  const TriggerRecord* record = impl_->trigger(trigger);
+  return record != nullptr && record->spent;
+}
+
+// ---- events and queries ----
+
+std::span<const TriggerEvent> PhysicsWorld::triggerEvents() const { return impl_->triggerEvents; }
+std::span<const ContactEvent> PhysicsWorld::contactEvents() const { return impl_->contactEvents; }
+
+std::optional<RayHit> PhysicsWorld::raycast(glm::vec3 from, glm::vec3 to) const {
+  if (!finite(from) || !finite(to) || from == to) return std::nullopt;
+  const btVector3 btFrom = toBt(from), btTo = toBt(to);
+  btCollisionWorld::ClosestRayResultCallback callback(btFrom, btTo);
+  callback.m_collisionFilterGroup = btBroadphaseProxy::DefaultFilter;
+  callback.m_collisionFilterMask = btBroadphaseProxy::AllFilter & ~btBroadphaseProxy::SensorTrigger;
+  impl_->world.rayTest(btFrom, btTo, callback);
+  if (!callback.hasHit() || callback.m_collisionObject == nullptr ||
+      callback.m_collisionObject->getUserIndex2() != kKindBody) {
+    return std::nullopt;
+  }
+  RayHit hit;
+  hit.body = impl_->bodyIdAt(uint32_t(callback.m_collisionObject->getUserIndex()));
+  hit.point = toGlm(callback.m_hitPointWorld);
+  hit.fraction = callback.m_closestHitFraction;
+  glm::vec3 normal = toGlm(callback.m_hitNormalWorld);
+  const float length = glm::length(normal);
+  normal = length > 0.0f ? normal / length : -glm::normalize(to - from);
+  if (glm::dot(normal, to - from) > 0.0f) normal = -normal;
+  hit.normal = normal;
+  return hit;
+}
+
+uint64_t PhysicsWorld::stateHash() const {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  impl_->bodies.forEach([&](uint32_t index, uint32_t generation, const BodyRecord& r) {
+    hashBytes(hash, &index, sizeof(index));
+    hashBytes(hash, &generation, sizeof(generation));
+    const btTransform& t = r.body->getWorldTransform();
+    hashVector(hash, t.getOrigin());
+    for (int row = 0; row < 3; ++row) hashVector(hash, t.getBasis()[row]);
+    hashVector(hash, r.body->getLinearVelocity());
+    hashVector(hash, r.body->getAngularVelocity());
+  });
+  return hash;
+}
+
+}  // namespace cleave::physics
