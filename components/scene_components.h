@@ -1,0 +1,56 @@
+// Plain-struct components shared by the demos: what an entity looks like and how it moves.
+// They hold handles into the renderer and the physics world, never GL or Bullet objects.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/ecs/entity.h"
+#include "engine/geometry/mesh_data.h"
+#include "engine/physics/physics_ids.h"
+#include "engine/render/renderer.h"
+
+namespace cleave::components {
+
+// A mesh drawn at the entity's world transform times `meshOffset`. `source` is the CPU copy the
+// splitter cuts; it is shared (immutable) between the entity and the renderer upload.
+struct MeshRenderer {
+  std::shared_ptr<const geometry::MeshData> source;
+  render::MeshHandle gpu;
+  std::vector<render::Material> materials;  // indexed by submesh material id
+  glm::mat4 meshOffset{1.f};                // mesh space -> entity space (scale, centre of mass shift)
+  bool visible = true;
+};
+
+// The rigid body that moves the entity: the entity Transform follows the body (origin at the centre
+// of mass, axes along the principal axes of inertia).
+struct RigidBody {
+  physics::BodyId body;
+  physics::ShapeId shape;
+};
+
+// Mass properties as the split system computed them (world units at the time of creation).
+struct MassInfo {
+  double mass = 0.0;        // kg
+  double volume = 0.0;      // m^3
+  double density = 0.0;     // kg/m^3
+  bool closed = true;       // the mesh was closed (otherwise its convex hull gave the values)
+};
+
+// Where an entity came from: the entity it was split from (null for authored objects) and how many
+// cuts deep it is.
+struct SplitOrigin {
+  ecs::Entity parent;
+  uint64_t parentId = 0;    // the parent's id as written in the state dump
+  uint32_t generation = 0;  // 0 for authored objects, +1 per cut
+};
+
+// The material set an entity shows; the demo cycles it with Q/E.
+struct MaterialChoice {
+  int index = 0;
+};
+
+}  // namespace cleave::components

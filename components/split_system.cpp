@@ -1,0 +1,505 @@
+#include "components/split_system.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "engine/ecs/transform.h"
+#include "engine/geometry/convex_hull.h"
+#include "engine/geometry/mass_properties.h"
+
+namespace cleave::components {
+
+namespace {
+
+double nowMs() {
+  using namespace std::chrono;
+  return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
+}
+
+uint64_t toUser(ecs::Entity e) { return (uint64_t(e.generation) << 32) | uint64_t(e.index); }
+ecs::Entity fromUser(uint64_t v) {
+  ecs::Entity e;
+  e.index = uint32_t(v & 0xffffffffu);
+  e.generation = uint32_t(v >> 32);
+  return e;
+}
+
+// The body frame of a piece: origin at the centre of mass, axes along the principal axes.
+struct BodyFrame {
+  glm::dvec3 position{0.0};
+  glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
+  glm::dvec3 moments{0.0};  // principal inertia, kg m^2
+  glm::dmat4 meshOffset{1.0};  // mesh space -> body frame
+};
+
+BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const glm::dmat4& model) {
+  BodyFrame f;
+  f.position = props.centerOfMass;
+  const double scale = props.volume > 0.0 ? mass / props.volume : 0.0;
+  const geometry::PrincipalInertia principal = geometry::principalInertia(props.inertia * scale);
+  f.rotation = glm::normalize(glm::quat_cast(principal.axes));
+  // A piece must never get zero inertia (a sliver): floor each moment at a small share of the largest.
+  const double largest = std::max({principal.moments.x, principal.moments.y, principal.moments.z, 1e-12});
+  f.moments = glm::max(principal.moments, glm::dvec3(largest * 1e-3));
+  const glm::dmat4 bodyToWorld = glm::translate(glm::dmat4(1.0), f.position) * glm::mat4_cast(f.rotation);
+  f.meshOffset = glm::inverse(bodyToWorld) * model;
+  return f;
+}
+
+std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const glm::dmat4& m) {
+  std::vector<glm::vec3> points;
+  points.reserve(mesh.positions.size());
+  for (const glm::vec3& p : mesh.positions) points.push_back(glm::vec3(m * glm::dvec4(p, 1.0)));
+  return points;
+}
+
+// Our own convex decomposition for colliders: cut the piece through its centre along the longest
+// extent of its bounds, recursively, until every part is convex or the depth runs out.
+void decompose(geometry::IMeshSplitter& splitter, const geometry::MeshData& mesh, int depth,
+               std::vector<physics::ConvexPart>& parts) {
+  if (mesh.positions.size() < 4) return;
+  if (depth <= 0 || geometry::isConvex(mesh, 1e-3)) {
+    physics::ConvexPart part;
+    part.points = mesh.positions;
+    parts.push_back(std::move(part));
+    return;
+  }
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const auto& p : mesh.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  const glm::vec3 extent = hi - lo;
+  int axis = 0;
+  if (extent.y > extent[axis]) axis = 1;
+  if (extent.z > extent[axis]) axis = 2;
+  geometry::Plane plane;
+  plane.normal = glm::dvec3(0.0);
+  plane.normal[axis] = 1.0;
+  plane.offset = 0.5 * (double(lo[axis]) + double(hi[axis]));
+  geometry::MeshContainer container;
+  if (container.setMesh(mesh) != geometry::SplitStatus::Ok) return;
+  geometry::SplitOptions options;
+  options.computeMass = false;
+  options.separateIslands = true;
+  geometry::SplitResult result;
+  if (splitter.split(container, plane, options, result) != geometry::SplitStatus::Ok) {
+    physics::ConvexPart part;
+    part.points = mesh.positions;
+    parts.push_back(std::move(part));
+    return;
+  }
+  for (const auto& piece : result.pieces) decompose(splitter, piece.mesh, depth - 1, parts);
+}
+
+}  // namespace
+
+struct SplitSystem::Scratch {
+  geometry::MeshContainer container;
+  std::unique_ptr<geometry::IMeshSplitter> concave = geometry::makeConcaveSplitter();
+  std::unique_ptr<geometry::IMeshSplitter> convex = geometry::makeConvexSplitter();
+  geometry::SplitResult result;
+  ecs::CommandBuffer commands;
+  std::vector<SplitRequest> pending;
+  uint32_t activationsThisTick = 0;
+};
+
+SplitSystem::SplitSystem(SplitBudgetSettings budget)
+    : budget_(budget), scratch_(std::make_unique<Scratch>()) {}
+SplitSystem::~SplitSystem() = default;
+
+void SplitSystem::registerHandler(const std::string& name, SplitHandler handler) {
+  handlers_[name] = std::move(handler);
+}
+
+void SplitSystem::request(const SplitRequest& request) { budget_.enqueue(request); }
+
+void releaseEntityResources(SplitWorld& w, ecs::Entity e) {
+  if (auto* rb = w.world.tryGet<RigidBody>(e)) {
+    w.physics.destroyBody(rb->body);
+    w.physics.destroyShape(rb->shape);
+    rb->body = {};
+    rb->shape = {};
+  }
+  if (auto* mr = w.world.tryGet<MeshRenderer>(e)) {
+    if (w.renderer) w.renderer->destroyMesh(mr->gpu);
+    mr->gpu = {};
+  }
+  if (auto* sp = w.world.tryGet<Splitter>(e)) {
+    w.physics.destroyTrigger(sp->trigger);
+    sp->trigger = {};
+  }
+}
+
+namespace {
+
+// Creates a collider for a mesh given in mesh space with the body frame's offset.
+physics::ShapeId makeCollider(SplitWorld& w, geometry::IMeshSplitter& splitter,
+                              const geometry::MeshData& mesh, const glm::dmat4& meshOffset,
+                              ColliderMode mode, std::string* reason) {
+  ColliderMode chosen = mode;
+  if (chosen == ColliderMode::Auto)
+    chosen = geometry::isConvex(mesh, 1e-3) ? ColliderMode::ConvexHull : ColliderMode::Compound;
+  std::vector<glm::vec3> points = transformedPoints(mesh, meshOffset);
+  if (chosen == ColliderMode::ConcaveMesh) {
+    auto r = w.physics.createShape(physics::ShapeDef::concaveMesh(points, mesh.indices));
+    if (r.ok()) return r.value();
+    chosen = ColliderMode::ConvexHull;
+  }
+  if (chosen == ColliderMode::Compound) {
+    geometry::MeshData bodySpace;
+    bodySpace.positions = points;
+    bodySpace.indices = mesh.indices;
+    std::vector<physics::ConvexPart> parts;
+    decompose(splitter, bodySpace, 3, parts);
+    if (parts.size() > 1) {
+      auto r = w.physics.createShape(physics::ShapeDef::compound(std::move(parts)));
+      if (r.ok()) return r.value();
+    }
+  }
+  auto r = w.physics.createShape(physics::ShapeDef::convexHull(points));
+  if (r.ok()) return r.value();
+  if (reason) *reason = r.reason();
+  return {};
+}
+
+}  // namespace
+
+bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode collider,
+                     std::string* error) {
+  auto* mr = w.world.tryGet<MeshRenderer>(e);
+  auto* t = w.world.tryGet<ecs::Transform>(e);
+  if (!mr || !mr->source || !t) {
+    if (error) *error = "entity has no mesh or transform";
+    return false;
+  }
+  const glm::dmat4 model = glm::dmat4(ecs::localMatrix(*t)) * glm::dmat4(mr->meshOffset);
+  const geometry::MassProperties props = geometry::computeMassProperties(*mr->source, model);
+  if (!(props.volume > 0.0)) {
+    if (error) *error = "mesh encloses no volume";
+    return false;
+  }
+  const double mass = density * props.volume;
+  const BodyFrame frame = bodyFrameFor(props, mass, model);
+  auto splitter = geometry::makeConcaveSplitter();
+  std::string reason;
+  const physics::ShapeId shape = makeCollider(w, *splitter, *mr->source, frame.meshOffset, collider, &reason);
+  if (shape.isNull()) {
+    if (error) *error = "no collider: " + reason;
+    return false;
+  }
+  physics::BodyDef def;
+  def.shape = shape;
+  def.mass = float(mass);
+  def.position = glm::vec3(frame.position);
+  def.rotation = glm::quat(frame.rotation);
+  def.localInertia = glm::vec3(frame.moments);
+  def.userData = toUser(e);
+  auto body = w.physics.createBody(def);
+  if (!body.ok()) {
+    w.physics.destroyShape(shape);
+    if (error) *error = body.reason();
+    return false;
+  }
+  mr->meshOffset = glm::mat4(frame.meshOffset);
+  t->position = def.position;
+  t->rotation = def.rotation;
+  t->scale = glm::vec3(1.f);
+  w.world.add<RigidBody>(e, RigidBody{body.value(), shape});
+  MassInfo info;
+  info.mass = mass;
+  info.volume = props.volume;
+  info.density = density;
+  info.closed = props.closed;
+  w.world.add<MassInfo>(e, info);
+  return true;
+}
+
+void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
+  for (const physics::TriggerEvent& ev : w.physics.triggerEvents()) {
+    if (ev.kind != physics::TriggerEventKind::Begin) continue;
+    const auto splitterUser = w.physics.triggerUserData(ev.trigger);
+    const auto bodyUser = w.physics.bodyUserData(ev.body);
+    if (!splitterUser || !bodyUser) continue;
+    const ecs::Entity splitterEntity = fromUser(*splitterUser);
+    const ecs::Entity target = fromUser(*bodyUser);
+    if (!w.world.alive(splitterEntity) || !w.world.alive(target)) continue;
+    if (!w.world.has<Splitable>(target)) continue;
+    auto* splitter = w.world.tryGet<Splitter>(splitterEntity);
+    const auto* wt = w.world.tryGet<ecs::WorldTransform>(splitterEntity);
+    if (!splitter || !wt) continue;
+    const glm::dmat4 m(wt->matrix);
+    const glm::dvec3 origin(m[3]);
+    const glm::dvec3 normal = glm::normalize(glm::transpose(glm::inverse(glm::dmat3(m))) * glm::dvec3(0, 1, 0));
+    SplitRequest r;
+    r.target = target;
+    r.planeNormal = normal;
+    r.planeOffset = glm::dot(normal, origin);
+    r.splitter = splitterEntity;
+    r.playerCaused = splitter->playerCaused;
+    r.requestedTick = tick;
+    budget_.enqueue(r);
+    splitter->cuts++;
+  }
+  // One-tick splitters are gone after the step that reported their touches.
+  ecs::CommandBuffer& commands = scratch_->commands;
+  for (auto [e, splitter] : w.world.view<Splitter>()) {
+    if (splitter.lifetime == SplitterLifetime::OneTick && w.physics.isTriggerSpent(splitter.trigger))
+      commands.destroy(e);
+  }
+  for (const auto& cmd : commands.destroyed()) releaseEntityResources(w, cmd);
+  w.world.apply(commands);
+}
+
+void SplitSystem::activatePending(SplitWorld& w) {
+  scratch_->activationsThisTick = 0;
+  for (uint64_t key : budget_.takeActivations()) {
+    physics::BodyId body;
+    body.index = uint32_t(key & 0xffffffffu);
+    body.generation = uint32_t(key >> 32);
+    w.physics.activate(body);
+  }
+}
+
+void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
+  events_.clear();
+  budget_.runTick(
+      tick, cameraPosition,
+      [&](ecs::Entity e) { return w.world.alive(e) && w.world.has<Splitable>(e); },
+      [&](ecs::Entity e) {
+        const auto* t = w.world.tryGet<ecs::Transform>(e);
+        return t ? glm::dvec3(t->position) : glm::dvec3(0.0);
+      },
+      [&](const SplitRequest& r) {
+        SplitEvent ev = splitNow(w, r.target, r, tick);
+        const bool ok = ev.status == geometry::SplitStatus::Ok ||
+                        ev.status == geometry::SplitStatus::PlaneMissesMesh;
+        events_.push_back(std::move(ev));
+        return ok;
+      },
+      nowMs);
+  // Structural changes after the iteration: pieces appear, originals go.
+  for (const auto& e : scratch_->commands.destroyed()) releaseEntityResources(w, e);
+  w.world.apply(scratch_->commands);
+}
+
+SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitRequest& request,
+                                 uint64_t tick) {
+  const double start = nowMs();
+  SplitEvent ev;
+  ev.tick = tick;
+  ev.original = target;
+  auto fail = [&](geometry::SplitStatus status, const std::string& message) {
+    ev.status = status;
+    ev.message = message;
+    ev.milliseconds = nowMs() - start;
+    if (status != geometry::SplitStatus::PlaneMissesMesh)
+      std::fprintf(stderr, "cleave: split of entity %u kept whole: %s\n", target.index, message.c_str());
+    return ev;
+  };
+  const auto* mr = w.world.tryGet<MeshRenderer>(target);
+  const auto* sp = w.world.tryGet<Splitable>(target);
+  const auto* rb = w.world.tryGet<RigidBody>(target);
+  const auto* t = w.world.tryGet<ecs::Transform>(target);
+  if (!mr || !mr->source || !sp || !t)
+    return fail(geometry::SplitStatus::InvalidInput, "target has no mesh, Splitable or Transform");
+
+  // The parent's motion and frame (the body is authoritative when there is one).
+  glm::dvec3 parentCom(t->position);
+  glm::dquat parentRot(t->rotation);
+  glm::dvec3 v(0.0), omega(0.0);
+  double parentMass = 0.0;
+  if (rb && w.physics.isValid(rb->body)) {
+    const auto state = w.physics.bodyState(rb->body);
+    if (state) {
+      parentCom = glm::dvec3(state->transform.position);
+      parentRot = glm::dquat(state->transform.rotation);
+      v = glm::dvec3(state->linearVelocity);
+      omega = glm::dvec3(state->angularVelocity);
+      parentMass = state->mass;
+    }
+  }
+  if (const auto* mi = w.world.tryGet<MassInfo>(target)) parentMass = mi->mass;
+  ev.parentMass = parentMass;
+  const glm::dmat4 entityToWorld = glm::translate(glm::dmat4(1.0), parentCom) * glm::mat4_cast(parentRot) *
+                                   glm::scale(glm::dmat4(1.0), glm::dvec3(t->scale));
+  const glm::dmat4 model = entityToWorld * glm::dmat4(mr->meshOffset);
+
+  Scratch& s = *scratch_;
+  std::string message;
+  if (s.container.setMesh(*mr->source, &message) != geometry::SplitStatus::Ok)
+    return fail(geometry::SplitStatus::InvalidInput, message);
+  s.container.setTransform(glm::mat4(model));
+  geometry::SplitOptions options;
+  options.cap = sp->cap;
+  options.capMaterialId = sp->capMaterialId;
+  options.uvMode = sp->capUvMode;
+  options.uvPerMetre = sp->capUvPerMetre;
+  options.atlasRect = sp->capAtlasRect;
+  options.uvPerBorder = sp->capUvPerBorder;
+  options.separateIslands = sp->separateIslands;
+  const geometry::Plane plane{request.planeNormal, request.planeOffset};
+  geometry::IMeshSplitter& splitter = sp->convexHint ? *s.convex : *s.concave;
+  const geometry::SplitStatus status = splitter.split(s.container, plane, options, s.result);
+  if (status != geometry::SplitStatus::Ok) return fail(status, s.result.message);
+
+  if (!sp->handler.empty()) {
+    auto it = handlers_.find(sp->handler);
+    if (it == handlers_.end())
+      return fail(geometry::SplitStatus::InvalidInput, "no split handler named '" + sp->handler + "'");
+    if (!it->second(w, target, request, s.result))
+      return fail(geometry::SplitStatus::Ok, "the custom handler kept the original");
+    ev.milliseconds = nowMs() - start;
+    return ev;
+  }
+
+  double totalVolume = 0.0;
+  for (const auto& piece : s.result.pieces) totalVolume += std::max(piece.mass.volume, 0.0);
+  if (!(totalVolume > 0.0)) return fail(geometry::SplitStatus::InvalidInput, "pieces enclose no volume");
+  const glm::dvec3 n = glm::normalize(request.planeNormal);
+
+  const Splitable pieceSplitable = *sp;
+  const auto* origin = w.world.tryGet<SplitOrigin>(target);
+  const uint32_t depth = origin ? origin->generation + 1 : 1;
+  const auto* name = w.world.tryGet<ecs::Name>(target);
+  const auto* choice = w.world.tryGet<MaterialChoice>(target);
+
+  std::vector<render::Material> materials = mr->materials;
+  if (materials.size() <= sp->capMaterialId) {
+    materials.resize(sp->capMaterialId + 1, materials.empty() ? render::Material{} : materials.back());
+  }
+  materials[sp->capMaterialId] = sp->capMaterial;
+
+  ecs::CommandBuffer& commands = s.commands;
+  uint32_t k = 0;
+  for (auto& piece : s.result.pieces) {
+    const double volume = std::max(piece.mass.volume, 0.0);
+    const double mass = sp->massMode == MassMode::Density ? sp->density * volume
+                                                          : parentMass * volume / totalVolume;
+    const bool small = volume < sp->minPieceVolume;
+    if (small && sp->smallPieces == SmallPieceMode::Remove) continue;
+    const BodyFrame frame = bodyFrameFor(piece.mass, std::max(mass, 1e-9), model);
+    const glm::dvec3 velocity = v + glm::cross(omega, frame.position - parentCom) +
+                                n * (double(piece.side) * sp->splitImpulse);
+
+    const ecs::Entity e = commands.create();
+    auto mesh = std::make_shared<geometry::MeshData>(std::move(piece.mesh));
+    MeshRenderer renderer;
+    renderer.source = mesh;
+    renderer.materials = materials;
+    renderer.meshOffset = glm::mat4(frame.meshOffset);
+    if (w.renderer) renderer.gpu = w.renderer->uploadMesh(*mesh);
+    ecs::Transform transform;
+    transform.position = glm::vec3(frame.position);
+    transform.rotation = glm::quat(frame.rotation);
+    transform.scale = glm::vec3(1.f);
+
+    bool debris = small;
+    physics::ShapeId shape;
+    physics::BodyId body;
+    if (!debris) {
+      std::string reason;
+      shape = makeCollider(w, *s.concave, *mesh, frame.meshOffset, sp->collider, &reason);
+      if (shape.isNull()) debris = true;  // a flat sliver: no hull can hold it
+    }
+    if (!debris) {
+      physics::BodyDef def;
+      def.shape = shape;
+      def.mass = float(std::max(mass, 1e-6));
+      def.position = transform.position;
+      def.rotation = transform.rotation;
+      def.linearVelocity = glm::vec3(velocity);
+      def.angularVelocity = glm::vec3(omega);
+      def.localInertia = glm::vec3(frame.moments);
+      def.userData = toUser(e);
+      const bool awakeNow = s.activationsThisTick < budget_.settings().maxActivationsPerTick;
+      def.startAwake = awakeNow;
+      auto created = w.physics.createBody(def);
+      if (created.ok()) {
+        body = created.value();
+        if (awakeNow) {
+          s.activationsThisTick++;
+        } else {
+          budget_.queueActivation((uint64_t(body.generation) << 32) | body.index);
+        }
+      } else {
+        w.physics.destroyShape(shape);
+        shape = {};
+        debris = true;
+      }
+    }
+    commands.add<ecs::Transform>(e, transform);
+    commands.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(transform)});
+    commands.add<ecs::Name>(e, ecs::Name{(name ? name->value : std::string("piece")) + "/" +
+                                         (piece.side > 0 ? "a" : "b") + std::to_string(k)});
+    commands.add<MeshRenderer>(e, std::move(renderer));
+    MassInfo info;
+    info.mass = mass;
+    info.volume = volume;
+    info.density = volume > 0.0 ? mass / volume : 0.0;
+    info.closed = piece.mass.closed;
+    commands.add<MassInfo>(e, info);
+    SplitOrigin so;
+    so.parent = target;
+    so.parentId = toUser(target);
+    so.generation = depth;
+    commands.add<SplitOrigin>(e, so);
+    if (choice) commands.add<MaterialChoice>(e, *choice);
+    if (debris) {
+      Debris d;
+      d.velocity = glm::vec3(velocity);
+      d.angularVelocity = glm::vec3(omega);
+      commands.add<Debris>(e, d);
+    } else {
+      commands.add<RigidBody>(e, RigidBody{body, shape});
+      if (depth < sp->maxDepth) commands.add<Splitable>(e, pieceSplitable);
+    }
+    ev.pieces.push_back(e);
+    ev.piecesMass += mass;
+    ++k;
+  }
+  commands.destroy(target);
+  totalPieces_ += ev.pieces.size();
+  ev.milliseconds = nowMs() - start;
+  return ev;
+}
+
+void syncTransformsFromBodies(SplitWorld& w) {
+  for (auto [e, rb, t] : w.world.view<RigidBody, ecs::Transform>()) {
+    const auto bt = w.physics.bodyTransform(rb.body);
+    if (!bt) continue;
+    t.position = bt->position;
+    t.rotation = bt->rotation;
+  }
+  ecs::updateWorldTransforms(w.world);
+}
+
+void submitMeshes(SplitWorld& w) {
+  if (!w.renderer) return;
+  for (auto [e, mr, wt] : w.world.view<MeshRenderer, ecs::WorldTransform>()) {
+    if (!mr.visible || !mr.gpu.valid() || mr.materials.empty()) continue;
+    w.renderer->submit(mr.gpu, wt.matrix * mr.meshOffset, mr.materials);
+  }
+}
+
+void updateDebris(SplitWorld& w, float dt) {
+  ecs::CommandBuffer commands;
+  const glm::vec3 gravity = w.physics.gravity();
+  for (auto [e, d, t] : w.world.view<Debris, ecs::Transform>()) {
+    d.velocity += gravity * dt;
+    t.position += d.velocity * dt;
+    const float angle = glm::length(d.angularVelocity) * dt;
+    if (angle > 0.f) t.rotation = glm::normalize(glm::angleAxis(angle, glm::normalize(d.angularVelocity)) * t.rotation);
+    d.secondsLeft -= dt;
+    if (d.secondsLeft <= 0.f || t.position.y < -50.f) commands.destroy(e);
+  }
+  for (const auto& e : commands.destroyed()) releaseEntityResources(w, e);
+  w.world.apply(commands);
+}
+
+}  // namespace cleave::components

@@ -1,0 +1,71 @@
+// Splitable and Splitter: the thesis's two components as plain data.
+//
+// Put a Splitable on an object (with a MeshRenderer and a RigidBody) and touch it with a Splitter:
+// the Triggers phase turns the touch into a SplitRequest, and from the next tick the split system
+// cuts it within the split budget and replaces it by physics pieces that move on as it did.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "engine/geometry/mesh_splitter.h"
+#include "engine/physics/physics_ids.h"
+#include "engine/render/renderer.h"
+
+namespace cleave::components {
+
+enum class MassMode : uint8_t {
+  Density,          // piece mass = density x piece volume
+  KeepParentMass,   // the parent's mass shared out by volume: pieces always sum to the parent
+};
+
+enum class SmallPieceMode : uint8_t {
+  Remove,  // pieces under minPieceVolume disappear
+  Debris,  // they stay as render-only debris with no collider, fall and fade
+};
+
+enum class ColliderMode : uint8_t {
+  Auto,        // convex hull when the piece is convex within tolerance, else compound
+  ConvexHull,  // always the convex hull (cheapest, fills concavities)
+  Compound,    // convex parts from our own decomposition (recursive cuts until each part is convex)
+  ConcaveMesh, // GImpact triangle mesh (exact, slowest)
+};
+
+struct Splitable {
+  bool convexHint = false;                  // the mesh is convex: use the convex splitter (fan caps)
+  bool cap = true;                          // false: hollow pieces (open or thin objects)
+  uint32_t capMaterialId = 1;               // submesh material id of cap triangles
+  render::Material capMaterial;             // drawn on caps (placed at capMaterialId)
+  geometry::CapUvMode capUvMode = geometry::CapUvMode::WorldPlanar;
+  double capUvPerMetre = 1.0;
+  glm::vec4 capAtlasRect{0.f, 0.f, 1.f, 1.f};
+  bool capUvPerBorder = false;
+  MassMode massMode = MassMode::Density;
+  double density = 500.0;                   // kg/m^3 (Density mode and authored objects)
+  double splitImpulse = 0.0;                // m/s added along the plane normal, away from the cut
+  double minPieceVolume = 1e-6;             // m^3
+  SmallPieceMode smallPieces = SmallPieceMode::Debris;
+  bool separateIslands = true;
+  ColliderMode collider = ColliderMode::Auto;
+  uint32_t maxDepth = 12;                   // pieces this many cuts deep are no longer splitable
+  std::string handler;                      // a custom split handler registered under this name
+};
+
+enum class SplitterLifetime : uint8_t {
+  Persistent,  // cuts everything it touches, each object once (the thesis's energy disc)
+  OneTick,     // cuts what it touches during one physics step, then is gone (the sword swing)
+};
+
+// The cutting plane is the splitter's local up axis (+Y) through its position, in world space. A
+// splitter with a trigger only cuts bodies its trigger volume touches.
+struct Splitter {
+  SplitterLifetime lifetime = SplitterLifetime::OneTick;
+  bool playerCaused = false;
+  physics::TriggerId trigger;   // the finite trigger shape (a thin box along the plane)
+  glm::vec3 halfExtents{1.f, 0.02f, 1.f};  // of the trigger box, in the splitter frame
+  uint32_t cuts = 0;            // how many split requests it has issued
+};
+
+}  // namespace cleave::components

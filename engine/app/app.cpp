@@ -1,0 +1,267 @@
+#include "engine/app/app.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+
+#include "engine/ecs/transform.h"
+
+namespace cleave::app {
+
+namespace {
+
+double nowMs() {
+  using namespace std::chrono;
+  return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
+}
+
+void fnv(uint64_t& h, const void* data, size_t size) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  for (size_t i = 0; i < size; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ull;
+  }
+}
+
+}  // namespace
+
+App::App() = default;
+App::~App() {
+  // GPU resources go before the context that owns them.
+  renderer_.reset();
+  platform_.reset();
+}
+
+bool App::init(const AppOptions& options, const std::string& title, std::string* error) {
+  options_ = options;
+  if (!options_.replayPath.empty()) {
+    auto loaded = input::loadReplay(options_.replayPath);
+    if (!loaded.ok) {
+      if (error) *error = loaded.error;
+      return false;
+    }
+    replay_ = std::make_unique<input::Replay>(std::move(loaded.replay));
+  }
+  if (!options_.recordPath.empty()) {
+    recorder_ = std::make_unique<input::ReplayWriter>();
+    const std::string scene = options_.scenePath.empty() ? title : options_.scenePath;
+    if (!recorder_->open(options_.recordPath, scene, options_.seed, error)) return false;
+  }
+  std::string platformError;
+  if (!options_.headless) {
+    platform_ = createWindowPlatform(options_.width, options_.height, title, &platformError);
+    if (!platform_) {
+      std::fprintf(stderr, "cleave: no window (%s); running headless\n", platformError.c_str());
+      options_.headless = true;
+    }
+  }
+  if (!platform_) {
+    platform_ = createHeadlessPlatform(options_.width, options_.height, &platformError);
+    if (!platform_) {
+      if (error) *error = "no OpenGL context: " + platformError;
+      return false;
+    }
+  }
+  renderer_ = std::make_unique<render::Renderer>();
+  std::string renderError;
+  if (!renderer_->init(&renderError)) {
+    if (error) *error = "renderer: " + renderError;
+    return false;
+  }
+  if (!options_.dumpStatePath.empty()) {
+    dumpFile_ = std::make_unique<std::ofstream>(options_.dumpStatePath);
+    if (!*dumpFile_) {
+      if (error) *error = options_.dumpStatePath + ": cannot open the state dump for writing";
+      return false;
+    }
+  }
+  if (!options_.screenshotDir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(options_.screenshotDir, ec);
+    if (ec) {
+      if (error) *error = options_.screenshotDir + ": cannot create the screenshot directory (" +
+                          ec.message() + ")";
+      return false;
+    }
+  }
+  return true;
+}
+
+void App::addSystem(Phase phase, std::string name, System system) {
+  systems_[size_t(phase)].emplace_back(std::move(name), std::move(system));
+}
+
+void App::setStateDumpExtension(StateDumpExtension extension) {
+  dumpExtension_ = std::move(extension);
+}
+
+int64_t App::totalTicks() const {
+  if (options_.ticks >= 0) return options_.ticks;
+  if (replay_) return int64_t(replay_->length());
+  return -1;
+}
+
+bool App::runTick(bool render) {
+  const double tickStart = nowMs();
+  // Input: the replay's events for this tick, or what the window delivered since the last tick.
+  input::InputFrame frame;
+  frame.tick = tick_;
+  if (replay_) {
+    replay_->eventsAt(tick_, frame.events);
+  } else {
+    frame.events.swap(liveEvents_);
+    liveEvents_.clear();
+  }
+  if (recorder_) recorder_->write(frame);
+  inputState_.begin(frame);
+
+  TickContext context{*this, tick_, kTickSeconds, world_, inputState_, *renderer_, *platform_,
+                      platform_->frameSize(), render};
+  for (size_t p = 0; p < size_t(Phase::Count); ++p) {
+    const double start = nowMs();
+    if (Phase(p) == Phase::Render) {
+      if (render) renderFrame(context);
+    } else {
+      for (auto& [name, system] : systems_[p]) system(context);
+    }
+    phaseMs_[p] = nowMs() - start;
+  }
+  lastTickMs_ = nowMs() - tickStart;
+
+  const int64_t total = totalTicks();
+  const bool last = total >= 0 && int64_t(tick_) + 1 >= total;
+  if (dumpFile_ && ((options_.dumpEvery > 0 && tick_ % uint64_t(options_.dumpEvery) == 0) || last))
+    dumpState();
+  ++tick_;
+  return !last;
+}
+
+void App::renderFrame(TickContext& context) {
+  const glm::ivec2 size = platform_->frameSize();
+  context.frameSize = size;
+  for (auto& [name, system] : systems_[size_t(Phase::Render)]) system(context);
+  renderer_->endFrame();
+  framePending_ = true;
+}
+
+bool App::writeScreenshot(const std::string& path, std::string* error) {
+  std::vector<uint8_t> pixels;
+  int w = 0, h = 0;
+  renderer_->readPixels(pixels, w, h);
+  if (!render::writePng(path, w, h, pixels, error)) return false;
+  screenshots_.push_back(path);
+  return true;
+}
+
+int App::run() {
+  const int64_t total = totalTicks();
+  if (platform_->headless()) {
+    if (total < 0) {
+      std::fprintf(stderr, "cleave: headless runs need --ticks N or --replay FILE\n");
+      return 2;
+    }
+    // Screenshots: every N ticks when asked, otherwise four spread over the run plus the last tick.
+    int64_t every = options_.screenshotEvery;
+    if (every <= 0) every = std::max<int64_t>(1, total / 4);
+    while (!quit_ && int64_t(tick_) < total) {
+      const uint64_t t = tick_;
+      const bool shoot = !options_.screenshotDir.empty() &&
+                         ((t > 0 && int64_t(t) % every == 0) || int64_t(t) + 1 == total);
+      runTick(shoot);
+      if (shoot) {
+        char name[64];
+        std::snprintf(name, sizeof(name), "frame_%06llu.png", static_cast<unsigned long long>(t));
+        const std::string path = (std::filesystem::path(options_.screenshotDir) / name).string();
+        std::string error;
+        if (!writeScreenshot(path, &error)) {
+          std::fprintf(stderr, "cleave: %s\n", error.c_str());
+          return 1;
+        }
+      }
+    }
+  } else {
+    double accumulator = 0.0;
+    double previous = platform_->timeSeconds();
+    double fpsWindowStart = previous;
+    int fpsFrames = 0;
+    while (!quit_ && !platform_->closeRequested()) {
+      platform_->pollEvents([this](const input::InputEvent& e) { liveEvents_.push_back(e); });
+      const double now = platform_->timeSeconds();
+      accumulator += std::min(now - previous, 0.25);
+      previous = now;
+      int steps = 0;
+      while (accumulator >= kTickSeconds && steps < 4) {
+        accumulator -= kTickSeconds;
+        ++steps;
+        // Render on the last catch-up tick of this loop only.
+        const bool renderThis = accumulator < kTickSeconds || steps == 4;
+        if (!runTick(renderThis)) quit_ = true;
+        if (quit_) break;
+      }
+      if (steps >= 4) accumulator = 0.0;
+      if (framePending_) {
+        render::Renderer* r = renderer_.get();
+        platform_->present([r](int w, int h) { r->presentToDefaultFramebuffer(w, h); });
+        framePending_ = false;
+        ++fpsFrames;
+      }
+      if (now - fpsWindowStart >= 0.5) {
+        fps_ = fpsFrames / (now - fpsWindowStart);
+        fpsFrames = 0;
+        fpsWindowStart = now;
+      }
+    }
+  }
+  if (recorder_) {
+    std::string error;
+    if (!recorder_->close(tick_, &error)) {
+      std::fprintf(stderr, "cleave: %s\n", error.c_str());
+      return 1;
+    }
+  }
+  for (const auto& path : screenshots_) std::printf("screenshot: %s\n", path.c_str());
+  if (options_.printStateHash)
+    std::printf("state-hash: %016llx\n", static_cast<unsigned long long>(stateHash()));
+  std::fflush(stdout);
+  return 0;
+}
+
+uint64_t App::stateHash() const {
+  uint64_t h = 1469598103934665603ull;
+  for (ecs::Entity e : world_.entities()) {
+    const auto* t = world_.tryGet<ecs::Transform>(e);
+    if (!t) continue;
+    fnv(h, &e.index, sizeof(e.index));
+    fnv(h, &e.generation, sizeof(e.generation));
+    fnv(h, &t->position, sizeof(t->position));
+    fnv(h, &t->rotation, sizeof(t->rotation));
+  }
+  return h;
+}
+
+void App::dumpState() {
+  nlohmann::json line;
+  line["tick"] = tick_;
+  nlohmann::json entities = nlohmann::json::array();
+  for (ecs::Entity e : world_.entities()) {
+    const auto* t = world_.tryGet<ecs::Transform>(e);
+    if (!t) continue;
+    nlohmann::json item;
+    item["id"] = (uint64_t(e.generation) << 32) | e.index;
+    if (const auto* name = world_.tryGet<ecs::Name>(e)) item["name"] = name->value;
+    item["position"] = {t->position.x, t->position.y, t->position.z};
+    item["rotation"] = {t->rotation.w, t->rotation.x, t->rotation.y, t->rotation.z};
+    if (dumpExtension_) dumpExtension_(e, item);
+    entities.push_back(std::move(item));
+  }
+  line["entities"] = std::move(entities);
+  *dumpFile_ << line.dump() << '\n';
+  dumpFile_->flush();
+}
+
+}  // namespace cleave::app

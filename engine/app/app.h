@@ -1,0 +1,112 @@
+// The engine loop: fixed 60 Hz ticks run as phases of registered systems, on a window or headless
+// platform, with input from the live window or a replay, optional recording, screenshots, a state
+// hash and a JSON-lines state dump.
+//
+// Window: ticks follow the wall clock (at most a few catch-up ticks per frame), one frame is rendered
+// per loop. Headless: ticks run as fast as they can and a frame is rendered only on ticks that write a
+// screenshot, so long replays stay cheap.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+#include "engine/app/app_options.h"
+#include "engine/app/phase.h"
+#include "engine/app/platform.h"
+#include "engine/ecs/world.h"
+#include "engine/input/input_state.h"
+#include "engine/input/replay.h"
+#include "engine/render/renderer.h"
+
+namespace cleave::app {
+
+class App;
+
+struct TickContext {
+  App& app;
+  uint64_t tick = 0;             // index of the current tick, from 0
+  double dt = kTickSeconds;      // fixed
+  ecs::World& world;
+  const input::InputState& input;
+  render::Renderer& renderer;
+  Platform& platform;
+  glm::ivec2 frameSize{0};
+  bool rendering = false;        // this tick produces a frame (Render phase runs)
+};
+
+using System = std::function<void(TickContext&)>;
+
+// Adds fields to an entity's line in the state dump (mass, velocity, split parent, ...).
+using StateDumpExtension = std::function<void(ecs::Entity, nlohmann::json&)>;
+
+class App {
+ public:
+  App();
+  ~App();
+  App(const App&) = delete;
+  App& operator=(const App&) = delete;
+
+  // Creates the platform (window unless options.headless; falls back to headless if no display is
+  // available), the renderer, the input source (replay or live) and the recorder. Errors name the
+  // file and reason (a corrupt replay, an unwritable record file).
+  bool init(const AppOptions& options, const std::string& title, std::string* error);
+
+  void addSystem(Phase phase, std::string name, System system);
+  void setStateDumpExtension(StateDumpExtension extension);
+  // Runs until the replay or --ticks ends (headless) or the window closes. Returns the exit code.
+  int run();
+  void requestQuit() { quit_ = true; }
+
+  ecs::World& world() { return world_; }
+  render::Renderer& renderer() { return *renderer_; }
+  Platform& platform() { return *platform_; }
+  const AppOptions& options() const { return options_; }
+  const input::InputState& input() const { return inputState_; }
+  uint64_t tick() const { return tick_; }
+  // Milliseconds the last tick spent in each phase, and the last frame's wall time.
+  const std::array<double, size_t(Phase::Count)>& phaseMilliseconds() const { return phaseMs_; }
+  double lastTickMilliseconds() const { return lastTickMs_; }
+  double framesPerSecond() const { return fps_; }
+  // Paths of the screenshots written so far.
+  const std::vector<std::string>& screenshots() const { return screenshots_; }
+
+  // FNV-1a over every entity with a Transform, in ascending entity order: index, generation,
+  // position and rotation bits. Equal hashes mean equal states, bit for bit.
+  uint64_t stateHash() const;
+  // Takes a screenshot of the last rendered frame into `path`.
+  bool writeScreenshot(const std::string& path, std::string* error);
+
+ private:
+  bool runTick(bool render);
+  void renderFrame(TickContext& context);
+  void dumpState();
+  int64_t totalTicks() const;
+
+  AppOptions options_;
+  std::unique_ptr<Platform> platform_;
+  std::unique_ptr<render::Renderer> renderer_;
+  ecs::World world_;
+  input::InputState inputState_;
+  std::unique_ptr<input::Replay> replay_;
+  std::unique_ptr<input::ReplayWriter> recorder_;
+  std::vector<input::InputEvent> liveEvents_;
+  std::array<std::vector<std::pair<std::string, System>>, size_t(Phase::Count)> systems_;
+  StateDumpExtension dumpExtension_;
+  std::unique_ptr<std::ofstream> dumpFile_;
+  std::vector<std::string> screenshots_;
+  std::array<double, size_t(Phase::Count)> phaseMs_{};
+  double lastTickMs_ = 0.0;
+  double fps_ = 0.0;
+  uint64_t tick_ = 0;
+  bool quit_ = false;
+  bool framePending_ = false;
+};
+
+}  // namespace cleave::app

@@ -1,0 +1,105 @@
+#include "engine/app/app_options.h"
+
+#include <charconv>
+#include <cstring>
+
+namespace cleave::app {
+
+namespace {
+
+bool parseInt(const std::string& text, int64_t& value) {
+  const char* begin = text.data();
+  const char* end = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(begin, end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+}  // namespace
+
+std::string appOptionsUsage() {
+  return "engine options:\n"
+         "  --headless                 no window; ticks run as fast as they can\n"
+         "  --replay FILE              play the input recorded in FILE\n"
+         "  --record FILE              record this run's input to FILE\n"
+         "  --scene FILE.json          load a data-driven scene\n"
+         "  --ticks N                  stop after N ticks\n"
+         "  --screenshot-dir DIR       write PNG screenshots to DIR\n"
+         "  --screenshot-every N       a screenshot every N ticks\n"
+         "  --dump-state FILE          write the entity state as JSON lines\n"
+         "  --dump-every N             one state line every N ticks (default: last tick only)\n"
+         "  --print-state-hash         print the final state hash\n"
+         "  --width W --height H       frame size in pixels (default 1280x720)\n"
+         "  --seed N                   seed for the scene's random choices\n";
+}
+
+ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
+                            const std::vector<std::pair<std::string, int>>& gameOptions) {
+  ParseResult result;
+  auto fail = [&](const std::string& message) {
+    result.ok = false;
+    result.error = message;
+    return result;
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&](std::string& into) -> bool {
+      if (i + 1 >= argc) return false;
+      into = argv[++i];
+      return true;
+    };
+    auto number = [&](int64_t& into, int64_t minimum) -> bool {
+      std::string text;
+      if (!value(text)) return false;
+      int64_t v = 0;
+      if (!parseInt(text, v) || v < minimum) return false;
+      into = v;
+      return true;
+    };
+    if (arg == "--help" || arg == "-h") {
+      result.helpRequested = true;
+    } else if (arg == "--headless") {
+      out.headless = true;
+    } else if (arg == "--print-state-hash") {
+      out.printStateHash = true;
+    } else if (arg == "--replay") {
+      if (!value(out.replayPath)) return fail("--replay needs a file name");
+    } else if (arg == "--record") {
+      if (!value(out.recordPath)) return fail("--record needs a file name");
+    } else if (arg == "--scene") {
+      if (!value(out.scenePath)) return fail("--scene needs a file name");
+    } else if (arg == "--screenshot-dir") {
+      if (!value(out.screenshotDir)) return fail("--screenshot-dir needs a directory");
+    } else if (arg == "--dump-state") {
+      if (!value(out.dumpStatePath)) return fail("--dump-state needs a file name");
+    } else if (arg == "--ticks") {
+      if (!number(out.ticks, 0)) return fail("--ticks needs a whole number >= 0");
+    } else if (arg == "--screenshot-every") {
+      if (!number(out.screenshotEvery, 1)) return fail("--screenshot-every needs a whole number >= 1");
+    } else if (arg == "--dump-every") {
+      if (!number(out.dumpEvery, 1)) return fail("--dump-every needs a whole number >= 1");
+    } else if (arg == "--width" || arg == "--height") {
+      int64_t v = 0;
+      if (!number(v, 16) || v > 8192) return fail(arg + " needs a size from 16 to 8192 pixels");
+      (arg == "--width" ? out.width : out.height) = int(v);
+    } else if (arg == "--seed") {
+      int64_t v = 0;
+      if (!number(v, 0)) return fail("--seed needs a whole number >= 0");
+      out.seed = uint64_t(v);
+    } else {
+      bool known = false;
+      for (const auto& [name, count] : gameOptions) {
+        if (arg != name) continue;
+        known = true;
+        out.extra.push_back(arg);
+        for (int k = 0; k < count; ++k) {
+          if (i + 1 >= argc) return fail(arg + " needs " + std::to_string(count) + " value(s)");
+          out.extra.push_back(argv[++i]);
+        }
+      }
+      if (!known) return fail("unknown option '" + arg + "' (see --help)");
+    }
+  }
+  return result;
+}
+
+}  // namespace cleave::app

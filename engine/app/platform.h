@@ -1,0 +1,44 @@
+// Where frames go and live input comes from: a real window (GLFW, OpenGL 3.3 core) or a headless
+// offscreen context (EGL surfaceless on Mesa, OSMesa as fallback). Both give the renderer a current
+// GL context; only the window delivers live input and shows frames.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "engine/input/input_event.h"
+
+namespace cleave::app {
+
+enum class CursorMode { Normal, Captured };
+
+class Platform {
+ public:
+  virtual ~Platform() = default;
+  virtual bool headless() const = 0;
+  virtual const char* backendName() const = 0;
+  // Pixel size of the frames to render.
+  virtual glm::ivec2 frameSize() const = 0;
+  // Window: pumps the OS events and hands each input event to `sink`. Headless: nothing.
+  virtual void pollEvents(const std::function<void(const input::InputEvent&)>& sink) = 0;
+  // True once the user closed the window (never for headless).
+  virtual bool closeRequested() const = 0;
+  // Window: blit the rendered frame and swap. Headless: nothing.
+  virtual void present(const std::function<void(int width, int height)>& blit) = 0;
+  virtual void setCursorMode(CursorMode mode) = 0;
+  virtual void setTitle(const std::string& title) = 0;
+  // Seconds since the platform started (monotonic).
+  virtual double timeSeconds() const = 0;
+};
+
+// A GLFW window with an OpenGL 3.3 core context, loaded for the renderer. Returns nullptr with a
+// reason when no display is available or the context cannot be created.
+std::unique_ptr<Platform> createWindowPlatform(int width, int height, const std::string& title,
+                                               std::string* error);
+// An offscreen GL context of the given frame size.
+std::unique_ptr<Platform> createHeadlessPlatform(int width, int height, std::string* error);
+
+}  // namespace cleave::app

@@ -1,0 +1,713 @@
+// glTF 2.0 through tinygltf: the static-mesh reader (default scene, node transforms applied, every
+// triangle primitive merged into one MeshData with one material run per primitive) and the GLB
+// writer. tinygltf parses the JSON and the GLB container; every index, offset, stride and count it
+// hands over is checked here again before any read, because a file can claim anything.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <cstring>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "engine/assets/mesh_reader.h"
+
+namespace cleave::assets::detail {
+
+namespace {
+
+// ------------------------------------------------------------------------------------------------
+// Loading
+
+// Images are irrelevant to geometry: skip decoding them (it is also the costliest part of a bad file).
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
+               int, void*) {
+  return true;
+}
+
+// File callbacks for glTF read from memory: there is no folder, so external files are refused.
+bool noFileExists(const std::string&, void*) { return false; }
+std::string sameFilePath(const std::string& path, void*) { return path; }
+bool noReadWholeFile(std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
+  if (err != nullptr) *err += "external file '" + path + "' cannot be read from memory input\n";
+  return false;
+}
+bool noWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err != nullptr) *err += "writing is disabled\n";
+  return false;
+}
+
+// One line out of tinygltf's multi-line messages.
+std::string oneLine(const std::string& text) {
+  std::string out;
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (line.empty()) continue;
+    if (!out.empty()) out += "; ";
+    out += line;
+  }
+  return out;
+}
+
+// Extensions that only change materials or textures: geometry can be read without understanding them.
+bool geometryNeutral(const std::string& extension) {
+  return extension.starts_with("KHR_materials_") || extension.starts_with("KHR_texture_") ||
+         extension.starts_with("EXT_texture_") || extension == "KHR_lights_punctual";
+}
+
+// ------------------------------------------------------------------------------------------------
+// Accessors
+
+struct AccessorView {
+  const uint8_t* data = nullptr;
+  size_t count = 0;
+  size_t stride = 0;
+  int componentType = 0;
+  int components = 0;
+  bool normalized = false;
+};
+
+bool viewAccessor(const tinygltf::Model& model, int index, AccessorView& view, std::string& reason) {
+  if (index < 0 || static_cast<size_t>(index) >= model.accessors.size()) {
+    reason = "accessor " + std::to_string(index) + " does not exist";
+    return false;
+  }
+  const tinygltf::Accessor& accessor = model.accessors[static_cast<size_t>(index)];
+  const std::string what = "accessor " + std::to_string(index);
+  if (accessor.sparse.isSparse) {
+    reason = what + " is sparse, which is not supported";
+    return false;
+  }
+  if (accessor.bufferView < 0 || static_cast<size_t>(accessor.bufferView) >= model.bufferViews.size()) {
+    reason = what + " has no valid buffer view";
+    return false;
+  }
+  const tinygltf::BufferView& bufferView = model.bufferViews[static_cast<size_t>(accessor.bufferView)];
+  if (bufferView.buffer < 0 || static_cast<size_t>(bufferView.buffer) >= model.buffers.size()) {
+    reason = what + ": buffer view " + std::to_string(accessor.bufferView) +
+             " refers to a missing buffer";
+    return false;
+  }
+  const tinygltf::Buffer& buffer = model.buffers[static_cast<size_t>(bufferView.buffer)];
+  const uint64_t viewEnd = uint64_t{bufferView.byteOffset} + bufferView.byteLength;
+  if (bufferView.byteOffset > buffer.data.size() || viewEnd > buffer.data.size()) {
+    reason = what + ": buffer view " + std::to_string(accessor.bufferView) + " lies outside buffer " +
+             std::to_string(bufferView.buffer) + " (" + std::to_string(buffer.data.size()) +
+             " bytes loaded)";
+    return false;
+  }
+  const int componentSize = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(accessor.componentType));
+  const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(accessor.type));
+  if (componentSize <= 0 || components <= 0) {
+    reason = what + " has an invalid type or component type";
+    return false;
+  }
+  const uint64_t elementSize = uint64_t(componentSize) * uint64_t(components);
+  const uint64_t stride = bufferView.byteStride > 0 ? bufferView.byteStride : elementSize;
+  if (stride < elementSize) {
+    reason = what + ": byte stride smaller than an element";
+    return false;
+  }
+  if (accessor.count > 0) {
+    const uint64_t last = accessor.byteOffset + stride * (uint64_t{accessor.count} - 1) + elementSize;
+    if (accessor.count > bufferView.byteLength || accessor.byteOffset > bufferView.byteLength ||
+        last > bufferView.byteLength) {
+      reason = what + " reads past the end of buffer view " + std::to_string(accessor.bufferView);
+      return false;
+    }
+  }
+  view.data = buffer.data.data() + bufferView.byteOffset + accessor.byteOffset;
+  view.count = accessor.count;
+  view.stride = static_cast<size_t>(stride);
+  view.componentType = accessor.componentType;
+  view.components = components;
+  view.normalized = accessor.normalized;
+  return true;
+}
+
+// Component c of element i as a double (normalized integers mapped to [0, 1] or [-1, 1]).
+// glTF data is little-endian, as is every platform the engine builds for.
+double component(const AccessorView& view, size_t i, int c) {
+  const uint8_t* p = view.data + i * view.stride;
+  switch (view.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float v;
+      std::memcpy(&v, p + 4 * c, 4);
+      return v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+      const double v = p[c];
+      return view.normalized ? v / 255.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const double v = static_cast<int8_t>(p[c]);
+      return view.normalized ? std::max(v / 127.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t v;
+      std::memcpy(&v, p + 2 * c, 2);
+      return view.normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      int16_t v;
+      std::memcpy(&v, p + 2 * c, 2);
+      return view.normalized ? std::max(v / 32767.0, -1.0) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      uint32_t v;
+      std::memcpy(&v, p + 4 * c, 4);
+      return v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_INT: {
+      int32_t v;
+      std::memcpy(&v, p + 4 * c, 4);
+      return v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE: {
+      double v;
+      std::memcpy(&v, p + 8 * c, 8);
+      return v;
+    }
+    default: return 0.0;
+  }
+}
+
+glm::dmat4 localMatrix(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    glm::dmat4 m(1.0);
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[static_cast<size_t>(c * 4 + r)];
+    }
+    return m;
+  }
+  glm::dmat4 t(1.0), r(1.0), s(1.0);
+  if (node.translation.size() == 3) {
+    t = glm::translate(glm::dmat4(1.0),
+                       glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+  }
+  if (node.rotation.size() == 4) {
+    const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+    const double length = glm::length(q);
+    if (length > 0.0 && std::isfinite(length)) r = glm::mat4_cast(q / length);
+    else r = glm::dmat4(std::numeric_limits<double>::quiet_NaN());
+  }
+  if (node.scale.size() == 3) {
+    s = glm::scale(glm::dmat4(1.0), glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+  }
+  return t * r * s;
+}
+
+struct MergeState {
+  MergeState(geometry::MeshData& m, std::vector<std::string>& w, const std::string& n)
+      : mesh(m), warnings(w), name(n) {}
+  geometry::MeshData& mesh;
+  std::vector<std::string>& warnings;
+  const std::string& name;
+  bool allNormals = true;
+  bool anyUv = false;
+  uint64_t elementBudget = 0;  // vertices + indices still allowed
+  bool usesDefaultMaterial = false;
+  bool degenerateNormal = false;  // a zero or non-finite normal: normals are dropped
+  // Primitives of one node that use the same attribute accessors share one block of vertices, so a
+  // mesh split into primitives per material stays connected by index (and GLB round trips exactly).
+  uint64_t nodeVisit = 0;
+  struct Shared {
+    uint64_t nodeVisit = UINT64_MAX;
+    int position = -1, normal = -1, uv = -1;
+    size_t base = 0;
+  } lastBlock;
+};
+
+bool appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t primitiveIndex,
+                     const glm::dmat4& transform, MergeState& state, std::string& reason) {
+  const tinygltf::Primitive& primitive = model.meshes[meshIndex].primitives[primitiveIndex];
+  const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " +
+                            std::to_string(primitiveIndex) + ": ";
+  if (primitive.extensions.count("KHR_draco_mesh_compression") != 0) {
+    reason = where + "uses KHR_draco_mesh_compression, which is not supported";
+    return false;
+  }
+  const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    state.warnings.push_back(state.name + ": " + where + "mode " + std::to_string(mode) +
+                             " (points or lines) skipped");
+    return true;
+  }
+  const auto positionIt = primitive.attributes.find("POSITION");
+  if (positionIt == primitive.attributes.end()) {
+    reason = where + "has no POSITION attribute";
+    return false;
+  }
+  AccessorView positions;
+  if (!viewAccessor(model, positionIt->second, positions, reason)) {
+    reason = where + reason;
+    return false;
+  }
+  if (positions.components != 3 || positions.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+    reason = where + "POSITION must be a float VEC3";
+    return false;
+  }
+  AccessorView normals;
+  bool hasNormals = false;
+  if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
+    if (!viewAccessor(model, it->second, normals, reason)) {
+      reason = where + reason;
+      return false;
+    }
+    if (normals.components != 3 || normals.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
+        normals.count != positions.count) {
+      reason = where + "NORMAL must be a float VEC3 with one entry per vertex";
+      return false;
+    }
+    hasNormals = true;
+  }
+  AccessorView uvs;
+  bool hasUv = false;
+  if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
+    if (!viewAccessor(model, it->second, uvs, reason)) {
+      reason = where + reason;
+      return false;
+    }
+    const bool typeOk = uvs.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                        (uvs.normalized && (uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                            uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+    if (uvs.components != 2 || !typeOk || uvs.count != positions.count) {
+      reason = where + "TEXCOORD_0 must be a VEC2 (float or normalized unsigned) per vertex";
+      return false;
+    }
+    hasUv = true;
+  }
+
+  // The corner list: indices, or 0..count-1 without them.
+  std::vector<uint32_t> corners;
+  if (primitive.indices >= 0) {
+    AccessorView indexView;
+    if (!viewAccessor(model, primitive.indices, indexView, reason)) {
+      reason = where + reason;
+      return false;
+    }
+    if (indexView.components != 1 ||
+        (indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+         indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
+      reason = where + "indices must be unsigned byte, short or int scalars";
+      return false;
+    }
+    corners.resize(indexView.count);
+    for (size_t i = 0; i < indexView.count; ++i) {
+      const double value = component(indexView, i, 0);
+      if (value >= static_cast<double>(positions.count)) {
+        reason = where + "index " + std::to_string(static_cast<uint64_t>(value)) +
+                 " out of range (" + std::to_string(positions.count) + " vertices)";
+        return false;
+      }
+      corners[i] = static_cast<uint32_t>(value);
+    }
+  } else {
+    if (positions.count > UINT32_MAX) {
+      reason = where + "too many vertices";
+      return false;
+    }
+    corners.resize(positions.count);
+    for (size_t i = 0; i < corners.size(); ++i) corners[i] = static_cast<uint32_t>(i);
+  }
+
+  // Triangles from the corner list.
+  std::vector<uint32_t> triangles;
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (corners.size() % 3 != 0) {
+      state.warnings.push_back(state.name + ": " + where +
+                               "index count not a multiple of 3; the last partial triangle is ignored");
+    }
+    triangles.assign(corners.begin(), corners.begin() + static_cast<std::ptrdiff_t>(corners.size() / 3 * 3));
+  } else if (corners.size() >= 3) {
+    for (size_t i = 0; i + 2 < corners.size(); ++i) {
+      if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        const bool odd = (i % 2) == 1;
+        triangles.insert(triangles.end(), {corners[i], corners[odd ? i + 2 : i + 1],
+                                           corners[odd ? i + 1 : i + 2]});
+      } else {
+        triangles.insert(triangles.end(), {corners[i + 1], corners[i + 2], corners[0]});
+      }
+    }
+  }
+  if (triangles.empty()) return true;
+
+  const int normalIndex = hasNormals ? primitive.attributes.at("NORMAL") : -1;
+  const int uvIndex = hasUv ? primitive.attributes.at("TEXCOORD_0") : -1;
+  const MergeState::Shared& last = state.lastBlock;
+  const bool reuse = last.nodeVisit == state.nodeVisit && last.position == positionIt->second &&
+                     last.normal == normalIndex && last.uv == uvIndex;
+
+  const uint64_t elements = (reuse ? 0 : uint64_t{positions.count}) + triangles.size();
+  if (elements > state.elementBudget) {
+    reason = "the scene instantiates more geometry than the file size allows";
+    return false;
+  }
+  state.elementBudget -= elements;
+
+  geometry::MeshData& mesh = state.mesh;
+  const size_t base = reuse ? last.base : mesh.positions.size();
+  if (base + positions.count > UINT32_MAX) {
+    reason = "too many vertices";
+    return false;
+  }
+  const glm::dmat3 linear(transform);
+  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+  const bool mirrored = glm::determinant(linear) < 0.0;
+  if (!reuse) state.lastBlock = {state.nodeVisit, positionIt->second, normalIndex, uvIndex, base};
+  for (size_t i = 0; !reuse && i < positions.count; ++i) {
+    const glm::dvec4 p = transform * glm::dvec4(component(positions, i, 0), component(positions, i, 1),
+                                                component(positions, i, 2), 1.0);
+    mesh.positions.emplace_back(p);
+    glm::vec3 n(0.f);
+    if (hasNormals) {
+      const glm::dvec3 transformed = normalMatrix * glm::dvec3(component(normals, i, 0),
+                                                               component(normals, i, 1),
+                                                               component(normals, i, 2));
+      const double length = glm::length(transformed);
+      if (length > 0.0 && std::isfinite(length)) n = glm::vec3(transformed / length);
+      else state.degenerateNormal = true;
+    }
+    mesh.normals.push_back(n);
+    mesh.uv0.push_back(hasUv ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1)) : glm::vec2(0.f));
+  }
+  state.allNormals = state.allNormals && hasNormals;
+  state.anyUv = state.anyUv || hasUv;
+
+  uint32_t materialId = 0;
+  if (primitive.material >= 0) {
+    if (static_cast<size_t>(primitive.material) >= model.materials.size()) {
+      reason = where + "material " + std::to_string(primitive.material) + " does not exist";
+      return false;
+    }
+    materialId = static_cast<uint32_t>(primitive.material);
+  } else {
+    materialId = static_cast<uint32_t>(model.materials.size());
+    state.usesDefaultMaterial = true;
+  }
+  if (mesh.submeshes.empty() || mesh.submeshes.back().materialId != materialId) {
+    mesh.submeshes.push_back(geometry::SubMesh{static_cast<uint32_t>(mesh.indices.size()), 0, materialId});
+  }
+  for (size_t t = 0; t < triangles.size(); t += 3) {
+    const uint32_t a = static_cast<uint32_t>(base) + triangles[t];
+    const uint32_t b = static_cast<uint32_t>(base) + triangles[t + 1];
+    const uint32_t c = static_cast<uint32_t>(base) + triangles[t + 2];
+    mesh.indices.insert(mesh.indices.end(), {a, mirrored ? c : b, mirrored ? b : c});
+  }
+  mesh.submeshes.back().indexCount =
+      static_cast<uint32_t>(mesh.indices.size()) - mesh.submeshes.back().firstIndex;
+  return true;
+}
+
+}  // namespace
+
+MeshReadResult readGltf(std::span<const uint8_t> bytes, const std::string& name, bool binary,
+                        const std::optional<std::string>& baseDir) {
+  if (bytes.size() > UINT32_MAX) return failure(name, "file too large for glTF");
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(skipImage, nullptr);
+  if (!baseDir) {
+    tinygltf::FsCallbacks callbacks{noFileExists, sameFilePath, noReadWholeFile, noWriteWholeFile,
+                                    nullptr};
+    loader.SetFsCallbacks(callbacks);
+  }
+  tinygltf::Model model;
+  std::string err, warn;
+  bool loaded = false;
+  try {
+    const std::string dir = baseDir.value_or("");
+    if (binary) {
+      loaded = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                           static_cast<unsigned int>(bytes.size()), dir);
+    } else {
+      loaded = loader.LoadASCIIFromString(&model, &err, &warn,
+                                          reinterpret_cast<const char*>(bytes.data()),
+                                          static_cast<unsigned int>(bytes.size()), dir);
+    }
+  } catch (const std::exception& e) {
+    return failure(name, std::string("glTF parse error: ") + e.what());
+  } catch (...) {
+    return failure(name, "glTF parse error");
+  }
+  std::vector<std::string> warnings;
+  if (const std::string w = oneLine(warn); !w.empty()) warnings.push_back(name + ": " + w);
+  if (!loaded) {
+    const std::string e = oneLine(err);
+    MeshReadResult result = failure(name, e.empty() ? "tinygltf could not load the file" : e);
+    result.warnings = std::move(warnings);
+    return result;
+  }
+  for (const std::string& extension : model.extensionsRequired) {
+    if (geometryNeutral(extension)) continue;
+    return failure(name, "requires the glTF extension " + extension + ", which is not supported");
+  }
+
+  // Roots: the default scene, else the first scene, else every node that is nobody's child.
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    int sceneIndex = model.defaultScene < 0 ? 0 : model.defaultScene;
+    if (static_cast<size_t>(sceneIndex) >= model.scenes.size()) {
+      return failure(name, "default scene " + std::to_string(sceneIndex) + " does not exist");
+    }
+    roots = model.scenes[static_cast<size_t>(sceneIndex)].nodes;
+  } else {
+    std::vector<uint8_t> isChild(model.nodes.size(), 0);
+    for (const tinygltf::Node& node : model.nodes) {
+      for (int child : node.children) {
+        if (child >= 0 && static_cast<size_t>(child) < model.nodes.size()) isChild[static_cast<size_t>(child)] = 1;
+      }
+    }
+    for (size_t i = 0; i < model.nodes.size(); ++i) {
+      if (!isChild[i]) roots.push_back(static_cast<int>(i));
+    }
+  }
+
+  MeshReadResult result;
+  result.warnings = std::move(warnings);
+  MergeState state(result.mesh, result.warnings, name);
+  state.elementBudget = (uint64_t{1} << 24) + 64 * uint64_t{bytes.size()};
+  for (const tinygltf::Buffer& buffer : model.buffers) state.elementBudget += buffer.data.size();
+
+  // Depth-first over the node tree with an explicit stack; a node reached twice means a cycle or a
+  // node with two parents, both invalid glTF.
+  std::vector<uint8_t> visited(model.nodes.size(), 0);
+  struct Item {
+    int node;
+    glm::dmat4 parent;
+  };
+  std::vector<Item> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0)});
+  std::string reason;
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    if (item.node < 0 || static_cast<size_t>(item.node) >= model.nodes.size()) {
+      return failure(name, "node " + std::to_string(item.node) + " does not exist");
+    }
+    const size_t nodeIndex = static_cast<size_t>(item.node);
+    if (visited[nodeIndex]) {
+      return failure(name, "node " + std::to_string(item.node) +
+                               " is reached twice from the scene (a cycle or a shared child)");
+    }
+    visited[nodeIndex] = 1;
+    ++state.nodeVisit;
+    const tinygltf::Node& node = model.nodes[nodeIndex];
+    const glm::dmat4 world = item.parent * localMatrix(node);
+    if (node.mesh >= 0) {
+      if (static_cast<size_t>(node.mesh) >= model.meshes.size()) {
+        return failure(name, "node " + std::to_string(item.node) + " refers to missing mesh " +
+                                 std::to_string(node.mesh));
+      }
+      // A skinned mesh is placed by its joints only (the glTF rule); read statically it is the
+      // bind pose, so its node transform is not applied.
+      const glm::dmat4 transform = node.skin >= 0 ? glm::dmat4(1.0) : world;
+      const tinygltf::Mesh& mesh = model.meshes[static_cast<size_t>(node.mesh)];
+      for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+        if (!appendPrimitive(model, static_cast<size_t>(node.mesh), p, transform, state, reason)) {
+          MeshReadResult failed = failure(name, reason);
+          failed.warnings = std::move(result.warnings);
+          return failed;
+        }
+      }
+    }
+    for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) {
+      stack.push_back({*it, world});
+    }
+  }
+
+  geometry::MeshData& mesh = result.mesh;
+  if (state.allNormals && state.degenerateNormal) {
+    result.warnings.push_back(name + ": a normal has zero length or is not finite; normals dropped");
+  }
+  if (!state.allNormals || state.degenerateNormal) mesh.normals.clear();
+  if (!state.anyUv) mesh.uv0.clear();
+  for (size_t i = 0; i < model.materials.size(); ++i) {
+    const std::string& materialName = model.materials[i].name;
+    result.materialNames.push_back(materialName.empty() ? "material_" + std::to_string(i) : materialName);
+  }
+  if (state.usesDefaultMaterial) result.materialNames.push_back("default");
+  if (mesh.indices.empty()) {
+    MeshReadResult failed = failure(name, "the default scene has no triangle mesh");
+    failed.warnings = std::move(result.warnings);
+    return failed;
+  }
+  return finish(std::move(result), name);
+}
+
+}  // namespace cleave::assets::detail
+
+namespace cleave::assets {
+
+// ------------------------------------------------------------------------------------------------
+// GLB writer
+
+namespace {
+
+template <typename T>
+size_t appendToBuffer(std::vector<unsigned char>& buffer, const std::vector<T>& values) {
+  // Every block starts 4-byte aligned, as glTF requires for float and uint32 data.
+  while (buffer.size() % 4 != 0) buffer.push_back(0);
+  const size_t offset = buffer.size();
+  buffer.resize(offset + values.size() * sizeof(T));
+  if (!values.empty()) std::memcpy(buffer.data() + offset, values.data(), values.size() * sizeof(T));
+  return offset;
+}
+
+int addView(tinygltf::Model& model, size_t offset, size_t length, int target) {
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = offset;
+  view.byteLength = length;
+  view.target = target;
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size() - 1);
+}
+
+int addAccessor(tinygltf::Model& model, int view, size_t byteOffset, int componentType, int type,
+                size_t count) {
+  tinygltf::Accessor accessor;
+  accessor.bufferView = view;
+  accessor.byteOffset = byteOffset;
+  accessor.componentType = componentType;
+  accessor.type = type;
+  accessor.count = count;
+  model.accessors.push_back(accessor);
+  return static_cast<int>(model.accessors.size() - 1);
+}
+
+}  // namespace
+
+MeshWriteResult writeGlbToMemory(const geometry::MeshData& mesh, const MeshWriteOptions& options,
+                                 std::vector<uint8_t>& out) {
+  MeshWriteResult result;
+  std::vector<geometry::SubMesh> runs;
+  std::string reason;
+  if (!detail::writableRuns(mesh, runs, reason)) {
+    result.error = "GLB: " + reason;
+    return result;
+  }
+  if (mesh.indices.empty()) {
+    result.error = "GLB: the mesh has no triangles";
+    return result;
+  }
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "Cleave";
+  model.buffers.emplace_back();
+  std::vector<unsigned char>& data = model.buffers[0].data;
+
+  const size_t positionOffset = appendToBuffer(data, mesh.positions);
+  const int positionView = addView(model, positionOffset, mesh.positions.size() * sizeof(glm::vec3),
+                                   TINYGLTF_TARGET_ARRAY_BUFFER);
+  const int positionAccessor = addAccessor(model, positionView, 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                           TINYGLTF_TYPE_VEC3, mesh.positions.size());
+  glm::vec3 lo(0.f), hi(0.f);
+  if (!mesh.positions.empty()) lo = hi = mesh.positions[0];
+  for (const glm::vec3& p : mesh.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  model.accessors[static_cast<size_t>(positionAccessor)].minValues = {lo.x, lo.y, lo.z};
+  model.accessors[static_cast<size_t>(positionAccessor)].maxValues = {hi.x, hi.y, hi.z};
+
+  int normalAccessor = -1;
+  if (options.writeNormals && !mesh.normals.empty()) {
+    const size_t offset = appendToBuffer(data, mesh.normals);
+    const int view = addView(model, offset, mesh.normals.size() * sizeof(glm::vec3),
+                             TINYGLTF_TARGET_ARRAY_BUFFER);
+    normalAccessor = addAccessor(model, view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                                 mesh.normals.size());
+  }
+  int uvAccessor = -1;
+  if (options.writeUvs && !mesh.uv0.empty()) {
+    const size_t offset = appendToBuffer(data, mesh.uv0);
+    const int view = addView(model, offset, mesh.uv0.size() * sizeof(glm::vec2),
+                             TINYGLTF_TARGET_ARRAY_BUFFER);
+    uvAccessor = addAccessor(model, view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2,
+                             mesh.uv0.size());
+  }
+  const size_t indexOffset = appendToBuffer(data, mesh.indices);
+  const int indexView = addView(model, indexOffset, mesh.indices.size() * sizeof(uint32_t),
+                                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  model.buffers[0].data.resize((data.size() + 3) / 4 * 4, 0);
+
+  tinygltf::Mesh gltfMesh;
+  gltfMesh.name = "mesh";
+  std::vector<uint32_t> materialIds;  // material index -> our material id, in order of first use
+  for (const geometry::SubMesh& run : runs) {
+    if (run.indexCount == 0) continue;
+    int material = -1;
+    for (size_t i = 0; i < materialIds.size(); ++i) {
+      if (materialIds[i] == run.materialId) material = static_cast<int>(i);
+    }
+    if (material < 0) {
+      materialIds.push_back(run.materialId);
+      tinygltf::Material gltfMaterial;
+      gltfMaterial.name = materialName(options, run.materialId);
+      gltfMaterial.doubleSided = false;
+      model.materials.push_back(gltfMaterial);
+      material = static_cast<int>(model.materials.size() - 1);
+    }
+    tinygltf::Primitive primitive;
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    primitive.material = material;
+    primitive.attributes["POSITION"] = positionAccessor;
+    if (normalAccessor >= 0) primitive.attributes["NORMAL"] = normalAccessor;
+    if (uvAccessor >= 0) primitive.attributes["TEXCOORD_0"] = uvAccessor;
+    primitive.indices = addAccessor(model, indexView, size_t{run.firstIndex} * sizeof(uint32_t),
+                                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
+                                    run.indexCount);
+    gltfMesh.primitives.push_back(primitive);
+  }
+  model.meshes.push_back(gltfMesh);
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.name = "piece";
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes = {0};
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+
+  std::ostringstream stream;
+  tinygltf::TinyGLTF writer;
+  bool written = false;
+  try {
+    written = writer.WriteGltfSceneToStream(&model, stream, false, true);
+  } catch (...) {
+    written = false;
+  }
+  if (!written) {
+    result.error = "GLB: tinygltf could not serialise the mesh";
+    return result;
+  }
+  const std::string bytes = stream.str();
+  out.assign(bytes.begin(), bytes.end());
+  result.ok = true;
+  return result;
+}
+
+MeshWriteResult writeGlb(const std::string& path, const geometry::MeshData& mesh,
+                         const MeshWriteOptions& options) {
+  std::vector<uint8_t> bytes;
+  MeshWriteResult result = writeGlbToMemory(mesh, options, bytes);
+  if (!result.ok) {
+    result.error = path + ": " + result.error;
+    return result;
+  }
+  std::string error;
+  if (!detail::writeBytes(path, bytes.data(), bytes.size(), error)) {
+    result.ok = false;
+    result.error = error;
+  }
+  return result;
+}
+
+}  // namespace cleave::assets

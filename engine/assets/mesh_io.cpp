@@ -1,0 +1,498 @@
+// Dispatch by extension, file access, the helpers shared by the readers, and the OBJ writer.
+#include "engine/assets/mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <system_error>
+
+#include "engine/assets/mesh_reader.h"
+
+namespace cleave::assets {
+
+namespace detail {
+
+MeshReadResult failure(const std::string& name, const std::string& reason) {
+  MeshReadResult result;
+  result.ok = false;
+  result.error = name + ": " + reason;
+  return result;
+}
+
+MeshReadResult failureAt(const std::string& name, size_t line, const std::string& reason) {
+  MeshReadResult result;
+  result.ok = false;
+  result.error = name + ":" + std::to_string(line) + ": " + reason;
+  return result;
+}
+
+namespace {
+
+bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && std::isfinite(v.w); }
+
+template <typename T>
+std::string checkAttribute(const std::vector<T>& values, size_t vertexCount, const char* what) {
+  if (!values.empty() && values.size() != vertexCount) {
+    return std::string(what) + " count differs from the vertex count";
+  }
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!finite(values[i])) {
+      return std::string(what) + " of vertex " + std::to_string(i) + " is not finite";
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+MeshReadResult finish(MeshReadResult result, const std::string& name) {
+  const geometry::MeshData& mesh = result.mesh;
+  const size_t vertexCount = mesh.positions.size();
+  if (mesh.indices.empty()) {
+    return failure(name, "no triangles in the file");
+  }
+  if (mesh.indices.size() % 3 != 0) {
+    return failure(name, "index count is not a multiple of 3");
+  }
+  for (size_t i = 0; i < mesh.indices.size(); ++i) {
+    if (mesh.indices[i] >= vertexCount) {
+      return failure(name, "triangle " + std::to_string(i / 3) + ": vertex index " +
+                               std::to_string(mesh.indices[i]) + " out of range (" +
+                               std::to_string(vertexCount) + " vertices)");
+    }
+  }
+  for (size_t i = 0; i < vertexCount; ++i) {
+    if (!finite(mesh.positions[i])) {
+      return failure(name, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+    }
+  }
+  std::string problem = checkAttribute(mesh.normals, vertexCount, "normal");
+  if (problem.empty()) problem = checkAttribute(mesh.uv0, vertexCount, "texture coordinate");
+  if (problem.empty()) problem = checkAttribute(mesh.colors, vertexCount, "colour");
+  if (!problem.empty()) return failure(name, problem);
+  if (!mesh.submeshes.empty()) {
+    uint64_t next = 0;
+    for (const geometry::SubMesh& sub : mesh.submeshes) {
+      if (sub.firstIndex != next || sub.indexCount % 3 != 0) {
+        return failure(name, "material runs do not cover the triangles in order");
+      }
+      next += sub.indexCount;
+    }
+    if (next != mesh.indices.size()) {
+      return failure(name, "material runs do not cover the triangles in order");
+    }
+  }
+  if (result.materialNames.empty()) result.materialNames.push_back("default");
+  result.ok = true;
+  result.error.clear();
+  return result;
+}
+
+bool parseFloat(std::string_view token, float& value) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  if (token.empty()) return false;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc() && end == token.data() + token.size();
+}
+
+bool parseDouble(std::string_view token, double& value) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  if (token.empty()) return false;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc() && end == token.data() + token.size();
+}
+
+bool parseInt64(std::string_view token, int64_t& value) {
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  if (token.empty()) return false;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  return ec == std::errc() && end == token.data() + token.size();
+}
+
+bool LineScanner::nextLine() {
+  if (pos_ >= text_.size()) {
+    line_ = {};
+    linePos_ = 0;
+    return false;
+  }
+  size_t end = pos_;
+  while (end < text_.size() && text_[end] != '\n' && text_[end] != '\r') ++end;
+  line_ = text_.substr(pos_, end - pos_);
+  if (comment_ != '\0') {
+    const size_t hash = line_.find(comment_);
+    if (hash != std::string_view::npos) line_ = line_.substr(0, hash);
+  }
+  linePos_ = 0;
+  ++lineNumber_;
+  if (end < text_.size() && text_[end] == '\r' && end + 1 < text_.size() && text_[end + 1] == '\n') {
+    ++end;
+  }
+  pos_ = end + 1;
+  return true;
+}
+
+namespace {
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v' || c == '\0'; }
+}  // namespace
+
+std::string_view LineScanner::nextToken() {
+  while (linePos_ < line_.size() && isSpace(line_[linePos_])) ++linePos_;
+  const size_t start = linePos_;
+  while (linePos_ < line_.size() && !isSpace(line_[linePos_])) ++linePos_;
+  return line_.substr(start, linePos_ - start);
+}
+
+std::string_view LineScanner::rest() {
+  while (linePos_ < line_.size() && isSpace(line_[linePos_])) ++linePos_;
+  std::string_view r = line_.substr(linePos_);
+  while (!r.empty() && isSpace(r.back())) r.remove_suffix(1);
+  return r;
+}
+
+std::string quoted(std::string_view token) {
+  constexpr size_t kMax = 32;
+  std::string out = "'";
+  for (size_t i = 0; i < token.size() && i < kMax; ++i) {
+    const unsigned char c = static_cast<unsigned char>(token[i]);
+    out += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
+  }
+  if (token.size() > kMax) out += "...";
+  out += "'";
+  return out;
+}
+
+}  // namespace detail
+
+const char* toString(MeshFormat format) {
+  switch (format) {
+    case MeshFormat::Obj: return "OBJ";
+    case MeshFormat::Off: return "OFF";
+    case MeshFormat::Stl: return "STL";
+    case MeshFormat::Ply: return "PLY";
+    case MeshFormat::Gltf: return "glTF";
+    case MeshFormat::Glb: return "GLB";
+    case MeshFormat::Unknown: break;
+  }
+  return "unknown";
+}
+
+MeshFormat formatFromPath(std::string_view path) {
+  const size_t slash = path.find_last_of("/\\");
+  const std::string_view file = slash == std::string_view::npos ? path : path.substr(slash + 1);
+  const size_t dot = file.find_last_of('.');
+  if (dot == std::string_view::npos) return MeshFormat::Unknown;
+  std::string ext(file.substr(dot + 1));
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == "obj") return MeshFormat::Obj;
+  if (ext == "off") return MeshFormat::Off;
+  if (ext == "stl") return MeshFormat::Stl;
+  if (ext == "ply") return MeshFormat::Ply;
+  if (ext == "gltf") return MeshFormat::Gltf;
+  if (ext == "glb") return MeshFormat::Glb;
+  return MeshFormat::Unknown;
+}
+
+namespace {
+
+// Files above this size are refused rather than read into memory.
+constexpr uint64_t kMaxFileBytes = uint64_t{1} << 31;
+
+bool readWholeFile(const std::string& path, std::vector<uint8_t>& bytes, std::string& error) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) {
+    error = path + ": no such file";
+    return false;
+  }
+  if (std::filesystem::is_directory(status)) {
+    error = path + ": is a directory, not a mesh file";
+    return false;
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    error = path + ": not a regular file";
+    return false;
+  }
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) {
+    error = path + ": cannot read the file size (" + ec.message() + ")";
+    return false;
+  }
+  if (size > kMaxFileBytes) {
+    error = path + ": file too large (" + std::to_string(size) + " bytes)";
+    return false;
+  }
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) {
+    error = path + ": cannot open the file for reading";
+    return false;
+  }
+  bytes.resize(static_cast<size_t>(size));
+  const size_t got = size == 0 ? 0 : std::fread(bytes.data(), 1, bytes.size(), file);
+  const bool readError = std::ferror(file) != 0;
+  std::fclose(file);
+  if (readError || got != bytes.size()) {
+    error = path + ": read error";
+    return false;
+  }
+  return true;
+}
+
+MeshReadResult dispatch(std::span<const uint8_t> bytes, MeshFormat format, const std::string& name,
+                        const std::optional<std::string>& baseDir) {
+  if (bytes.empty()) return detail::failure(name, "empty file");
+  switch (format) {
+    case MeshFormat::Obj: return detail::readObj(bytes, name);
+    case MeshFormat::Off: return detail::readOff(bytes, name);
+    case MeshFormat::Stl: return detail::readStl(bytes, name);
+    case MeshFormat::Ply: return detail::readPly(bytes, name);
+    case MeshFormat::Gltf: return detail::readGltf(bytes, name, false, baseDir);
+    case MeshFormat::Glb: return detail::readGltf(bytes, name, true, baseDir);
+    case MeshFormat::Unknown: break;
+  }
+  return detail::failure(name, "unknown mesh format");
+}
+
+}  // namespace
+
+MeshReadResult readMeshFile(const std::string& path, MeshFormat format) {
+  if (format == MeshFormat::Unknown) {
+    return detail::failure(path, "unknown mesh format");
+  }
+  std::vector<uint8_t> bytes;
+  std::string error;
+  if (!readWholeFile(path, bytes, error)) {
+    MeshReadResult result;
+    result.error = error;
+    return result;
+  }
+  std::string baseDir = std::filesystem::path(path).parent_path().string();
+  if (baseDir.empty()) baseDir.assign(1, '.');
+  return dispatch(bytes, format, path, baseDir);
+}
+
+MeshReadResult loadMesh(const std::string& path) {
+  const MeshFormat format = formatFromPath(path);
+  if (format == MeshFormat::Unknown) {
+    return detail::failure(path,
+                           "unknown file extension (expected .obj, .off, .stl, .ply, .gltf or .glb)");
+  }
+  return readMeshFile(path, format);
+}
+
+MeshReadResult readMeshFromMemory(std::span<const uint8_t> bytes, MeshFormat format,
+                                  const std::string& name) {
+  return dispatch(bytes, format, name, std::nullopt);
+}
+
+// ---------------------------------------------------------------------------------------------
+// OBJ writer
+
+namespace {
+
+// Length of the valid UTF-8 sequence starting at s[i], or 0 when it is not valid.
+size_t utf8Length(const std::string& s, size_t i) {
+  const unsigned char c = static_cast<unsigned char>(s[i]);
+  size_t length = 0;
+  uint32_t minimum = 0;
+  uint32_t code = 0;
+  if (c < 0x80) return 1;
+  if ((c & 0xe0) == 0xc0) { length = 2; minimum = 0x80; code = c & 0x1f; }
+  else if ((c & 0xf0) == 0xe0) { length = 3; minimum = 0x800; code = c & 0x0f; }
+  else if ((c & 0xf8) == 0xf0) { length = 4; minimum = 0x10000; code = c & 0x07; }
+  else return 0;
+  if (i + length > s.size()) return 0;
+  for (size_t k = 1; k < length; ++k) {
+    const unsigned char d = static_cast<unsigned char>(s[i + k]);
+    if ((d & 0xc0) != 0x80) return 0;
+    code = (code << 6) | (d & 0x3f);
+  }
+  if (code < minimum || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff)) return 0;
+  return length;
+}
+
+}  // namespace
+
+std::string materialName(const MeshWriteOptions& options, uint32_t materialId) {
+  if (materialId == options.capMaterialId) return "cap";
+  if (materialId < options.materialNames.size() && !options.materialNames[materialId].empty()) {
+    // Whitespace would end the name in a `usemtl` line, control characters and invalid UTF-8
+    // cannot go into glTF's JSON: they become '_'.
+    const std::string& raw = options.materialNames[materialId];
+    std::string name;
+    for (size_t i = 0; i < raw.size();) {
+      const size_t length = utf8Length(raw, i);
+      const unsigned char c = static_cast<unsigned char>(raw[i]);
+      if (length == 0 || c <= 0x20 || c == 0x7f) {
+        name += '_';
+        i += length == 0 ? 1 : length;
+      } else {
+        name.append(raw, i, length);
+        i += length;
+      }
+    }
+    return name;
+  }
+  return "material_" + std::to_string(materialId);
+}
+
+namespace detail {
+
+// Validates the mesh a writer gets and gives its submesh runs (a single run when it has none).
+bool writableRuns(const geometry::MeshData& mesh, std::vector<geometry::SubMesh>& runs,
+                  std::string& reason) {
+  if (mesh.indices.size() % 3 != 0) {
+    reason = "index count is not a multiple of 3";
+    return false;
+  }
+  for (uint32_t index : mesh.indices) {
+    if (index >= mesh.positions.size()) {
+      reason = "index " + std::to_string(index) + " out of range";
+      return false;
+    }
+  }
+  if ((!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) ||
+      (!mesh.uv0.empty() && mesh.uv0.size() != mesh.positions.size())) {
+    reason = "attribute count differs from the vertex count";
+    return false;
+  }
+  if (mesh.submeshes.empty()) {
+    runs = {geometry::SubMesh{0, static_cast<uint32_t>(mesh.indices.size()), 0}};
+    return true;
+  }
+  uint64_t next = 0;
+  for (const geometry::SubMesh& sub : mesh.submeshes) {
+    if (sub.firstIndex != next || sub.indexCount % 3 != 0) {
+      reason = "submeshes do not cover the indices in order";
+      return false;
+    }
+    next += sub.indexCount;
+  }
+  if (next != mesh.indices.size()) {
+    reason = "submeshes do not cover the indices in order";
+    return false;
+  }
+  runs = mesh.submeshes;
+  return true;
+}
+
+bool writeBytes(const std::string& path, const void* data, size_t size, std::string& error) {
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (file == nullptr) {
+    error = path + ": cannot open the file for writing";
+    return false;
+  }
+  const size_t wrote = size == 0 ? 0 : std::fwrite(data, 1, size, file);
+  const bool closeFailed = std::fclose(file) != 0;
+  if (wrote != size || closeFailed) {
+    error = path + ": write error";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace detail
+
+namespace {
+
+void appendFloat(std::string& out, float value) {
+  char buffer[32];
+  // Shortest representation that reads back to the same float.
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  if (ec == std::errc()) out.append(buffer, end);
+  else out += '0';
+}
+
+}  // namespace
+
+MeshWriteResult writeObjToString(const geometry::MeshData& mesh, const MeshWriteOptions& options,
+                                 std::string& out) {
+  MeshWriteResult result;
+  std::vector<geometry::SubMesh> runs;
+  std::string reason;
+  if (!detail::writableRuns(mesh, runs, reason)) {
+    result.error = "OBJ: " + reason;
+    return result;
+  }
+  const bool uvs = options.writeUvs && !mesh.uv0.empty();
+  const bool normals = options.writeNormals && !mesh.normals.empty();
+  out.clear();
+  out.reserve(mesh.positions.size() * 40 + mesh.indices.size() * 12);
+  out += "# Cleave mesh: " + std::to_string(mesh.positions.size()) + " vertices, " +
+         std::to_string(mesh.indices.size() / 3) + " triangles\n";
+  for (const glm::vec3& p : mesh.positions) {
+    out += "v ";
+    appendFloat(out, p.x);
+    out += ' ';
+    appendFloat(out, p.y);
+    out += ' ';
+    appendFloat(out, p.z);
+    out += '\n';
+  }
+  if (uvs) {
+    for (const glm::vec2& t : mesh.uv0) {
+      out += "vt ";
+      appendFloat(out, t.x);
+      out += ' ';
+      appendFloat(out, t.y);
+      out += '\n';
+    }
+  }
+  if (normals) {
+    for (const glm::vec3& n : mesh.normals) {
+      out += "vn ";
+      appendFloat(out, n.x);
+      out += ' ';
+      appendFloat(out, n.y);
+      out += ' ';
+      appendFloat(out, n.z);
+      out += '\n';
+    }
+  }
+  for (const geometry::SubMesh& run : runs) {
+    if (run.indexCount == 0) continue;
+    out += "usemtl " + materialName(options, run.materialId) + "\n";
+    for (uint32_t i = run.firstIndex; i < run.firstIndex + run.indexCount; i += 3) {
+      out += 'f';
+      for (uint32_t k = 0; k < 3; ++k) {
+        const std::string index = std::to_string(mesh.indices[i + k] + 1);
+        out += ' ';
+        out += index;
+        if (uvs || normals) {
+          out += '/';
+          if (uvs) out += index;
+          if (normals) {
+            out += '/';
+            out += index;
+          }
+        }
+      }
+      out += '\n';
+    }
+  }
+  result.ok = true;
+  return result;
+}
+
+MeshWriteResult writeObj(const std::string& path, const geometry::MeshData& mesh,
+                         const MeshWriteOptions& options) {
+  std::string text;
+  MeshWriteResult result = writeObjToString(mesh, options, text);
+  if (!result.ok) {
+    result.error = path + ": " + result.error;
+    return result;
+  }
+  std::string error;
+  if (!detail::writeBytes(path, text.data(), text.size(), error)) {
+    result.ok = false;
+    result.error = error;
+  }
+  return result;
+}
+
+}  // namespace cleave::assets

@@ -1,0 +1,93 @@
+// Mesh files to and from the plain MeshData of the split core.
+//
+// Readers: OBJ, OFF, STL (ascii and binary), PLY (ascii, binary little and big endian) and glTF 2.0
+// (.gltf and .glb, static meshes of the default scene). Writers: OBJ and GLB.
+//
+// Units: whatever the file uses (the engine reads them as metres); no rescaling, no axis change.
+// Winding: files are read as counter-clockwise seen from outside (the convention of all five formats)
+// and written the same way. Polygons with more than three corners are fan-triangulated from their
+// first corner.
+//
+// Ownership: every result owns its mesh; nothing points into the input bytes or the file.
+//
+// Failure: no function throws and no input crashes, hangs or allocates far beyond the size of the
+// input (every declared count is checked against the bytes that remain). On failure `ok` is false,
+// the mesh is empty and `error` is one line "<file>: <reason>" or, for text formats,
+// "<file>:<line>: <reason>". A file without a single triangle is an error, as is a non-finite
+// coordinate or an index out of range.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/geometry/mesh_data.h"
+
+namespace cleave::assets {
+
+enum class MeshFormat : uint8_t { Unknown, Obj, Off, Stl, Ply, Gltf, Glb };
+
+const char* toString(MeshFormat format);
+
+// The format named by the extension of `path`, case-insensitive (".obj", ".off", ".stl", ".ply",
+// ".gltf", ".glb"); Unknown otherwise.
+MeshFormat formatFromPath(std::string_view path);
+
+struct MeshReadResult {
+  bool ok = false;
+  geometry::MeshData mesh;
+  std::string error;                       // one line naming the file and the reason; empty when ok
+  std::vector<std::string> warnings;       // non-fatal remarks (tinygltf warnings, dropped normals)
+  // Material names indexed by SubMesh::materialId: OBJ `usemtl` names in order of first use
+  // ("default" for faces before any usemtl), glTF material names ("material_<i>" when unnamed,
+  // "default" for primitives without material). Formats without materials give {"default"}.
+  std::vector<std::string> materialNames;
+};
+
+// Reads a mesh file, choosing the reader by the extension (case-insensitive). An unknown extension,
+// a missing or unreadable file or a directory is an error naming the file.
+MeshReadResult loadMesh(const std::string& path);
+
+// Reads one format from a file, whatever its extension.
+MeshReadResult readMeshFile(const std::string& path, MeshFormat format);
+
+// Reads one format from bytes in memory; `name` is used in messages only. A .gltf read from memory
+// may only use data: URIs (external buffers are refused, since there is no folder to look in).
+MeshReadResult readMeshFromMemory(std::span<const uint8_t> bytes, MeshFormat format,
+                                  const std::string& name);
+
+struct MeshWriteResult {
+  bool ok = false;
+  std::string error;  // one line naming the file and the reason; empty when ok
+};
+
+struct MeshWriteOptions {
+  // Material id of the cap submesh: it is written as the material named "cap".
+  uint32_t capMaterialId = 1;
+  // Names by material id for the other submeshes; an id without a name is written "material_<id>".
+  std::vector<std::string> materialNames;
+  bool writeNormals = true;  // when the mesh has normals
+  bool writeUvs = true;      // when the mesh has uv0
+};
+
+// The name a submesh of material `materialId` is written with (see MeshWriteOptions).
+std::string materialName(const MeshWriteOptions& options, uint32_t materialId);
+
+// Wavefront OBJ text: `v`, `vt` (uv0), `vn` (normals), one `usemtl` per submesh and `f v/t/n`
+// faces. No .mtl file is written. An invalid mesh (ragged index list, index out of range,
+// submeshes not covering the indices) is an error.
+MeshWriteResult writeObjToString(const geometry::MeshData& mesh, const MeshWriteOptions& options,
+                                 std::string& out);
+MeshWriteResult writeObj(const std::string& path, const geometry::MeshData& mesh,
+                         const MeshWriteOptions& options);
+
+// Binary glTF 2.0: one mesh, one node, positions (with bounds), normals, uv0 and uint32 indices,
+// one primitive per submesh with its own material (named as above).
+MeshWriteResult writeGlbToMemory(const geometry::MeshData& mesh, const MeshWriteOptions& options,
+                                 std::vector<uint8_t>& out);
+MeshWriteResult writeGlb(const std::string& path, const geometry::MeshData& mesh,
+                         const MeshWriteOptions& options);
+
+}  // namespace cleave::assets

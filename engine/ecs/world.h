@@ -1,0 +1,179 @@
+// World: the entity registry and the component storage of one simulation.
+//
+// Entities are generational ids (entity.h). Components are plain structs stored by value in one
+// sparse set per type (component_pool.h); a component type must be default-constructible and
+// movable. An entity has at most one component of each type.
+//
+// Failure model: stale or null entities are never an error for queries (alive, has, tryGet return
+// false / nullptr; destroy and remove return false). Calls with a precondition (add to a dead
+// entity, get of a missing component, structural changes while a View exists, a CommandBuffer of
+// another World) assert in debug builds; in release builds they leave the World unchanged (add and
+// get then return a scratch value that is not stored).
+//
+// Determinism: ids are reused from a FIFO free list, so the same sequence of calls gives the same
+// ids; entities() is ascending by index; views follow the documented dense order. Not thread-safe.
+#pragma once
+
+#include <cassert>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "engine/ecs/component_pool.h"
+#include "engine/ecs/entity.h"
+#include "engine/ecs/view.h"
+
+namespace cleave::ecs {
+
+class CommandBuffer;
+
+// What World::apply did: commands carried out, and commands skipped because their entity was not
+// alive any more (e.g. destroyed twice, or by an earlier command of the same buffer).
+struct ApplyResult {
+  size_t applied = 0;
+  size_t skipped = 0;
+};
+
+class World {
+ public:
+  World() = default;
+  ~World();
+  // A World is referred to by views and command buffers; it does not move.
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // New entity without components. Reuses the oldest freed slot (FIFO) with its generation bumped.
+  // Precondition: no View exists.
+  Entity create();
+
+  // Removes the entity and all its components; false (and no change) if it is not alive.
+  // Does not touch other entities (see hierarchy.h destroyRecursive for subtrees).
+  // Precondition: no View exists.
+  bool destroy(Entity entity);
+
+  // True for an entity created by this World and not destroyed since. False for kNullEntity, stale
+  // ids, and ids reserved by a CommandBuffer that has not been applied yet.
+  bool alive(Entity entity) const;
+
+  size_t size() const { return aliveCount_; }  // number of live entities
+
+  // Number of slots ever used; every entity index is below it (for per-index scratch arrays).
+  uint32_t slotCount() const { return static_cast<uint32_t>(slots_.size()); }
+
+  // All live entities, ascending by index (the order for state dumps and stable processing).
+  std::vector<Entity> entities() const;
+
+  // Adds the component, or overwrites the one the entity already has; returns the stored value
+  // (valid until the next add/remove of the same type). Precondition: alive(entity), no View.
+  template <class T>
+  T& add(Entity entity, T value) {
+    assert(structuralChangesAllowed() && "structural change during iteration; use a CommandBuffer");
+    assert(alive(entity) && "add to a dead entity");
+    detail::ComponentPool<T>& pool = poolFor<T>();
+    if (!alive(entity) || lock_ != 0) return pool.scratch();
+    return pool.insert(entity, std::move(value));
+  }
+
+  // The entity's component. Precondition: has<T>(entity).
+  template <class T>
+  T& get(Entity entity) {
+    T* component = tryGet<T>(entity);
+    assert(component != nullptr && "get of a missing component");
+    return component != nullptr ? *component : poolFor<T>().scratch();
+  }
+  template <class T>
+  const T& get(Entity entity) const {
+    const T* component = tryGet<T>(entity);
+    assert(component != nullptr && "get of a missing component");
+    static const T kEmpty{};
+    return component != nullptr ? *component : kEmpty;
+  }
+
+  // The entity's component, or nullptr if it has none (or is not alive).
+  template <class T>
+  T* tryGet(Entity entity) {
+    detail::ComponentPool<T>* pool = findPool<T>();
+    return pool != nullptr ? pool->tryGet(entity) : nullptr;
+  }
+  template <class T>
+  const T* tryGet(Entity entity) const {
+    const detail::ComponentPool<T>* pool = findPool<T>();
+    return pool != nullptr ? pool->tryGet(entity) : nullptr;
+  }
+
+  template <class T>
+  bool has(Entity entity) const {
+    return tryGet<T>(entity) != nullptr;
+  }
+
+  // Removes the component; false if the entity had none. Precondition: no View exists.
+  template <class T>
+  bool remove(Entity entity) {
+    assert(structuralChangesAllowed() && "structural change during iteration; use a CommandBuffer");
+    detail::ComponentPool<T>* pool = findPool<T>();
+    if (pool == nullptr || lock_ != 0) return false;
+    return pool->erase(entity);
+  }
+
+  // Number of entities that have a T.
+  template <class T>
+  size_t count() const {
+    const detail::ComponentPool<T>* pool = findPool<T>();
+    return pool != nullptr ? pool->size() : 0;
+  }
+
+  // Entities having all of Ts (see view.h for the iteration order and the structural lock).
+  template <class... Ts>
+  View<Ts...> view() {
+    return View<Ts...>(&lock_, &poolFor<Ts>()...);
+  }
+
+  // Carries out the buffer's commands in recording order and empties the buffer.
+  // Precondition: the buffer was made for this World; no View exists.
+  ApplyResult apply(CommandBuffer& buffer);
+
+  // False while a View exists.
+  bool structuralChangesAllowed() const { return lock_ == 0; }
+
+ private:
+  friend class CommandBuffer;
+
+  enum class SlotState : uint8_t { Free, Reserved, Alive };
+  struct Slot {
+    uint32_t generation = 1;
+    SlotState state = SlotState::Free;
+  };
+
+  // Reservations: an id taken now (allowed during iteration: no pool changes) that becomes alive
+  // when the buffer is applied, or goes back to the free list when the buffer drops it.
+  Entity reserve();
+  bool commitReservation(Entity entity);
+  void releaseReservation(Entity entity);
+  Entity takeSlot(SlotState state);
+  void freeSlot(uint32_t index);
+
+  template <class T>
+  detail::ComponentPool<T>* findPool() const {
+    const detail::ComponentTypeId id = detail::componentTypeId<T>();
+    if (id >= pools_.size() || !pools_[id]) return nullptr;
+    return static_cast<detail::ComponentPool<T>*>(pools_[id].get());
+  }
+  template <class T>
+  detail::ComponentPool<T>& poolFor() {
+    const detail::ComponentTypeId id = detail::componentTypeId<T>();
+    if (id >= pools_.size()) pools_.resize(size_t{id} + 1);
+    if (!pools_[id]) pools_[id] = std::make_unique<detail::ComponentPool<T>>();
+    return static_cast<detail::ComponentPool<T>&>(*pools_[id]);
+  }
+
+  std::vector<Slot> slots_;
+  std::deque<uint32_t> freeSlots_;  // FIFO: the oldest freed slot is reused first
+  std::vector<std::unique_ptr<detail::PoolBase>> pools_;  // by component type id
+  size_t aliveCount_ = 0;
+  int lock_ = 0;  // number of live views
+};
+
+}  // namespace cleave::ecs

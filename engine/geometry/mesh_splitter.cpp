@@ -1,0 +1,1043 @@
+// The split core: classification, shared-edge cutting, boundary loops, caps, islands, mass.
+//
+// Method, in the order of split():
+//  1. Classify every position id (welded vertex) by its signed distance to the plane in cut space:
+//     above, below, or on the plane within relativeTolerance * boundsDiagonal. All vertices of an id
+//     share the class of its first vertex, so a seam can never be on two sides at once.
+//  2. Collect the crossing edges (one end above, one below) twice: by welded id pair, which fixes the
+//     edge parameter t and the new position once for every triangle that uses the edge (watertight
+//     pieces), and by source vertex pair, which gives each seam side its own interpolated attributes.
+//  3. Cut the triangles: a triangle with an on-plane vertex and the two others on opposite sides is
+//     split in two through that vertex (never at it: no zero-area sliver); a triangle with one lone
+//     vertex gives a triangle and a quad (two triangles, shorter diagonal). A face lying in the plane
+//     goes to the side its normal points away from, where the solid is.
+//  4. The boundary of each side's surface is the set of its on-plane edges without a reverse twin on
+//     the same side. Reversed, the boundary of the below side is the section, counter-clockwise seen
+//     from the plane normal; it must equal the boundary of the above side, or the input is
+//     non-manifold at the cut. The segments are chained into loops on welded ids (at a vertex with
+//     several ways on, the sharpest left turn keeps touching loops apart); a chain that does not
+//     close is an open section.
+//  5. Caps: the loops are projected on a fixed orthonormal basis of the plane, split by signed area
+//     into outer borders and holes, each hole given to the smallest border containing it (any nesting
+//     depth), and each border with its holes triangulated by CapTriangulator. The convex splitter
+//     first tries the thesis's fast path: one loop, in angular order around its centroid, strictly
+//     convex once collinear points are removed, fanned; anything else takes the general path.
+//  6. Islands: union-find over welded ids (cap triangles included) on each side; pieces are ordered
+//     by their smallest source triangle. Each piece is written in source space with its own vertex
+//     remap, submesh runs in input order (cap triangles join an existing run of the cap material).
+//  7. Mass properties per piece on the cut-space positions.
+// Every scratch array lives in the splitter and every output array in the reused SplitResult, so a
+// warmed-up split of a same-size mesh performs no heap allocation.
+#include "engine/geometry/mesh_splitter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "engine/geometry/cap_triangulator.h"
+
+namespace cleave::geometry {
+
+const char* toString(SplitStatus status) {
+  switch (status) {
+    case SplitStatus::Ok: return "Ok";
+    case SplitStatus::PlaneMissesMesh: return "PlaneMissesMesh";
+    case SplitStatus::InvalidInput: return "InvalidInput";
+    case SplitStatus::OpenSection: return "OpenSection";
+    case SplitStatus::TriangulationFailed: return "TriangulationFailed";
+  }
+  return "Unknown";
+}
+
+namespace {
+
+constexpr uint32_t kNone = 0xffffffffu;
+constexpr double kPi = 3.14159265358979323846;
+
+uint64_t pairKey(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
+uint64_t directedKey(uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | b; }
+uint32_t keyFrom(uint64_t k) { return static_cast<uint32_t>(k >> 32); }
+uint32_t keyTo(uint64_t k) { return static_cast<uint32_t>(k & 0xffffffffu); }
+
+// Skin influences of a point at t along a -> b: joints merged by id, the four largest weights kept
+// (ties: lower joint id first), renormalised to sum 1; unused slots are joint 0 with weight 0.
+void mergeSkin(const glm::u16vec4& ja, const glm::vec4& wa, const glm::u16vec4& jb, const glm::vec4& wb, double t,
+               glm::u16vec4& joints, glm::vec4& weights) {
+  uint16_t id[8];
+  double w[8];
+  int count = 0;
+  auto add = [&](uint16_t joint, double weight) {
+    if (!(weight > 0.0)) return;
+    for (int k = 0; k < count; ++k) {
+      if (id[k] == joint) {
+        w[k] += weight;
+        return;
+      }
+    }
+    id[count] = joint;
+    w[count] = weight;
+    ++count;
+  };
+  for (int k = 0; k < 4; ++k) add(ja[k], (1.0 - t) * double(wa[k]));
+  for (int k = 0; k < 4; ++k) add(jb[k], t * double(wb[k]));
+  for (int i = 1; i < count; ++i) {  // insertion sort: weight descending, joint ascending
+    for (int k = i; k > 0 && (w[k] > w[k - 1] || (w[k] == w[k - 1] && id[k] < id[k - 1])); --k) {
+      std::swap(w[k], w[k - 1]);
+      std::swap(id[k], id[k - 1]);
+    }
+  }
+  count = std::min(count, 4);
+  double total = 0.0;
+  for (int k = 0; k < count; ++k) total += w[k];
+  joints = glm::u16vec4(0);
+  weights = glm::vec4(0.f);
+  if (!(total > 0.0)) {
+    joints = ja;
+    weights = wa;
+    return;
+  }
+  for (int k = 0; k < count; ++k) {
+    joints[k] = id[k];
+    weights[k] = static_cast<float>(w[k] / total);
+  }
+}
+
+glm::vec3 normalizedOr(const glm::dvec3& v, const glm::vec3& fallback) {
+  const double len = glm::length(v);
+  return len > 0.0 && std::isfinite(len) ? glm::vec3(v / len) : fallback;
+}
+
+struct SideTriangle {
+  uint32_t v[3];    // vertex references (see Splitter::kinds), cut-space outward winding
+  uint32_t source;  // source triangle index, kNone for a cap triangle
+  uint32_t slot;    // output run slot
+};
+
+struct LoopInfo {
+  uint32_t begin = 0, end = 0;  // into loopIds_ / points_
+  double twiceArea = 0.0;
+  glm::dvec2 lo{0.0}, hi{0.0};
+  uint32_t outer = kNone;  // for a hole: its border loop
+  bool capped = false;
+};
+
+class Splitter final : public IMeshSplitter {
+ public:
+  explicit Splitter(bool convexFastPath) : convexFastPath_(convexFastPath) {}
+
+  SplitStatus split(const MeshContainer& container, const Plane& plane, const SplitOptions& options,
+                    SplitResult& result) override;
+
+ private:
+  SplitStatus fail(SplitResult& result, SplitStatus status, const std::string& message);
+  void preparePieces(SplitResult& result, size_t count);
+
+  // Vertex references: [0, sourceCount_) source vertices, then one new vertex per crossing source
+  // vertex pair, then cap vertices (below, then above). extra_ holds everything past the source.
+  uint32_t weldedOf(uint32_t ref) const;
+  bool onPlane(uint32_t ref) const;
+  glm::dvec3 cutOf(uint32_t ref) const;
+  glm::dvec3 sectionCut(uint32_t welded) const;
+  uint32_t pairVertex(uint32_t a, uint32_t b) const;
+  glm::dvec2 project(const glm::dvec3& p) const { return {glm::dot(p - origin_, u_), glm::dot(p - origin_, v_)}; }
+
+  void cutTriangles();
+  void collectBoundary(int side, std::vector<uint64_t>& boundary);
+  void buildLoops();
+  uint32_t nextSegment(uint32_t at, uint32_t incoming) const;
+  bool capSection(const SplitOptions& options, std::string& why);
+  bool tryConvexCap();
+  void makeCapVertices(const SplitOptions& options);
+  uint32_t find(uint32_t x);
+  uint32_t weldedOfAny(uint32_t ref) const;
+  glm::dvec3 cutOfAny(uint32_t ref) const;
+  uint32_t mergeCavities(int side, uint32_t pieces);
+  void writePieces(const SplitOptions& options, SplitResult& result);
+
+  bool convexFastPath_;
+  CapTriangulator triangulator_;
+
+  // Per call.
+  const MeshContainer* container_ = nullptr;
+  const MeshData* mesh_ = nullptr;
+  std::span<const glm::dvec3> cut_;
+  std::span<const uint32_t> ids_;
+  std::span<const uint32_t> reps_;
+  uint32_t idCount_ = 0;
+  uint32_t sourceCount_ = 0;
+  bool mirrored_ = false;
+  glm::dvec3 normal_{0.0};
+  double offset_ = 0.0;
+  glm::dvec3 u_{0.0}, v_{0.0}, origin_{0.0};
+
+  std::vector<double> distance_;   // per position id
+  std::vector<int8_t> side_;       // per position id: +1, -1, 0
+  std::vector<uint64_t> weldedEdges_;  // sorted unique crossing edges by position id pair
+  std::vector<double> edgeT_;          // per welded edge: parameter from its lower id
+  std::vector<glm::dvec3> edgeCut_;    // per welded edge: cut-space point
+  std::vector<glm::vec3> edgeSource_;  // per welded edge: source-space point
+  std::vector<uint32_t> edgeFirstPair_;  // per welded edge: first source pair (attribute donor for caps)
+  std::vector<uint64_t> pairs_;        // sorted unique crossing edges by source vertex pair
+  std::vector<uint32_t> pairEdge_;     // per pair: welded edge
+  MeshData extra_;                     // attributes of new and cap vertices
+  uint32_t capBase_ = 0;               // first cap vertex reference
+  std::vector<SideTriangle> sideTris_[2];  // [0] above, [1] below
+  std::vector<uint64_t> boundary_[2];
+  std::vector<uint64_t> segments_;     // section segments, sorted, counter-clockwise seen from +normal
+  std::vector<uint64_t> reversed_;
+  std::vector<uint8_t> segmentUsed_;
+  std::vector<uint32_t> loopIds_;      // welded ids of the loop vertices, loop after loop
+  std::vector<glm::dvec2> points_;     // their projection on the plane
+  std::vector<LoopInfo> loops_;
+  std::vector<CapRing> rings_;
+  std::vector<uint32_t> capTriangles_;  // into loopIds_, counter-clockwise seen from +normal
+  std::vector<std::pair<double, uint32_t>> angular_;
+  uint32_t openChains_ = 0;
+  uint32_t closedLoops_ = 0;
+  uint32_t slotCount_ = 0;  // output runs of the input
+  uint32_t capSlot_ = 0;
+  std::vector<uint32_t> parent_;
+  std::vector<uint32_t> label_;
+  std::vector<uint32_t> pieceOf_;
+  std::vector<uint32_t> order_;
+  std::vector<uint32_t> remap_;
+  std::vector<uint32_t> stamp_;
+  uint32_t stampValue_ = 0;
+  std::vector<glm::dvec3> pieceCut_;
+  std::vector<uint32_t> flipped_;
+  std::vector<uint32_t> loopPiece_;
+  std::vector<uint32_t> pieceMap_;
+  std::vector<double> volume_;
+  std::vector<uint32_t> firstTriangle_;
+  std::vector<SplitPiece> spare_;
+};
+
+SplitStatus Splitter::fail(SplitResult& result, SplitStatus status, const std::string& message) {
+  preparePieces(result, 0);
+  result.status = status;
+  result.message = message;
+  return status;
+}
+
+// Resizes the piece list keeping the buffers of pieces that are not needed now for later calls.
+void Splitter::preparePieces(SplitResult& result, size_t count) {
+  while (result.pieces.size() > count) {
+    spare_.push_back(std::move(result.pieces.back()));
+    result.pieces.pop_back();
+  }
+  while (result.pieces.size() < count) {
+    if (!spare_.empty()) {
+      result.pieces.push_back(std::move(spare_.back()));
+      spare_.pop_back();
+    } else {
+      result.pieces.emplace_back();
+    }
+  }
+}
+
+uint32_t Splitter::weldedOf(uint32_t ref) const {
+  if (ref < sourceCount_) return ids_[ref];
+  const uint32_t k = ref - sourceCount_;
+  if (k < pairs_.size()) return idCount_ + pairEdge_[k];
+  return kNone;  // cap vertices are mapped by the caller
+}
+
+bool Splitter::onPlane(uint32_t ref) const { return ref >= sourceCount_ || side_[ids_[ref]] == 0; }
+
+glm::dvec3 Splitter::cutOf(uint32_t ref) const {
+  if (ref < sourceCount_) return cut_[ref];
+  return edgeCut_[pairEdge_[ref - sourceCount_]];
+}
+
+glm::dvec3 Splitter::sectionCut(uint32_t welded) const {
+  return welded < idCount_ ? cut_[reps_[welded]] : edgeCut_[welded - idCount_];
+}
+
+uint32_t Splitter::pairVertex(uint32_t a, uint32_t b) const {
+  const uint64_t key = pairKey(a, b);
+  const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), key);
+  return sourceCount_ + static_cast<uint32_t>(it - pairs_.begin());
+}
+
+SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, const SplitOptions& options,
+                            SplitResult& result) {
+  result.status = SplitStatus::Ok;
+  result.message.clear();
+  result.sectionLoops = 0;
+  container_ = &container;
+  mesh_ = &container.mesh();
+  const MeshData& mesh = *mesh_;
+  cut_ = container.cutPositions();
+  ids_ = container.positionIds();
+  reps_ = container.positionRepresentatives();
+  idCount_ = container.positionIdCount();
+  sourceCount_ = static_cast<uint32_t>(mesh.positions.size());
+  mirrored_ = container.mirrored();
+
+  if (mesh.indices.empty() || mesh.positions.empty() || cut_.size() != mesh.positions.size() ||
+      ids_.size() != mesh.positions.size()) {
+    return fail(result, SplitStatus::InvalidInput, "the container holds no valid mesh (setMesh failed or was not called)");
+  }
+  const double length = glm::length(plane.normal);
+  if (!(length > 0.0) || !std::isfinite(length) || !std::isfinite(plane.offset)) {
+    return fail(result, SplitStatus::InvalidInput, "the plane normal is zero or not finite, or the offset is not finite");
+  }
+  if (!(options.relativeTolerance >= 0.0) || !std::isfinite(options.relativeTolerance) ||
+      !std::isfinite(options.uvPerMetre)) {
+    return fail(result, SplitStatus::InvalidInput, "relativeTolerance must be finite and >= 0, uvPerMetre finite");
+  }
+  const double diagonal = container.boundsDiagonal();
+  if (!std::isfinite(diagonal)) {
+    return fail(result, SplitStatus::InvalidInput, "cut-space positions are not finite (check the transform or pose)");
+  }
+  normal_ = plane.normal / length;
+  offset_ = plane.offset / length;
+  const double tolerance = options.relativeTolerance * diagonal;
+
+  // 1. Classification per position id.
+  distance_.resize(idCount_);
+  side_.resize(idCount_);
+  for (uint32_t id = 0; id < idCount_; ++id) {
+    const double d = glm::dot(normal_, cut_[reps_[id]]) - offset_;
+    distance_[id] = d;
+    side_[id] = d > tolerance ? 1 : (d < -tolerance ? -1 : 0);
+  }
+
+  // 2. Crossing edges.
+  weldedEdges_.clear();
+  pairs_.clear();
+  const size_t triangleCount = mesh.indices.size() / 3;
+  for (size_t t = 0; t < triangleCount; ++t) {
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t a = mesh.indices[3 * t + e], b = mesh.indices[3 * t + (e + 1) % 3];
+      if (side_[ids_[a]] * side_[ids_[b]] < 0) {
+        weldedEdges_.push_back(pairKey(ids_[a], ids_[b]));
+        pairs_.push_back(pairKey(a, b));
+      }
+    }
+  }
+  std::sort(weldedEdges_.begin(), weldedEdges_.end());
+  weldedEdges_.erase(std::unique(weldedEdges_.begin(), weldedEdges_.end()), weldedEdges_.end());
+  std::sort(pairs_.begin(), pairs_.end());
+  pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
+  const size_t edgeCount = weldedEdges_.size();
+  edgeT_.resize(edgeCount);
+  edgeCut_.resize(edgeCount);
+  edgeSource_.resize(edgeCount);
+  edgeFirstPair_.assign(edgeCount, kNone);
+  for (size_t e = 0; e < edgeCount; ++e) {
+    const uint32_t lo = keyFrom(weldedEdges_[e]), hi = keyTo(weldedEdges_[e]);
+    const double t = distance_[lo] / (distance_[lo] - distance_[hi]);
+    edgeT_[e] = t;
+    const uint32_t a = reps_[lo], b = reps_[hi];
+    edgeCut_[e] = cut_[a] + t * (cut_[b] - cut_[a]);
+    const glm::dvec3 pa(mesh.positions[a]), pb(mesh.positions[b]);
+    edgeSource_[e] = glm::vec3(pa + t * (pb - pa));
+  }
+
+  // New vertices, one per source pair, with every attribute interpolated at the welded edge's t.
+  const size_t pairCount = pairs_.size();
+  pairEdge_.resize(pairCount);
+  extra_.positions.clear();
+  extra_.normals.clear();
+  extra_.tangents.clear();
+  extra_.uv0.clear();
+  extra_.uv1.clear();
+  extra_.colors.clear();
+  extra_.joints.clear();
+  extra_.weights.clear();
+  for (size_t k = 0; k < pairCount; ++k) {
+    uint32_t a = keyFrom(pairs_[k]), b = keyTo(pairs_[k]);
+    const uint64_t welded = pairKey(ids_[a], ids_[b]);
+    const uint32_t e = static_cast<uint32_t>(std::lower_bound(weldedEdges_.begin(), weldedEdges_.end(), welded) -
+                                             weldedEdges_.begin());
+    pairEdge_[k] = e;
+    if (edgeFirstPair_[e] == kNone) edgeFirstPair_[e] = static_cast<uint32_t>(k);
+    if (ids_[a] != keyFrom(welded)) std::swap(a, b);  // a: the end with the lower id, where t = 0
+    const double t = edgeT_[e];
+    const float tf = static_cast<float>(t);
+    extra_.positions.push_back(edgeSource_[e]);
+    if (!mesh.normals.empty()) {
+      const glm::dvec3 n = glm::mix(glm::dvec3(mesh.normals[a]), glm::dvec3(mesh.normals[b]), t);
+      extra_.normals.push_back(normalizedOr(n, mesh.normals[t < 0.5 ? a : b]));
+    }
+    if (!mesh.tangents.empty()) {
+      const glm::vec4 ta = mesh.tangents[a], tb = mesh.tangents[b];
+      const glm::dvec3 d = glm::mix(glm::dvec3(ta), glm::dvec3(tb), t);
+      const glm::vec4& nearest = t < 0.5 ? ta : tb;
+      extra_.tangents.push_back(glm::vec4(normalizedOr(d, glm::vec3(nearest)), nearest.w));
+    }
+    if (!mesh.uv0.empty()) extra_.uv0.push_back(glm::mix(mesh.uv0[a], mesh.uv0[b], tf));
+    if (!mesh.uv1.empty()) extra_.uv1.push_back(glm::mix(mesh.uv1[a], mesh.uv1[b], tf));
+    if (!mesh.colors.empty()) extra_.colors.push_back(glm::mix(mesh.colors[a], mesh.colors[b], tf));
+    if (!mesh.joints.empty()) {
+      glm::u16vec4 j;
+      glm::vec4 w;
+      mergeSkin(mesh.joints[a], mesh.weights[a], mesh.joints[b], mesh.weights[b], t, j, w);
+      extra_.joints.push_back(j);
+      extra_.weights.push_back(w);
+    }
+  }
+  capBase_ = sourceCount_ + static_cast<uint32_t>(pairCount);
+
+  // Output run slots: the input runs in order, then the cap run unless an input run has its material.
+  slotCount_ = mesh.submeshes.empty() ? 1u : static_cast<uint32_t>(mesh.submeshes.size());
+  capSlot_ = slotCount_;
+  for (uint32_t r = 0; r < slotCount_; ++r) {
+    const uint32_t material = mesh.submeshes.empty() ? 0u : mesh.submeshes[r].materialId;
+    if (material == options.capMaterialId) {
+      capSlot_ = r;
+      break;
+    }
+  }
+
+  // 3. Cut the triangles.
+  cutTriangles();
+  if (sideTris_[0].empty() || sideTris_[1].empty()) {
+    return fail(result, SplitStatus::PlaneMissesMesh,
+                "the plane does not cross the mesh: every vertex lies on one side or within the tolerance of it");
+  }
+
+  // 4. Section: boundaries of both sides, compared, then chained.
+  collectBoundary(1, boundary_[1]);
+  collectBoundary(0, boundary_[0]);
+  segments_.clear();
+  for (uint64_t k : boundary_[1]) segments_.push_back(directedKey(keyTo(k), keyFrom(k)));
+  std::sort(segments_.begin(), segments_.end());
+  const bool sidesAgree = segments_ == boundary_[0];
+  if (options.cap && !sidesAgree) {
+    return fail(result, SplitStatus::OpenSection,
+                "the section differs between the two sides of the plane: the mesh is non-manifold or "
+                "self-intersecting where it is cut");
+  }
+  // The projection basis depends on the normal only, so world-planar cap UVs line up across cuts.
+  {
+    const glm::dvec3 an = glm::abs(normal_);
+    int axis = 0;
+    if (an.y < an[axis]) axis = 1;
+    if (an.z < an[axis]) axis = 2;
+    glm::dvec3 e(0.0);
+    e[axis] = 1.0;
+    u_ = glm::normalize(glm::cross(normal_, e));
+    v_ = glm::cross(normal_, u_);
+    origin_ = segments_.empty() ? glm::dvec3(0.0) : sectionCut(keyFrom(segments_.front()));
+  }
+  buildLoops();
+  result.sectionLoops = closedLoops_;
+  if (options.cap && openChains_ > 0) {
+    return fail(result, SplitStatus::OpenSection,
+                "the section has " + std::to_string(openChains_) +
+                    " open chain(s): the mesh is open or non-manifold where it is cut (use cap = false for "
+                    "a hollow split)");
+  }
+
+  // 5. Caps.
+  capTriangles_.clear();
+  for (LoopInfo& loop : loops_) loop.capped = false;
+  if (options.cap) {
+    std::string why;
+    if (!capSection(options, why)) return fail(result, SplitStatus::TriangulationFailed, why);
+    makeCapVertices(options);
+    const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
+    for (size_t k = 0; k < capTriangles_.size(); k += 3) {
+      const uint32_t a = capTriangles_[k], b = capTriangles_[k + 1], c = capTriangles_[k + 2];
+      // Below: outward normal +n, counter-clockwise as triangulated. Above: reversed.
+      sideTris_[1].push_back({{capBase_ + a, capBase_ + b, capBase_ + c}, kNone, capSlot_});
+      sideTris_[0].push_back(
+          {{capBase_ + loopVertices + a, capBase_ + loopVertices + c, capBase_ + loopVertices + b}, kNone, capSlot_});
+    }
+  }
+
+  // 6, 7. Islands, piece meshes, mass.
+  writePieces(options, result);
+  return SplitStatus::Ok;
+}
+
+void Splitter::cutTriangles() {
+  const MeshData& mesh = *mesh_;
+  sideTris_[0].clear();
+  sideTris_[1].clear();
+  const size_t triangleCount = mesh.indices.size() / 3;
+  uint32_t run = 0;
+  uint32_t runEnd = mesh.submeshes.empty() ? kNone : mesh.submeshes[0].firstIndex + mesh.submeshes[0].indexCount;
+  auto push = [&](int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
+    sideTris_[side > 0 ? 0 : 1].push_back({{a, b, c}, source, run});
+  };
+  for (uint32_t t = 0; t < triangleCount; ++t) {
+    while (runEnd != kNone && 3 * t >= runEnd && run + 1 < mesh.submeshes.size()) {
+      ++run;
+      runEnd = mesh.submeshes[run].firstIndex + mesh.submeshes[run].indexCount;
+    }
+    uint32_t g[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
+    if (mirrored_) std::swap(g[1], g[2]);  // cut-space outward winding
+    const int s[3] = {side_[ids_[g[0]]], side_[ids_[g[1]]], side_[ids_[g[2]]]};
+    const bool anyAbove = s[0] > 0 || s[1] > 0 || s[2] > 0;
+    const bool anyBelow = s[0] < 0 || s[1] < 0 || s[2] < 0;
+    if (anyAbove && !anyBelow) {
+      push(1, g[0], g[1], g[2], t);
+      continue;
+    }
+    if (anyBelow && !anyAbove) {
+      push(-1, g[0], g[1], g[2], t);
+      continue;
+    }
+    if (!anyAbove && !anyBelow) {
+      // A face in the plane: the solid lies behind it, on the side its normal points away from.
+      const glm::dvec3 p0 = cut_[reps_[ids_[g[0]]]], p1 = cut_[reps_[ids_[g[1]]]], p2 = cut_[reps_[ids_[g[2]]]];
+      const double facing = glm::dot(glm::cross(p1 - p0, p2 - p0), normal_);
+      push(facing > 0.0 ? -1 : 1, g[0], g[1], g[2], t);
+      continue;
+    }
+    int zero = -1;
+    for (int k = 0; k < 3; ++k) {
+      if (s[k] == 0) zero = k;
+    }
+    if (zero >= 0) {
+      // Through the on-plane vertex: two triangles, one per side.
+      const uint32_t o = g[zero], x = g[(zero + 1) % 3], y = g[(zero + 2) % 3];
+      const uint32_t c = pairVertex(x, y);
+      push(s[(zero + 1) % 3], o, x, c, t);
+      push(s[(zero + 2) % 3], o, c, y, t);
+      continue;
+    }
+    int lone = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (s[k] != s[(k + 1) % 3] && s[k] != s[(k + 2) % 3]) lone = k;
+    }
+    const uint32_t l = g[lone], a = g[(lone + 1) % 3], b = g[(lone + 2) % 3];
+    const uint32_t ca = pairVertex(l, a), cb = pairVertex(l, b);
+    const int loneSide = s[lone], otherSide = -s[lone];
+    push(loneSide, l, ca, cb, t);
+    const glm::dvec3 d1 = cutOf(ca) - cutOf(b), d2 = cutOf(a) - cutOf(cb);
+    if (glm::dot(d1, d1) <= glm::dot(d2, d2)) {
+      push(otherSide, ca, a, b, t);
+      push(otherSide, ca, b, cb, t);
+    } else {
+      push(otherSide, ca, a, cb, t);
+      push(otherSide, a, b, cb, t);
+    }
+  }
+}
+
+// On-plane edges of one side without a reverse twin on that side, sorted (directed, welded ids).
+void Splitter::collectBoundary(int sideIndex, std::vector<uint64_t>& boundary) {
+  std::vector<uint64_t>& edges = reversed_;
+  edges.clear();
+  for (const SideTriangle& tri : sideTris_[sideIndex]) {
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t a = tri.v[e], b = tri.v[(e + 1) % 3];
+      if (!onPlane(a) || !onPlane(b)) continue;
+      const uint32_t wa = weldedOf(a), wb = weldedOf(b);
+      if (wa == wb) continue;
+      edges.push_back(directedKey(wa, wb));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  boundary.clear();
+  for (size_t k = 0; k < edges.size();) {
+    size_t j = k;
+    while (j < edges.size() && edges[j] == edges[k]) ++j;
+    const uint64_t reverse = directedKey(keyTo(edges[k]), keyFrom(edges[k]));
+    const auto range = std::equal_range(edges.begin(), edges.end(), reverse);
+    const size_t twins = static_cast<size_t>(range.second - range.first);
+    for (size_t c = twins; c < j - k; ++c) boundary.push_back(edges[k]);
+    k = j;
+  }
+}
+
+// The unused segment leaving `at` that turns most to the left coming in along `incoming`.
+uint32_t Splitter::nextSegment(uint32_t at, uint32_t incoming) const {
+  const auto first = std::lower_bound(segments_.begin(), segments_.end(), directedKey(at, 0));
+  uint32_t best = kNone;
+  double bestTurn = -INFINITY;
+  const glm::dvec2 here = project(sectionCut(at));
+  const glm::dvec2 in = here - project(sectionCut(keyFrom(segments_[incoming])));
+  for (auto it = first; it != segments_.end() && keyFrom(*it) == at; ++it) {
+    const uint32_t s = static_cast<uint32_t>(it - segments_.begin());
+    if (segmentUsed_[s]) continue;
+    if (best == kNone) best = s;
+    const glm::dvec2 out = project(sectionCut(keyTo(*it))) - here;
+    const double turn = std::atan2(in.x * out.y - in.y * out.x, glm::dot(in, out));
+    if (turn > bestTurn) {
+      bestTurn = turn;
+      best = s;
+    }
+  }
+  return best;
+}
+
+void Splitter::buildLoops() {
+  segmentUsed_.assign(segments_.size(), 0);
+  loopIds_.clear();
+  points_.clear();
+  loops_.clear();
+  openChains_ = 0;
+  closedLoops_ = 0;
+  for (uint32_t s0 = 0; s0 < segments_.size(); ++s0) {
+    if (segmentUsed_[s0]) continue;
+    const uint32_t start = keyFrom(segments_[s0]);
+    const uint32_t begin = static_cast<uint32_t>(loopIds_.size());
+    loopIds_.push_back(start);
+    segmentUsed_[s0] = 1;
+    uint32_t current = s0;
+    bool closed = true;
+    for (uint32_t at = keyTo(segments_[s0]); at != start;) {
+      const uint32_t next = nextSegment(at, current);
+      if (next == kNone) {
+        closed = false;
+        break;
+      }
+      loopIds_.push_back(at);
+      segmentUsed_[next] = 1;
+      current = next;
+      at = keyTo(segments_[next]);
+    }
+    if (!closed) {
+      ++openChains_;
+      loopIds_.resize(begin);
+      continue;
+    }
+    ++closedLoops_;
+    LoopInfo loop;
+    loop.begin = begin;
+    loop.end = static_cast<uint32_t>(loopIds_.size());
+    loops_.push_back(loop);
+  }
+  points_.resize(loopIds_.size());
+  for (size_t k = 0; k < loopIds_.size(); ++k) points_[k] = project(sectionCut(loopIds_[k]));
+  for (LoopInfo& loop : loops_) {
+    const CapRing ring{loop.begin, loop.end};
+    loop.twiceArea = loop.end - loop.begin >= 3 ? CapTriangulator::twiceSignedArea(points_, ring) : 0.0;
+    loop.lo = glm::dvec2(INFINITY);
+    loop.hi = glm::dvec2(-INFINITY);
+    for (uint32_t k = loop.begin; k < loop.end; ++k) {
+      loop.lo = glm::min(loop.lo, points_[k]);
+      loop.hi = glm::max(loop.hi, points_[k]);
+    }
+  }
+}
+
+bool insideLoop(std::span<const glm::dvec2> points, uint32_t begin, uint32_t end, const glm::dvec2& q) {
+  bool inside = false;
+  for (uint32_t i = begin, j = end - 1; i < end; j = i++) {
+    const glm::dvec2 a = points[i], b = points[j];
+    if ((a.y > q.y) != (b.y > q.y) && q.x < (b.x - a.x) * (q.y - a.y) / (b.y - a.y) + a.x) inside = !inside;
+  }
+  return inside;
+}
+
+// The thesis's fast path: one loop whose angular order around its centroid is the loop order, strictly
+// convex once collinear points are removed, fanned.
+bool Splitter::tryConvexCap() {
+  if (loops_.size() != 1) return false;
+  const LoopInfo& loop = loops_[0];
+  const uint32_t count = loop.end - loop.begin;
+  if (count < 3 || !(loop.twiceArea > 0.0)) return false;
+  glm::dvec2 centroid(0.0);
+  for (uint32_t k = loop.begin; k < loop.end; ++k) centroid += points_[k];
+  centroid /= double(count);
+  angular_.clear();
+  for (uint32_t k = loop.begin; k < loop.end; ++k) {
+    const glm::dvec2 d = points_[k] - centroid;
+    angular_.push_back({std::atan2(d.y, d.x), k});
+  }
+  std::sort(angular_.begin(), angular_.end());
+  // The sorted order must be the loop order, rotated.
+  uint32_t at = 0;
+  while (angular_[at].second != loop.begin) ++at;
+  for (uint32_t k = 0; k < count; ++k) {
+    if (angular_[(at + k) % count].second != loop.begin + k) return false;
+  }
+  return triangulator_.triangulateConvex(points_, CapRing{loop.begin, loop.end}, capTriangles_);
+}
+
+bool Splitter::capSection(const SplitOptions& options, std::string& why) {
+  (void)options;
+  if (convexFastPath_ && tryConvexCap()) {
+    loops_[0].capped = true;
+    return true;
+  }
+  capTriangles_.clear();
+  // Outer borders (positive area) and holes (negative); loops without area are left uncapped.
+  for (LoopInfo& loop : loops_) {
+    const glm::dvec2 size = loop.hi - loop.lo;
+    const double scale = std::max(size.x, size.y);
+    loop.outer = kNone;
+    loop.capped = loop.end - loop.begin >= 3 && std::abs(loop.twiceArea) > 1e-12 * scale * scale;
+  }
+  for (size_t h = 0; h < loops_.size(); ++h) {
+    LoopInfo& hole = loops_[h];
+    if (!hole.capped || hole.twiceArea > 0.0) continue;
+    const glm::dvec2 q = 0.5 * (points_[hole.begin] + points_[hole.begin + 1]);
+    double bestArea = INFINITY;
+    for (size_t o = 0; o < loops_.size(); ++o) {
+      const LoopInfo& outer = loops_[o];
+      if (!outer.capped || outer.twiceArea < 0.0 || outer.twiceArea >= bestArea) continue;
+      if (q.x < outer.lo.x || q.x > outer.hi.x || q.y < outer.lo.y || q.y > outer.hi.y) continue;
+      if (!insideLoop(points_, outer.begin, outer.end, q)) continue;
+      bestArea = outer.twiceArea;
+      hole.outer = static_cast<uint32_t>(o);
+    }
+    if (hole.outer == kNone) {
+      why = "cap triangulation failed: a hole loop of the section lies outside every outer loop "
+            "(inconsistent winding of the input)";
+      return false;
+    }
+  }
+  for (size_t o = 0; o < loops_.size(); ++o) {
+    const LoopInfo& outer = loops_[o];
+    if (!outer.capped || outer.twiceArea < 0.0) continue;
+    rings_.clear();
+    rings_.push_back({outer.begin, outer.end});
+    for (const LoopInfo& hole : loops_) {
+      if (hole.capped && hole.outer == o) rings_.push_back({hole.begin, hole.end});
+    }
+    if (!triangulator_.triangulate(points_, rings_, capTriangles_)) {
+      why = "cap triangulation failed for a border of " + std::to_string(outer.end - outer.begin) + " points with " +
+            std::to_string(rings_.size() - 1) + " hole(s): the section polygon overlaps itself";
+      return false;
+    }
+  }
+  return true;
+}
+
+// Cap vertices, one per loop vertex and side: the cut position, the plane normal (out of the
+// piece), a tangent along the cap U axis, cap UVs, and the colour and skin of the cut vertex.
+void Splitter::makeCapVertices(const SplitOptions& options) {
+  const MeshData& mesh = *mesh_;
+  const uint32_t count = static_cast<uint32_t>(loopIds_.size());
+  const bool skinned = !container_->jointMatrices().empty() && !mesh.joints.empty();
+  const glm::dmat3 model3(container_->model());
+
+  // Cap coordinates: world-planar (absolute plane coordinates) or normalised over bounds.
+  auto planar = [&](uint32_t k) {
+    const glm::dvec3 p = sectionCut(loopIds_[k]);
+    return glm::dvec2(glm::dot(p, u_), glm::dot(p, v_));
+  };
+  // Bounds per border (an outer loop with its holes) or per cap (all capped loops).
+  auto groupOf = [&](uint32_t loopIndex) {
+    const LoopInfo& loop = loops_[loopIndex];
+    if (!options.uvPerBorder) return 0u;
+    return loop.twiceArea > 0.0 || loop.outer == kNone ? loopIndex : loop.outer;
+  };
+  pieceCut_.clear();  // reused here as per-group bounds: [2 * group] = lo, [2 * group + 1] = hi
+  pieceCut_.resize(2 * std::max<size_t>(loops_.size(), 1), glm::dvec3(0.0));
+  for (size_t g = 0; g < pieceCut_.size(); g += 2) {
+    pieceCut_[g] = glm::dvec3(INFINITY);
+    pieceCut_[g + 1] = glm::dvec3(-INFINITY);
+  }
+  for (uint32_t l = 0; l < loops_.size(); ++l) {
+    if (!loops_[l].capped) continue;
+    const uint32_t g = groupOf(l);
+    for (uint32_t k = loops_[l].begin; k < loops_[l].end; ++k) {
+      const glm::dvec2 p = planar(k);
+      pieceCut_[2 * g] = glm::min(pieceCut_[2 * g], glm::dvec3(p, 0.0));
+      pieceCut_[2 * g + 1] = glm::max(pieceCut_[2 * g + 1], glm::dvec3(p, 0.0));
+    }
+  }
+  const glm::dvec2 atlasOrigin(options.atlasRect.x, options.atlasRect.y);
+  const glm::dvec2 atlasSize(options.atlasRect.z, options.atlasRect.w);
+
+  const size_t base = extra_.positions.size();
+  const size_t total = base + 2 * size_t(count);
+  extra_.positions.resize(total);
+  if (!mesh.normals.empty()) extra_.normals.resize(total);
+  if (!mesh.tangents.empty()) extra_.tangents.resize(total);
+  if (!mesh.uv0.empty()) extra_.uv0.resize(total);
+  if (!mesh.uv1.empty()) extra_.uv1.resize(total);
+  if (!mesh.colors.empty()) extra_.colors.resize(total);
+  if (!mesh.joints.empty()) {
+    extra_.joints.resize(total);
+    extra_.weights.resize(total);
+  }
+  uint32_t loopIndex = 0;
+  for (uint32_t k = 0; k < count; ++k) {
+    while (k >= loops_[loopIndex].end) ++loopIndex;
+    const uint32_t welded = loopIds_[k];
+    // The vertex whose colour and skin the cap vertex takes.
+    bool fromExtra = welded >= idCount_;
+    const uint32_t donor = fromExtra ? edgeFirstPair_[welded - idCount_] : reps_[welded];
+    const glm::vec3 position = fromExtra ? edgeSource_[welded - idCount_] : mesh.positions[donor];
+    glm::dmat3 linear = model3;
+    if (skinned) {
+      const glm::u16vec4 j = fromExtra ? extra_.joints[donor] : mesh.joints[donor];
+      const glm::vec4 w = fromExtra ? extra_.weights[donor] : mesh.weights[donor];
+      glm::dmat4 blend(0.0);
+      double sum = 0.0;
+      for (int c = 0; c < 4; ++c) {
+        if (w[c] == 0.f || j[c] >= container_->jointMatrices().size()) continue;
+        blend += double(w[c]) * container_->jointMatrices()[j[c]];
+        sum += w[c];
+      }
+      linear = model3 * (sum > 0.0 ? glm::dmat3(blend / sum) : glm::dmat3(1.0));
+    }
+    const glm::dmat3 inverse = glm::inverse(linear);
+    const glm::dvec2 p = planar(k);
+    const uint32_t g = groupOf(loopIndex);
+    glm::dvec2 uv;
+    if (options.uvMode == CapUvMode::WorldPlanar) {
+      uv = p * options.uvPerMetre;
+    } else {
+      const glm::dvec2 lo(pieceCut_[2 * g]), hi(pieceCut_[2 * g + 1]);
+      const glm::dvec2 size = hi - lo;
+      uv = glm::dvec2(size.x > 0.0 ? (p.x - lo.x) / size.x : 0.0, size.y > 0.0 ? (p.y - lo.y) / size.y : 0.0);
+    }
+    for (int s = 0; s < 2; ++s) {  // s = 0: below cap (normal +n), s = 1: above cap (normal -n, U mirrored)
+      const size_t at = base + size_t(s) * count + k;
+      const glm::dvec3 outward = s == 0 ? normal_ : -normal_;
+      const glm::dvec3 tangentCut = s == 0 ? u_ : -u_;
+      glm::dvec2 capUv = uv;
+      if (s == 1) capUv.x = options.uvMode == CapUvMode::WorldPlanar ? -uv.x : 1.0 - uv.x;
+      const glm::vec2 mapped(atlasOrigin + capUv * atlasSize);
+      extra_.positions[at] = position;
+      const glm::dvec3 n = glm::normalize(glm::transpose(linear) * outward);
+      const glm::dvec3 t = glm::normalize(inverse * tangentCut);
+      const glm::dvec3 b = inverse * v_;  // the bitangent: cross(outward, tangentCut) = v on both sides
+      if (!mesh.normals.empty()) extra_.normals[at] = glm::vec3(n);
+      if (!mesh.tangents.empty()) {
+        const float w = glm::dot(glm::cross(n, t), b) < 0.0 ? -1.f : 1.f;
+        extra_.tangents[at] = glm::vec4(glm::vec3(t), w);
+      }
+      if (!mesh.uv0.empty()) extra_.uv0[at] = mapped;
+      if (!mesh.uv1.empty()) extra_.uv1[at] = mapped;
+      if (!mesh.colors.empty()) extra_.colors[at] = fromExtra ? extra_.colors[donor] : mesh.colors[donor];
+      if (!mesh.joints.empty()) {
+        extra_.joints[at] = fromExtra ? extra_.joints[donor] : mesh.joints[donor];
+        extra_.weights[at] = fromExtra ? extra_.weights[donor] : mesh.weights[donor];
+      }
+    }
+  }
+}
+
+uint32_t Splitter::weldedOfAny(uint32_t ref) const {
+  if (ref < capBase_) return weldedOf(ref);
+  const uint32_t k = ref - capBase_;
+  const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
+  return loopIds_[k < loopVertices ? k : k - loopVertices];
+}
+
+glm::dvec3 Splitter::cutOfAny(uint32_t ref) const {
+  return ref < capBase_ ? cutOf(ref) : sectionCut(weldedOfAny(ref));
+}
+
+// A closed surface component wound inwards (negative volume) is a cavity: it belongs to the
+// smallest outward component that encloses it, found by the generalised winding number (the sum of
+// the solid angles of that component's triangles, Van Oosterom and Strackee 1983) at one of its
+// points. Pieces are renumbered in order of their first triangle. Returns the new piece count.
+uint32_t Splitter::mergeCavities(int side, uint32_t pieces) {
+  const std::vector<SideTriangle>& tris = sideTris_[side];
+  volume_.assign(pieces, 0.0);
+  firstTriangle_.assign(pieces, kNone);
+  for (size_t k = 0; k < tris.size(); ++k) {
+    const uint32_t p = pieceOf_[k];
+    const glm::dvec3 a = cutOfAny(tris[k].v[0]) - origin_, b = cutOfAny(tris[k].v[1]) - origin_,
+                     c = cutOfAny(tris[k].v[2]) - origin_;
+    volume_[p] += glm::dot(a, glm::cross(b, c));
+    if (firstTriangle_[p] == kNone) firstTriangle_[p] = static_cast<uint32_t>(k);
+  }
+  bool anyCavity = false;
+  for (uint32_t p = 0; p < pieces; ++p) anyCavity = anyCavity || volume_[p] < 0.0;
+  if (!anyCavity) return pieces;
+  for (uint32_t p = 0; p < pieces; ++p) {
+    if (!(volume_[p] < 0.0)) continue;
+    const glm::dvec3 q = cutOfAny(tris[firstTriangle_[p]].v[0]);
+    uint32_t best = kNone;
+    for (uint32_t o = 0; o < pieces; ++o) {
+      if (!(volume_[o] > 0.0) || (best != kNone && volume_[o] >= volume_[best])) continue;
+      double solidAngle = 0.0;
+      for (size_t k = 0; k < tris.size(); ++k) {
+        if (pieceOf_[k] != o) continue;
+        const glm::dvec3 a = cutOfAny(tris[k].v[0]) - q, b = cutOfAny(tris[k].v[1]) - q,
+                         c = cutOfAny(tris[k].v[2]) - q;
+        const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+        const double numerator = glm::dot(a, glm::cross(b, c));
+        const double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(b, c) * la + glm::dot(c, a) * lb;
+        solidAngle += 2.0 * std::atan2(numerator, denominator);
+      }
+      if (solidAngle > 2.0 * kPi) best = o;  // winding number above 1/2
+    }
+    if (best != kNone) pieceMap_[p] = best;
+  }
+  // Resolve chains and renumber in order of first triangle (labels already follow that order).
+  uint32_t count = 0;
+  for (uint32_t p = 0; p < pieces; ++p) {
+    uint32_t target = p;
+    while (pieceMap_[target] != target) target = pieceMap_[target];
+    firstTriangle_[p] = target;  // reused: the surviving label
+  }
+  for (uint32_t p = 0; p < pieces; ++p) volume_[p] = -1.0;  // reused: new number, -1 when unset
+  for (uint32_t p = 0; p < pieces; ++p) {
+    const uint32_t target = firstTriangle_[p];
+    if (volume_[target] < 0.0) volume_[target] = double(count++);
+  }
+  for (uint32_t p = 0; p < pieces; ++p) pieceMap_[p] = static_cast<uint32_t>(volume_[firstTriangle_[p]]);
+  for (size_t k = 0; k < tris.size(); ++k) pieceOf_[k] = pieceMap_[pieceOf_[k]];
+  return count;
+}
+
+uint32_t Splitter::find(uint32_t x) {
+  while (parent_[x] != x) {
+    parent_[x] = parent_[parent_[x]];
+    x = parent_[x];
+  }
+  return x;
+}
+
+void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
+  const MeshData& mesh = *mesh_;
+  const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
+  const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
+  const uint32_t refCount = capBase_ + 2 * loopVertices;
+  auto weldedRef = [&](uint32_t ref) { return weldedOfAny(ref); };
+  if (stamp_.size() < refCount) {
+    stamp_.resize(refCount, 0);
+    remap_.resize(refCount, 0);
+  }
+  label_.resize(weldedCount);
+
+  size_t totalPieces = 0;
+  uint32_t firstPiece[2] = {0, 0};
+  for (int side = 0; side < 2; ++side) {
+    std::vector<SideTriangle>& tris = sideTris_[side];
+    pieceOf_.resize(tris.size());
+    if (options.separateIslands) {
+      parent_.resize(weldedCount);
+      std::iota(parent_.begin(), parent_.end(), 0u);
+      for (const SideTriangle& tri : tris) {
+        const uint32_t a = find(weldedRef(tri.v[0]));
+        for (int c = 1; c < 3; ++c) {
+          const uint32_t b = find(weldedRef(tri.v[c]));
+          if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+        }
+      }
+      std::fill(label_.begin(), label_.end(), kNone);
+    }
+    uint32_t pieces = 0;
+    for (size_t k = 0; k < tris.size(); ++k) {
+      if (!options.separateIslands) {
+        pieceOf_[k] = 0;
+        pieces = 1;
+        continue;
+      }
+      const uint32_t root = find(weldedRef(tris[k].v[0]));
+      if (label_[root] == kNone) label_[root] = pieces++;
+      pieceOf_[k] = label_[root];
+    }
+    pieceMap_.resize(pieces);
+    std::iota(pieceMap_.begin(), pieceMap_.end(), 0u);
+    if (options.cap && options.separateIslands && pieces > 1) pieces = mergeCavities(side, pieces);
+    firstPiece[side] = static_cast<uint32_t>(totalPieces);
+    totalPieces += pieces;
+    // Cap loops per piece: a loop's cap belongs to the island of its first vertex.
+    if (side == 0) loopPiece_.assign(2 * loops_.size(), 0);
+    for (size_t l = 0; l < loops_.size(); ++l) {
+      if (!loops_[l].capped) continue;
+      loopPiece_[2 * l + side] =
+          options.separateIslands ? pieceMap_[label_[find(loopIds_[loops_[l].begin])]] : 0;
+    }
+    // Order: by piece, then output run slot, then as generated (source order, then caps).
+    order_.resize(tris.size());
+    std::iota(order_.begin(), order_.end(), 0u);
+    const std::vector<uint32_t>& piece = pieceOf_;
+    std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
+      if (piece[a] != piece[b]) return piece[a] < piece[b];
+      if (tris[a].slot != tris[b].slot) return tris[a].slot < tris[b].slot;
+      return a < b;
+    });
+    preparePieces(result, totalPieces);
+    size_t k = 0;
+    for (uint32_t p = 0; p < pieces; ++p) {
+      SplitPiece& out = result.pieces[firstPiece[side] + p];
+      MeshData& m = out.mesh;
+      m.positions.clear();
+      m.normals.clear();
+      m.tangents.clear();
+      m.uv0.clear();
+      m.uv1.clear();
+      m.colors.clear();
+      m.joints.clear();
+      m.weights.clear();
+      m.indices.clear();
+      m.submeshes.clear();
+      pieceCut_.clear();
+      out.side = side == 0 ? 1 : -1;
+      out.capTriangles = 0;
+      out.capLoops = 0;
+      out.mass = MassProperties{};
+      ++stampValue_;
+      if (stampValue_ == 0) {  // wrapped: clear the stamps once
+        std::fill(stamp_.begin(), stamp_.end(), 0u);
+        stampValue_ = 1;
+      }
+      uint32_t currentSlot = kNone;
+      for (; k < order_.size() && pieceOf_[order_[k]] == p; ++k) {
+        const SideTriangle& tri = tris[order_[k]];
+        if (tri.slot != currentSlot) {
+          uint32_t material = options.capMaterialId;
+          if (tri.slot < slotCount_) material = mesh.submeshes.empty() ? 0u : mesh.submeshes[tri.slot].materialId;
+          m.submeshes.push_back({static_cast<uint32_t>(m.indices.size()), 0u, material});
+          currentSlot = tri.slot;
+        }
+        if (tri.slot == capSlot_) ++out.capTriangles;
+        const uint32_t corner[3] = {tri.v[0], mirrored_ ? tri.v[2] : tri.v[1], mirrored_ ? tri.v[1] : tri.v[2]};
+        for (uint32_t ref : corner) {
+          if (stamp_[ref] != stampValue_) {
+            stamp_[ref] = stampValue_;
+            remap_[ref] = static_cast<uint32_t>(m.positions.size());
+            if (ref < sourceCount_) {
+              m.positions.push_back(mesh.positions[ref]);
+              if (!mesh.normals.empty()) m.normals.push_back(mesh.normals[ref]);
+              if (!mesh.tangents.empty()) m.tangents.push_back(mesh.tangents[ref]);
+              if (!mesh.uv0.empty()) m.uv0.push_back(mesh.uv0[ref]);
+              if (!mesh.uv1.empty()) m.uv1.push_back(mesh.uv1[ref]);
+              if (!mesh.colors.empty()) m.colors.push_back(mesh.colors[ref]);
+              if (!mesh.joints.empty()) {
+                m.joints.push_back(mesh.joints[ref]);
+                m.weights.push_back(mesh.weights[ref]);
+              }
+              pieceCut_.push_back(cut_[ref]);
+            } else {
+              const uint32_t x = ref - sourceCount_;
+              m.positions.push_back(extra_.positions[x]);
+              if (!mesh.normals.empty()) m.normals.push_back(extra_.normals[x]);
+              if (!mesh.tangents.empty()) m.tangents.push_back(extra_.tangents[x]);
+              if (!mesh.uv0.empty()) m.uv0.push_back(extra_.uv0[x]);
+              if (!mesh.uv1.empty()) m.uv1.push_back(extra_.uv1[x]);
+              if (!mesh.colors.empty()) m.colors.push_back(extra_.colors[x]);
+              if (!mesh.joints.empty()) {
+                m.joints.push_back(extra_.joints[x]);
+                m.weights.push_back(extra_.weights[x]);
+              }
+              pieceCut_.push_back(cutOfAny(ref));
+            }
+          }
+          m.indices.push_back(remap_[ref]);
+        }
+        m.submeshes.back().indexCount += 3;
+      }
+      for (size_t l = 0; l < loops_.size(); ++l) {
+        if (loops_[l].capped && loopPiece_[2 * l + side] == p) ++out.capLoops;
+      }
+      if (options.computeMass) {
+        if (options.cap && container_->closed()) {
+          out.mass = integrateClosedSurface(pieceCut_, m.indices, mirrored_);
+        } else {
+          std::span<const uint32_t> indices = m.indices;
+          if (mirrored_) {
+            flipped_.assign(m.indices.begin(), m.indices.end());
+            for (size_t t = 0; t + 2 < flipped_.size(); t += 3) std::swap(flipped_[t + 1], flipped_[t + 2]);
+            indices = flipped_;
+          }
+          out.mass = computeMassProperties(std::span<const glm::dvec3>(pieceCut_), indices);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<IMeshSplitter> makeConcaveSplitter() { return std::make_unique<Splitter>(false); }
+std::unique_ptr<IMeshSplitter> makeConvexSplitter() { return std::make_unique<Splitter>(true); }
+
+}  // namespace cleave::geometry

@@ -1,0 +1,151 @@
+// The split core: cut a triangle mesh by a plane, cap the holes, separate islands, and compute the
+// mass properties of every piece. Plain data in and out; no engine types; deterministic output.
+//
+// Spaces. A MeshContainer holds the source mesh in its own (object, or bind) space and a second set
+// of positions, the "cut space" (world space for a static mesh: the model matrix applied; the current
+// pose for a skinned mesh). Classification, loops, caps and mass properties are computed in cut
+// space; every output piece is written back in the source space by interpolating the source
+// attributes with the same edge parameter, so UVs, normals, tangents and skin data stay exact.
+//
+// Winding: input and output triangles are counter-clockwise seen from outside. A mirroring model
+// matrix (negative determinant) is detected and the winding in cut space is flipped accordingly.
+//
+// Failure: split() returns a status; on anything but Ok the result holds no pieces and the caller
+// keeps its original object. No exceptions.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/geometry/mass_properties.h"
+#include "engine/geometry/mesh_data.h"
+
+namespace cleave::geometry {
+
+// The plane {x : dot(normal, x) = offset} in cut space. `normal` need not be unit length; the
+// splitter normalises it. "Above" means dot(normal, x) > offset.
+struct Plane {
+  glm::dvec3 normal{0.0, 1.0, 0.0};
+  double offset = 0.0;
+};
+
+enum class SplitStatus : uint8_t {
+  Ok = 0,
+  PlaneMissesMesh,      // every vertex on one side (or on the plane): nothing to cut
+  InvalidInput,         // NaN/Inf position, index out of range, index count not a multiple of 3, ...
+  OpenSection,          // the section has open chains (open or non-manifold input) and caps were asked for
+  TriangulationFailed,  // a cap polygon could not be triangulated without overlap
+};
+const char* toString(SplitStatus status);
+
+enum class CapUvMode : uint8_t {
+  WorldPlanar,       // u,v = cut-space coordinates on the cap plane times texelsPerMetre: stable over re-cuts
+  NormalizedBounds,  // u,v in [0,1] over the bounds of the cap (per border or per cap), as in the thesis
+};
+
+struct SplitOptions {
+  bool cap = true;                      // false: hollow mode, no cap triangles, open sections allowed
+  uint32_t capMaterialId = 1;           // material of the cap submesh (reused if the mesh already has it)
+  CapUvMode uvMode = CapUvMode::WorldPlanar;
+  double uvPerMetre = 1.0;              // WorldPlanar scale: UV units per metre of cut space
+  glm::vec4 atlasRect{0.f, 0.f, 1.f, 1.f};  // x, y, width, height: cap UVs are mapped into this rectangle
+  bool uvPerBorder = false;             // NormalizedBounds: normalise per outer border, not per whole cap
+  bool separateIslands = true;          // false: each side stays one piece even if disconnected
+  double relativeTolerance = 1e-6;      // on-plane tolerance, times the cut-space bounding-box diagonal
+  bool computeMass = true;              // mass properties per piece (cut space)
+};
+
+struct SplitPiece {
+  MeshData mesh;                // in the source space of the container
+  int side = 0;                 // +1 above the plane, -1 below
+  uint32_t capTriangles = 0;     // triangles in the cap-material run (earlier cuts' caps included)
+  uint32_t capLoops = 0;        // boundary loops capped on this piece (outer borders and holes)
+  MassProperties mass;          // in cut space
+};
+
+struct SplitResult {
+  SplitStatus status = SplitStatus::Ok;
+  std::string message;          // a reason a person can act on, empty when Ok
+  std::vector<SplitPiece> pieces;  // above pieces first, then below; each side ordered deterministically
+  uint32_t sectionLoops = 0;    // closed loops found in the section
+};
+
+// The thesis's MeshContainer: caches the source arrays, welds vertices by position into position ids
+// (so UV and normal seams never break a cut loop), and keeps the cut-space positions.
+class MeshContainer {
+ public:
+  MeshContainer() = default;
+
+  // Takes a copy of the mesh (the arrays are reused between calls when sizes allow) and welds it.
+  // Returns InvalidInput with a message for malformed data.
+  SplitStatus setMesh(const MeshData& mesh, std::string* message = nullptr);
+
+  // Cut space = model * source position. Non-uniform scale, shear and mirroring are allowed.
+  void setTransform(const glm::mat4& model);
+  // Cut space = linear blend skinning: sum_k w_k * jointMatrices[j_k] * p, where each joint matrix is
+  // already (joint world transform * inverse bind matrix), times `model`. Needs joints and weights.
+  SplitStatus setSkinningPose(std::span<const glm::mat4> jointMatrices, const glm::mat4& model,
+                              std::string* message = nullptr);
+
+  const MeshData& mesh() const { return mesh_; }
+  std::span<const glm::dvec3> cutPositions() const { return cutPositions_; }
+  // Position id per vertex: vertices at the same position (within the weld tolerance) share an id.
+  std::span<const uint32_t> positionIds() const { return positionIds_; }
+  uint32_t positionIdCount() const { return positionIdCount_; }
+  bool mirrored() const { return mirrored_; }
+  double boundsDiagonal() const { return boundsDiagonal_; }
+  // The model matrix given to setTransform or setSkinningPose (identity after setMesh).
+  const glm::dmat4& model() const { return model_; }
+  // The joint matrices of the last setSkinningPose; empty when the cut space is a plain transform.
+  std::span<const glm::dmat4> jointMatrices() const { return jointMatrices_; }
+  // The first vertex of each position id (ids are numbered in order of their first vertex).
+  std::span<const uint32_t> positionRepresentatives() const { return representatives_; }
+  // True when, on position ids, every edge is used by exactly two triangles in opposite directions
+  // (triangles with a repeated id ignored): the pieces of a capped split are then closed too.
+  bool closed() const { return closed_; }
+
+  // Builds a new mesh from a subset of triangles (indices into the source triangle list), keeping
+  // every attribute and the submesh runs; unused vertices are dropped through an index remap.
+  void extractTriangles(std::span<const uint32_t> triangles, MeshData& out) const;
+
+ private:
+  void weld();
+
+  MeshData mesh_;
+  std::vector<glm::dvec3> cutPositions_;
+  std::vector<uint32_t> positionIds_;
+  uint32_t positionIdCount_ = 0;
+  bool mirrored_ = false;
+  double boundsDiagonal_ = 0.0;
+  std::vector<uint64_t> weldScratch_;
+  // Additions (private): see mesh_container.cpp.
+  void updateBounds();
+  glm::dmat4 model_{1.0};
+  std::vector<glm::dmat4> jointMatrices_;
+  std::vector<uint32_t> representatives_;
+  std::vector<uint32_t> weldOrder_;
+  bool closed_ = false;
+};
+
+// One interface, two implementations (the thesis's IMeshSplitter). A splitter owns reusable scratch
+// memory: after a warm-up on meshes of a given size, splitting a same-size mesh into a reused
+// SplitResult performs no heap allocation. Not thread-safe; use one splitter per thread.
+class IMeshSplitter {
+ public:
+  virtual ~IMeshSplitter() = default;
+  virtual SplitStatus split(const MeshContainer& container, const Plane& plane,
+                            const SplitOptions& options, SplitResult& result) = 0;
+};
+
+// General path: loops -> polygons with holes (any nesting) -> triangulation.
+std::unique_ptr<IMeshSplitter> makeConcaveSplitter();
+// Fast path for convex meshes: fan cap after an angular sort. Verifies that the section is one
+// convex loop and falls back to the concave path when it is not.
+std::unique_ptr<IMeshSplitter> makeConvexSplitter();
+
+}  // namespace cleave::geometry

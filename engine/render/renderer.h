@@ -1,0 +1,132 @@
+// Forward renderer on OpenGL 3.3 core: a directional sun with a shadow map, ambient and specular
+// light, textured materials, a procedural sky, a world-space checker floor and a debug-normals view.
+//
+// Usage per frame: beginFrame(view) -> submit(...) for each mesh -> endFrame() renders the shadow pass,
+// the sky and the lit pass into the renderer's own framebuffer object; then readPixels() for a
+// screenshot and/or presentToDefaultFramebuffer() in a window. Requires a current GL context with
+// the loader initialised (see gl_context.h). Meshes and textures live behind generational handles;
+// destroying them frees the GPU memory at once, and a stale handle is ignored.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/geometry/mesh_data.h"
+
+namespace cleave::render {
+
+struct MeshHandle {
+  uint32_t index = 0;
+  uint32_t generation = 0;  // 0 = invalid
+  bool valid() const { return generation != 0; }
+  friend bool operator==(MeshHandle, MeshHandle) = default;
+};
+
+struct TextureHandle {
+  uint32_t index = 0;
+  uint32_t generation = 0;  // 0 = invalid: the material uses its base colour only
+  bool valid() const { return generation != 0; }
+  friend bool operator==(TextureHandle, TextureHandle) = default;
+};
+
+enum class Shading : uint8_t {
+  Lit,            // base colour (x albedo texture) lit by sun + ambient + specular, shadowed
+  Checker,        // lit, with a world-space checker pattern (floor); `checkerScale` squares per metre
+  DebugNormals,   // world normal as colour, unlit
+  Unlit,          // base colour (x texture), no light
+  CheckerCube,    // lit, checker pattern by world position in 3D (a "solid texture": caps line up)
+};
+
+struct Material {
+  Shading shading = Shading::Lit;
+  glm::vec4 baseColor{1.f};        // linear RGBA multiplier
+  TextureHandle albedo;            // optional sRGB-ish RGBA8 texture
+  float specular = 0.25f;          // specular intensity
+  float shininess = 32.f;          // Blinn-Phong exponent
+  float reflectivity = 0.f;        // 0..1 mix of the sky reflected about the normal (metal)
+  float checkerScale = 1.f;        // Checker / CheckerCube: squares per metre
+  glm::vec4 checkerColor{0.2f, 0.2f, 0.22f, 1.f};  // second checker colour
+};
+
+struct Camera {
+  glm::vec3 position{0.f, 2.f, 6.f};
+  glm::mat4 view{1.f};
+  float verticalFovRadians = 1.0f;
+  float nearPlane = 0.05f;
+  float farPlane = 300.f;
+};
+
+struct Lighting {
+  glm::vec3 sunDirection{-0.55f, -0.75f, -0.38f};  // direction the light travels (towards the ground)
+  glm::vec3 sunColor{1.0f, 0.95f, 0.85f};
+  float sunIntensity = 1.5f;
+  glm::vec3 ambientColor{0.22f, 0.25f, 0.32f};
+  glm::vec3 shadowCenter{0.f};                 // the shadow map covers a sphere around this point
+  float shadowRadius = 20.f;
+  bool shadows = true;
+};
+
+struct FrameStats {
+  uint32_t drawCalls = 0;
+  uint32_t triangles = 0;
+};
+
+class Renderer {
+ public:
+  Renderer();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Compiles shaders and creates the shadow map. Needs a current GL 3.3 core context.
+  bool init(std::string* error);
+
+  // Uploads positions, normals (computed flat if absent), uv0 (zero if absent) and tangents, with the
+  // submesh runs. Returns an invalid handle (and a reason) for empty or malformed meshes.
+  MeshHandle uploadMesh(const geometry::MeshData& mesh, std::string* error = nullptr);
+  void destroyMesh(MeshHandle mesh);
+  uint32_t liveMeshCount() const;
+
+  // RGBA8 pixels, rows top to bottom, width*height*4 bytes. Mipmapped, repeating.
+  TextureHandle createTexture(int width, int height, std::span<const uint8_t> rgba,
+                              std::string* error = nullptr);
+  void destroyTexture(TextureHandle texture);
+
+  // Starts a frame of the given size in pixels; resizes the offscreen target when needed.
+  void beginFrame(int width, int height, const Camera& camera, const Lighting& lighting);
+  // Queues a mesh. `materials` is indexed by the submesh material id (clamped to the last entry).
+  void submit(MeshHandle mesh, const glm::mat4& model, std::span<const Material> materials);
+  // Queues a line list in world space (debug drawing, the drag-cut line), drawn unlit on top.
+  void submitLines(std::span<const glm::vec3> points, const glm::vec4& color);
+  // Queues a 2D line list in pixel coordinates (origin top-left), for the HUD.
+  void submitOverlayLines(std::span<const glm::vec2> points, const glm::vec4& color);
+  // Queues filled 2D rectangles (x, y, w, h in pixels) for the HUD.
+  void submitOverlayRect(const glm::vec4& rect, const glm::vec4& color);
+  // Queues text at a pixel position (top-left) in stb_easy_font glyphs (about 7 px high) times `scale`.
+  void submitText(const std::string& text, glm::vec2 position, float scale, const glm::vec4& color);
+  // Renders everything queued since beginFrame.
+  FrameStats endFrame();
+
+  // Reads the last frame back as RGBA8, rows top to bottom.
+  void readPixels(std::vector<uint8_t>& rgba, int& width, int& height) const;
+  // Copies the last frame to the window's default framebuffer (window backends only).
+  void presentToDefaultFramebuffer(int windowWidth, int windowHeight) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Writes RGBA8 pixels (rows top to bottom) as a PNG. Returns false with a reason on failure.
+bool writePng(const std::string& path, int width, int height, std::span<const uint8_t> rgba,
+              std::string* error = nullptr);
+// Reads a PNG as RGBA8 (rows top to bottom).
+bool readPng(const std::string& path, int& width, int& height, std::vector<uint8_t>& rgba,
+             std::string* error = nullptr);
+
+}  // namespace cleave::render

@@ -1,0 +1,517 @@
+#include "game/demo/demo_game.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+
+#include "components/scene_components.h"
+#include "components/splitable.h"
+#include "engine/assets/procedural_textures.h"
+#include "engine/ecs/transform.h"
+#include "engine/geometry/primitives.h"
+
+namespace cleave::demo {
+
+namespace {
+
+constexpr float kMoveSpeed = 4.5f;         // m/s
+constexpr float kLookSensitivity = 0.0035f;  // rad per pixel
+constexpr float kPushImpulse = 6.f;        // N s per kg of the pushed body (a velocity change)
+constexpr float kCutReach = 60.f;          // metres a drag cut reaches from the camera
+
+uint64_t entityId(ecs::Entity e) { return (uint64_t(e.generation) << 32) | e.index; }
+
+}  // namespace
+
+DemoGame::DemoGame() = default;
+DemoGame::~DemoGame() = default;
+
+components::SplitWorld DemoGame::splitWorld() {
+  return components::SplitWorld{app_->world(), *physics_, &app_->renderer()};
+}
+
+void DemoGame::createMaterials() {
+  render::Renderer& r = app_->renderer();
+  auto texture = [&](assets::TextureKind kind, int size, uint32_t seed) {
+    const assets::Image img = assets::makeTexture(kind, size, seed);
+    const render::TextureHandle h = r.createTexture(img.width, img.height, img.rgba);
+    textures_.push_back(h);
+    return h;
+  };
+  const render::TextureHandle wood = texture(assets::TextureKind::Wood, 256, 3);
+  const render::TextureHandle marble = texture(assets::TextureKind::Marble, 256, 5);
+  const render::TextureHandle melon = texture(assets::TextureKind::Melon, 256, 7);
+  const render::TextureHandle metal = texture(assets::TextureKind::BrushedMetal, 256, 9);
+
+  render::Material m;
+  m.albedo = wood;
+  m.specular = 0.15f;
+  m.shininess = 24.f;
+  looks_[0] = m;
+  lookNames_[0] = "wood";
+  m = {};
+  m.albedo = metal;
+  m.baseColor = glm::vec4(0.95f, 0.95f, 1.0f, 1.f);
+  m.specular = 1.2f;
+  m.shininess = 90.f;
+  m.reflectivity = 0.55f;
+  looks_[1] = m;
+  lookNames_[1] = "metal";
+  m = {};
+  m.albedo = marble;
+  m.specular = 0.6f;
+  m.shininess = 60.f;
+  m.reflectivity = 0.06f;
+  looks_[2] = m;
+  lookNames_[2] = "marble";
+  m = {};
+  m.albedo = melon;
+  m.specular = 0.35f;
+  m.shininess = 40.f;
+  looks_[3] = m;
+  lookNames_[3] = "melon";
+  m = {};
+  m.shading = render::Shading::DebugNormals;
+  looks_[4] = m;
+  lookNames_[4] = "debug normals";
+  m = {};
+  m.shading = render::Shading::CheckerCube;
+  m.baseColor = glm::vec4(0.85f, 0.85f, 0.8f, 1.f);
+  m.checkerColor = glm::vec4(0.1f, 0.25f, 0.55f, 1.f);
+  m.checkerScale = 4.f;
+  looks_[5] = m;
+  lookNames_[5] = "checker by position";
+  m = {};
+  m.baseColor = glm::vec4(0.9f, 0.85f, 0.7f, 1.f);
+  m.specular = 1.5f;
+  m.shininess = 120.f;
+  m.reflectivity = 0.9f;
+  looks_[6] = m;
+  lookNames_[6] = "environment";
+
+  // Caps: the inside of each material. Wood shows its grain, the melon its red flesh (the atlas
+  // rectangle of the cap UVs points into the flesh half of the texture).
+  capLooks_ = looks_;
+  capLooks_[0].baseColor = glm::vec4(1.1f, 1.05f, 0.95f, 1.f);
+  capLooks_[1].reflectivity = 0.2f;
+  capLooks_[1].baseColor = glm::vec4(0.8f, 0.8f, 0.85f, 1.f);
+
+  floorMaterial_.shading = render::Shading::Checker;
+  floorMaterial_.baseColor = glm::vec4(0.62f, 0.62f, 0.6f, 1.f);
+  floorMaterial_.checkerColor = glm::vec4(0.16f, 0.17f, 0.19f, 1.f);
+  floorMaterial_.checkerScale = 1.f;
+  floorMaterial_.specular = 0.1f;
+}
+
+void DemoGame::createFloor() {
+  ecs::World& world = app_->world();
+  const ecs::Entity floor = world.create();
+  world.add<ecs::Name>(floor, ecs::Name{"floor"});
+  ecs::Transform t;
+  t.position = glm::vec3(0.f, -0.5f, 0.f);
+  world.add<ecs::Transform>(floor, t);
+  world.add<ecs::WorldTransform>(floor, ecs::WorldTransform{ecs::localMatrix(t)});
+  auto mesh = std::make_shared<geometry::MeshData>(geometry::makeBox(glm::vec3(60.f, 0.5f, 60.f)));
+  components::MeshRenderer mr;
+  mr.source = mesh;
+  mr.gpu = app_->renderer().uploadMesh(*mesh);
+  mr.materials = {floorMaterial_};
+  world.add<components::MeshRenderer>(floor, std::move(mr));
+  auto shape = physics_->createShape(physics::ShapeDef::box(glm::vec3(60.f, 0.5f, 60.f)));
+  physics::BodyDef def;
+  def.shape = shape.value();
+  def.position = t.position;
+  def.userData = entityId(floor);
+  auto body = physics_->createBody(def);
+  world.add<components::RigidBody>(floor, components::RigidBody{body.value(), shape.value()});
+}
+
+ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const glm::quat& rotation) {
+  ecs::World& world = app_->world();
+  geometry::MeshData mesh;
+  components::Splitable splitable;
+  int look = 0;
+  std::string name;
+  switch (kind) {
+    case ObjectKind::WoodenCube:
+      mesh = geometry::makeBox(glm::vec3(0.5f));
+      splitable.convexHint = true;
+      splitable.density = 600.0;
+      look = 0;
+      name = "wooden cube";
+      break;
+    case ObjectKind::MetalSphere:
+      mesh = geometry::makeUvSphere(0.5f, 32, 16);
+      splitable.convexHint = true;
+      splitable.density = 7800.0;
+      look = 1;
+      name = "metal sphere";
+      break;
+    case ObjectKind::MarbleCylinder:
+      mesh = geometry::makeCylinder(0.4f, 1.2f, 32);
+      splitable.convexHint = true;
+      splitable.density = 2700.0;
+      splitable.splitImpulse = 1.5;
+      look = 2;
+      name = "marble cylinder";
+      break;
+    case ObjectKind::MelonEllipsoid:
+      mesh = geometry::makeEllipsoid(glm::vec3(0.45f, 0.35f, 0.35f), 32, 16);
+      splitable.convexHint = true;
+      splitable.density = 950.0;
+      splitable.capUvMode = geometry::CapUvMode::NormalizedBounds;
+      splitable.capAtlasRect = glm::vec4(0.5f, 0.f, 0.5f, 1.f);  // the red flesh half of the texture
+      look = 3;
+      name = "melon";
+      break;
+    case ObjectKind::MultiPart: {
+      // A figure of convex parts under one Splitable: torso, head, arms and legs, a hand's width
+      // apart so every part stays convex and the figure is cut as one object.
+      mesh = geometry::makeBox(glm::vec3(0.25f, 0.35f, 0.15f));
+      auto add = [&](geometry::MeshData part, glm::vec3 offset) {
+        geometry::transform(part, glm::translate(glm::mat4(1.f), offset));
+        mesh = geometry::merge(mesh, part);
+      };
+      add(geometry::makeUvSphere(0.17f, 20, 10), {0.f, 0.56f, 0.f});
+      add(geometry::makeBox(glm::vec3(0.07f, 0.3f, 0.07f)), {-0.36f, 0.03f, 0.f});
+      add(geometry::makeBox(glm::vec3(0.07f, 0.3f, 0.07f)), {0.36f, 0.03f, 0.f});
+      add(geometry::makeBox(glm::vec3(0.09f, 0.32f, 0.09f)), {-0.13f, -0.7f, 0.f});
+      add(geometry::makeBox(glm::vec3(0.09f, 0.32f, 0.09f)), {0.13f, -0.7f, 0.f});
+      splitable.separateIslands = false;
+      splitable.density = 1000.0;
+      look = 5;
+      name = "figure";
+      break;
+    }
+    case ObjectKind::Skinned:
+      mesh = geometry::makeCapsule(0.3f, 0.6f, 24, 12);
+      splitable.density = 1000.0;
+      look = 4;
+      name = "skinned placeholder";
+      break;
+    case ObjectKind::Torus:
+      mesh = geometry::makeTorus(0.5f, 0.2f, 48, 24);
+      splitable.density = 1200.0;
+      look = 6;
+      name = "torus";
+      break;
+  }
+  splitable.capMaterial = capLooks_[size_t(look)];
+  splitable.capMaterialId = 1;
+
+  const ecs::Entity e = world.create();
+  world.add<ecs::Name>(e, ecs::Name{name});
+  ecs::Transform t;
+  t.position = position;
+  t.rotation = rotation;
+  world.add<ecs::Transform>(e, t);
+  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
+  auto source = std::make_shared<geometry::MeshData>(std::move(mesh));
+  components::MeshRenderer mr;
+  mr.source = source;
+  mr.gpu = app_->renderer().uploadMesh(*source);
+  mr.materials = {looks_[size_t(look)], capLooks_[size_t(look)]};
+  world.add<components::MeshRenderer>(e, std::move(mr));
+  world.add<components::MaterialChoice>(e, components::MaterialChoice{look});
+  world.add<components::Splitable>(e, splitable);
+  components::SplitWorld sw = splitWorld();
+  std::string error;
+  if (!components::makeDynamicBody(sw, e, splitable.density, splitable.collider, &error))
+    std::fprintf(stderr, "demo: %s has no body: %s\n", name.c_str(), error.c_str());
+  return e;
+}
+
+bool DemoGame::setup(app::App& app, std::string* error) {
+  app_ = &app;
+  physics_ = std::make_unique<physics::PhysicsWorld>();
+  components::SplitBudgetSettings budget;
+  budget.millisecondsPerTick = 6.0;
+  budget.maxSplitsPerTick = 12;
+  splits_ = std::make_unique<components::SplitSystem>(budget);
+  createMaterials();
+  createFloor();
+
+  // The thesis's line-up: one of each object, plus a second row to have something to push into.
+  const glm::quat upright(1.f, 0.f, 0.f, 0.f);
+  spawn(ObjectKind::WoodenCube, {-3.f, 0.5f, 0.f}, upright);
+  spawn(ObjectKind::MetalSphere, {-1.5f, 0.5f, 0.f}, upright);
+  spawn(ObjectKind::MarbleCylinder, {0.f, 0.6f, 0.f}, upright);
+  spawn(ObjectKind::MelonEllipsoid, {1.5f, 0.35f, 0.f}, upright);
+  spawn(ObjectKind::Torus, {3.f, 0.2f, 0.f}, upright);
+  spawn(ObjectKind::MultiPart, {-1.f, 1.05f, -2.5f}, upright);
+  spawn(ObjectKind::Skinned, {1.2f, 0.6f, -2.5f}, upright);
+
+  app.addSystem(app::Phase::Gameplay, "demo.gameplay", [this](app::TickContext& c) { gameplay(c); });
+  app.addSystem(app::Phase::Triggers, "split.gather", [this](app::TickContext& c) {
+    components::SplitWorld sw = splitWorld();
+    splits_->gatherTriggerRequests(sw, c.tick);
+  });
+  app.addSystem(app::Phase::Split, "split.run", [this](app::TickContext& c) {
+    components::SplitWorld sw = splitWorld();
+    splits_->activatePending(sw);
+    splits_->runSplits(sw, c.tick, glm::dvec3(cameraPosition_));
+    const auto& stats = splits_->budget().stats();
+    splitsThisTick_ = stats.executed;
+    if (stats.executed > 0) lastSplitMs_ = stats.lastSplitMilliseconds;
+    maxSplitMs_ = stats.maxSplitMilliseconds;
+    splitMsHistory_.push_back(float(stats.millisecondsUsed));
+    if (splitMsHistory_.size() > 120) splitMsHistory_.pop_front();
+  });
+  app.addSystem(app::Phase::PhysicsStep, "physics.step",
+                [this](app::TickContext& c) { physics_->step(c.dt); });
+  app.addSystem(app::Phase::PhysicsSync, "physics.sync", [this](app::TickContext& c) {
+    components::SplitWorld sw = splitWorld();
+    components::syncTransformsFromBodies(sw);
+    components::updateDebris(sw, float(c.dt));
+  });
+  app.addSystem(app::Phase::Render, "demo.render", [this](app::TickContext& c) { render(c); });
+  app.setStateDumpExtension([this](ecs::Entity e, nlohmann::json& out) { dumpExtension(e, out); });
+  (void)error;
+  return true;
+}
+
+glm::vec3 DemoGame::rayDirection(glm::vec2 pixel, glm::ivec2 frame) const {
+  const float aspect = float(frame.x) / float(frame.y);
+  const float tanHalf = std::tan(1.0f * 0.5f);
+  const float x = (2.f * pixel.x / float(frame.x) - 1.f) * tanHalf * aspect;
+  const float y = (1.f - 2.f * pixel.y / float(frame.y)) * tanHalf;
+  const glm::quat orientation = glm::angleAxis(yaw_, glm::vec3(0, 1, 0)) *
+                                glm::angleAxis(pitch_, glm::vec3(1, 0, 0));
+  return glm::normalize(orientation * glm::vec3(x, y, -1.f));
+}
+
+ecs::Entity DemoGame::entityUnderCrosshair(glm::vec3* hitPoint) {
+  const glm::ivec2 frame = app_->platform().frameSize();
+  const glm::vec3 dir = rayDirection(glm::vec2(frame) * 0.5f, frame);
+  const auto hit = physics_->raycast(cameraPosition_, cameraPosition_ + dir * 100.f);
+  if (!hit) return {};
+  const auto user = physics_->bodyUserData(hit->body);
+  if (!user) return {};
+  ecs::Entity e;
+  e.index = uint32_t(*user & 0xffffffffu);
+  e.generation = uint32_t(*user >> 32);
+  if (!app_->world().alive(e) || !app_->world().has<components::Splitable>(e)) return {};
+  if (hitPoint) *hitPoint = hit->point;
+  return e;
+}
+
+void DemoGame::dragCut(app::TickContext& c, glm::vec2 from, glm::vec2 to) {
+  if (glm::length(to - from) < 4.f) return;
+  const glm::vec3 a = rayDirection(from, c.frameSize);
+  const glm::vec3 b = rayDirection(to, c.frameSize);
+  glm::vec3 normal = glm::cross(a, b);
+  if (glm::length(normal) < 1e-6f) return;
+  normal = glm::normalize(normal);
+  // A one-tick splitter whose trigger is the thin wedge between the two rays: only what lies under
+  // the drawn line is cut.
+  const float thickness = 0.01f;
+  std::vector<glm::vec3> points;
+  const glm::vec3 tips[3] = {cameraPosition_, cameraPosition_ + a * kCutReach,
+                             cameraPosition_ + b * kCutReach};
+  for (const glm::vec3& p : tips) {
+    points.push_back(p + normal * thickness);
+    points.push_back(p - normal * thickness);
+  }
+  const glm::vec3 centre = (tips[0] + tips[1] + tips[2]) / 3.f;
+  // The splitter frame: origin on the plane, local +Y along the plane normal.
+  const glm::quat rotation = glm::rotation(glm::vec3(0, 1, 0), normal);
+  const glm::quat inverse = glm::inverse(rotation);
+  for (glm::vec3& p : points) p = inverse * (p - centre);
+  auto shape = physics_->createShape(physics::ShapeDef::convexHull(points));
+  if (!shape.ok()) return;
+  ecs::World& world = c.world;
+  const ecs::Entity e = world.create();
+  ecs::Transform t;
+  t.position = centre;
+  t.rotation = rotation;
+  world.add<ecs::Transform>(e, t);
+  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
+  world.add<ecs::Name>(e, ecs::Name{"drag cut"});
+  physics::TriggerDef def;
+  def.shape = shape.value();
+  def.position = centre;
+  def.rotation = rotation;
+  def.persistent = false;
+  def.userData = entityId(e);
+  auto trigger = physics_->createTrigger(def);
+  physics_->destroyShape(shape.value());  // the trigger keeps its own reference
+  components::Splitter splitter;
+  splitter.lifetime = components::SplitterLifetime::OneTick;
+  splitter.playerCaused = true;
+  if (trigger.ok()) splitter.trigger = trigger.value();
+  world.add<components::Splitter>(e, splitter);
+}
+
+void DemoGame::gameplay(app::TickContext& c) {
+  const input::InputState& in = c.input;
+  using input::Key;
+  // Split mode: hold Space; the camera stops turning and the cursor shows.
+  const bool wantSplitMode = in.held(Key::Space);
+  if (wantSplitMode != splitMode_) {
+    splitMode_ = wantSplitMode;
+    c.platform.setCursorMode(splitMode_ ? app::CursorMode::Normal : app::CursorMode::Captured);
+    dragging_ = false;
+  }
+  if (!splitMode_) {
+    yaw_ -= in.mouseDelta().x * kLookSensitivity;
+    pitch_ = std::clamp(pitch_ - in.mouseDelta().y * kLookSensitivity, -1.5f, 1.5f);
+  }
+  const glm::quat yawOnly = glm::angleAxis(yaw_, glm::vec3(0, 1, 0));
+  const glm::vec3 forward = yawOnly * glm::vec3(0, 0, -1);
+  const glm::vec3 right = yawOnly * glm::vec3(1, 0, 0);
+  glm::vec3 move(0.f);
+  if (in.held(Key::W)) move += forward;
+  if (in.held(Key::S)) move -= forward;
+  if (in.held(Key::D)) move += right;
+  if (in.held(Key::A)) move -= right;
+  if (in.held(Key::E) && in.held(Key::LeftShift)) move.y += 1.f;
+  if (glm::length(move) > 0.f) cameraPosition_ += glm::normalize(move) * kMoveSpeed * float(c.dt);
+  cameraPosition_.y = std::max(cameraPosition_.y, 0.3f);
+
+  if (in.pressed(Key::H)) showHelp_ = !showHelp_;
+  const Key spawnKeys[7] = {Key::Num1, Key::Num2, Key::Num3, Key::Num4, Key::Num5, Key::Num6, Key::Num7};
+  for (int k = 0; k < 7; ++k) {
+    if (!in.pressed(spawnKeys[k])) continue;
+    const glm::vec3 at = cameraPosition_ + forward * 3.f + glm::vec3(0.f, 0.6f, 0.f);
+    spawn(ObjectKind(k + 1), at, glm::quat(1.f, 0.f, 0.f, 0.f));
+  }
+  if (in.pressed(Key::Q) || (in.pressed(Key::E) && !in.held(Key::LeftShift))) {
+    const ecs::Entity target = entityUnderCrosshair();
+    if (auto* choice = c.world.tryGet<components::MaterialChoice>(target)) {
+      choice->index = (choice->index + (in.pressed(Key::Q) ? 6 : 1)) % 7;
+      if (auto* mr = c.world.tryGet<components::MeshRenderer>(target)) {
+        mr->materials[0] = looks_[size_t(choice->index)];
+        if (mr->materials.size() > 1) mr->materials[1] = capLooks_[size_t(choice->index)];
+      }
+      if (auto* sp = c.world.tryGet<components::Splitable>(target))
+        sp->capMaterial = capLooks_[size_t(choice->index)];
+    }
+  }
+  // Right button pushes the object under the crosshair.
+  if (in.buttonPressed(input::MouseButton::Right)) {
+    glm::vec3 point;
+    const ecs::Entity target = entityUnderCrosshair(&point);
+    if (auto* rb = c.world.tryGet<components::RigidBody>(target)) {
+      const float mass = physics_->bodyMass(rb->body).value_or(1.f);
+      const glm::vec3 dir = rayDirection(glm::vec2(c.frameSize) * 0.5f, c.frameSize);
+      physics_->activate(rb->body);
+      physics_->applyImpulse(rb->body, dir * kPushImpulse * mass, point);
+    }
+  }
+  // Drag to cut, in split mode.
+  if (splitMode_) {
+    if (in.buttonPressed(input::MouseButton::Left)) {
+      dragging_ = true;
+      dragStart_ = dragEnd_ = in.mousePosition();
+    }
+    if (dragging_) dragEnd_ = in.mousePosition();
+    if (dragging_ && in.buttonReleased(input::MouseButton::Left)) {
+      dragging_ = false;
+      dragCut(c, dragStart_, dragEnd_);
+    }
+  }
+}
+
+void DemoGame::render(app::TickContext& c) {
+  render::Camera camera;
+  camera.position = cameraPosition_;
+  const glm::quat orientation = glm::angleAxis(yaw_, glm::vec3(0, 1, 0)) *
+                                glm::angleAxis(pitch_, glm::vec3(1, 0, 0));
+  camera.view = glm::lookAt(cameraPosition_, cameraPosition_ + orientation * glm::vec3(0, 0, -1),
+                            glm::vec3(0, 1, 0));
+  render::Lighting lighting;
+  lighting.shadowCenter = cameraPosition_ + orientation * glm::vec3(0, 0, -6.f);
+  lighting.shadowCenter.y = 0.f;
+  lighting.shadowRadius = 12.f;
+  c.renderer.beginFrame(c.frameSize.x, c.frameSize.y, camera, lighting);
+  components::SplitWorld sw = splitWorld();
+  components::submitMeshes(sw);
+  drawHud(c);
+}
+
+void DemoGame::drawHud(app::TickContext& c) {
+  render::Renderer& r = c.renderer;
+  const auto& stats = splits_->budget().stats();
+  uint32_t pieces = 0;
+  for (auto [e, origin] : c.world.view<components::SplitOrigin>()) {
+    (void)e;
+    (void)origin;
+    ++pieces;
+  }
+  char line[256];
+  const glm::vec4 white(1.f), dim(0.f, 0.f, 0.f, 0.45f);
+  r.submitOverlayRect(glm::vec4(8, 8, 330, 118), dim);
+  std::snprintf(line, sizeof(line), "FPS %.0f   tick %.2f ms", c.app.framesPerSecond(),
+                c.app.lastTickMilliseconds());
+  r.submitText(line, {16, 14}, 2.f, white);
+  std::snprintf(line, sizeof(line), "splits this tick %u   queue %u", splitsThisTick_, stats.queueLength);
+  r.submitText(line, {16, 34}, 2.f, white);
+  std::snprintf(line, sizeof(line), "split ms last %.2f  max %.2f", lastSplitMs_, maxSplitMs_);
+  r.submitText(line, {16, 54}, 2.f, white);
+  std::snprintf(line, sizeof(line), "pieces %u   tick %llu", pieces,
+                static_cast<unsigned long long>(c.tick));
+  r.submitText(line, {16, 74}, 2.f, white);
+  // Graph: split ms per tick against the budget line.
+  const float gx = 16.f, gy = 96.f, gw = 240.f, gh = 24.f;
+  const float budget = float(splits_->budget().settings().millisecondsPerTick);
+  const float scale = gh / (budget * 2.f);
+  std::vector<glm::vec2> lines;
+  for (size_t i = 0; i + 1 < splitMsHistory_.size(); ++i) {
+    const float x0 = gx + gw * float(i) / 120.f, x1 = gx + gw * float(i + 1) / 120.f;
+    lines.push_back({x0, gy + gh - std::min(gh, splitMsHistory_[i] * scale)});
+    lines.push_back({x1, gy + gh - std::min(gh, splitMsHistory_[i + 1] * scale)});
+  }
+  r.submitOverlayLines(lines, glm::vec4(0.4f, 1.f, 0.5f, 1.f));
+  const glm::vec2 budgetLine[2] = {{gx, gy + gh - budget * scale}, {gx + gw, gy + gh - budget * scale}};
+  r.submitOverlayLines(budgetLine, glm::vec4(1.f, 0.4f, 0.3f, 1.f));
+
+  // Crosshair, drag line, help.
+  const glm::vec2 mid = glm::vec2(c.frameSize) * 0.5f;
+  const glm::vec2 cross[4] = {mid - glm::vec2(8, 0), mid + glm::vec2(8, 0), mid - glm::vec2(0, 8),
+                              mid + glm::vec2(0, 8)};
+  r.submitOverlayLines(cross, white);
+  if (dragging_) {
+    const glm::vec2 drag[2] = {dragStart_, dragEnd_};
+    r.submitOverlayLines(drag, glm::vec4(1.f, 0.9f, 0.2f, 1.f));
+  }
+  if (splitMode_) r.submitText("SPLIT MODE: drag to cut", {mid.x - 110.f, 20.f}, 2.f, glm::vec4(1, 0.9f, 0.2f, 1));
+  // The skinned character is not in yet: say so next to its placeholder.
+  r.submitText("6: skinned character (placeholder until skinned meshes land)", {16.f, float(c.frameSize.y) - 28.f},
+               1.5f, glm::vec4(1.f, 1.f, 1.f, 0.8f));
+  if (showHelp_) {
+    r.submitOverlayRect(glm::vec4(mid.x - 230, mid.y - 110, 460, 220), glm::vec4(0, 0, 0, 0.6f));
+    const char* help[] = {"WASD move, mouse look",     "hold Space: split mode, drag left button to cut",
+                          "right button: push",        "1-7: spawn cube, sphere, cylinder, melon,",
+                          "     figure, skinned, torus", "Q/E: cycle the material under the crosshair",
+                          "H: this help"};
+    float y = mid.y - 96.f;
+    for (const char* h : help) {
+      r.submitText(h, {mid.x - 215.f, y}, 2.f, white);
+      y += 28.f;
+    }
+  }
+}
+
+void DemoGame::dumpExtension(ecs::Entity e, nlohmann::json& out) {
+  ecs::World& world = app_->world();
+  if (const auto* mi = world.tryGet<components::MassInfo>(e)) {
+    out["mass"] = mi->mass;
+    out["volume"] = mi->volume;
+  }
+  if (const auto* rb = world.tryGet<components::RigidBody>(e)) {
+    if (const auto state = physics_->bodyState(rb->body)) {
+      out["center_of_mass"] = {state->transform.position.x, state->transform.position.y,
+                               state->transform.position.z};
+      out["linear_velocity"] = {state->linearVelocity.x, state->linearVelocity.y, state->linearVelocity.z};
+      out["angular_velocity"] = {state->angularVelocity.x, state->angularVelocity.y,
+                                 state->angularVelocity.z};
+    }
+  }
+  if (const auto* origin = world.tryGet<components::SplitOrigin>(e)) out["split_from"] = origin->parentId;
+}
+
+}  // namespace cleave::demo

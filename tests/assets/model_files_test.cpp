@@ -1,0 +1,162 @@
+// Corpus check on real glTF files when the shared models folder is there (skipped otherwise), and the
+// cleave-split tool run end to end on a generated cube.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "engine/assets/mesh_io.h"
+#include "engine/geometry/mass_properties.h"
+#include "tests/assets/asset_test_files.h"
+
+namespace cleave::assets {
+namespace {
+
+using test::TempDir;
+
+std::filesystem::path modelsFolder() {
+  if (const char* env = std::getenv("CLEAVE_MODELS_DIR")) return env;
+  // The shared folder sits beside the repository.
+  return std::filesystem::path(CLEAVE_SOURCE_DIR).parent_path() / "shared" / "models";
+}
+
+TEST(ModelFiles, SharedGltfModelsLoadStatically) {
+  const std::filesystem::path folder = modelsFolder();
+  if (!std::filesystem::is_directory(folder)) GTEST_SKIP() << "no models folder at " << folder;
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    const MeshFormat format = formatFromPath(entry.path().string());
+    if (format == MeshFormat::Gltf || format == MeshFormat::Glb) files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  if (files.empty()) GTEST_SKIP() << "no .gltf or .glb files in " << folder;
+  for (const std::filesystem::path& file : files) {
+    SCOPED_TRACE(file.string());
+    const MeshReadResult result = loadMesh(file.string());
+    ASSERT_TRUE(result.ok) << result.error;
+    const geometry::MeshData& mesh = result.mesh;
+    EXPECT_GT(mesh.triangleCount(), 0u);
+    EXPECT_TRUE(mesh.normals.empty() || mesh.normals.size() == mesh.vertexCount());
+    EXPECT_TRUE(mesh.uv0.empty() || mesh.uv0.size() == mesh.vertexCount());
+    for (const glm::vec3& n : mesh.normals) EXPECT_NEAR(glm::length(n), 1.f, 1e-3f);
+    uint32_t covered = 0;
+    for (const geometry::SubMesh& sub : mesh.submeshes) {
+      EXPECT_EQ(sub.firstIndex, covered);
+      EXPECT_LT(sub.materialId, result.materialNames.size());
+      covered += sub.indexCount;
+    }
+    EXPECT_EQ(covered, mesh.indices.size());
+    // The same file through memory (no folder) gives the same mesh: these files embed their data.
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const MeshReadResult fromMemory = readMeshFromMemory(
+        std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()),
+        formatFromPath(file.string()), file.filename().string());
+    ASSERT_TRUE(fromMemory.ok) << fromMemory.error;
+    EXPECT_EQ(fromMemory.mesh.positions, mesh.positions);
+    EXPECT_EQ(fromMemory.mesh.indices, mesh.indices);
+  }
+}
+
+// Runs a command, capturing stdout into a string; returns the exit status.
+int run(const std::string& command, std::string& output) {
+  output.clear();
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return -1;
+  char buffer[4096];
+  size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) output.append(buffer, got);
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string splitTool() { return std::string(CLEAVE_BINARY_DIR) + "/bin/cleave-split"; }
+
+// The path in single quotes for the shell.
+std::string quote(const std::string& path) {
+  std::string quoted(1, '\'');
+  quoted += path;
+  quoted += '\'';
+  return quoted;
+}
+
+TEST(CleaveSplitTool, JsonReportsPiecesWhoseVolumesAddUp) {
+  if (!std::filesystem::exists(splitTool())) GTEST_SKIP() << "cleave-split not built";
+  TempDir dir;
+  const std::string cube = dir.write("cube.obj", test::cubeObj());
+  const std::string out = dir.file("pieces");
+  std::string output;
+  // The plane 2x = 0.6 is x = 0.3 once normalised.
+  const int status = run(quote(splitTool()) + ' ' + quote(cube) + " --plane 2 0 0 0.6 --json --repeat 3 --out " +
+                             quote(out) + " 2>&1",
+                         output);
+  ASSERT_EQ(status, 0) << output;
+  const nlohmann::json report = nlohmann::json::parse(output, nullptr, false);
+  ASSERT_FALSE(report.is_discarded()) << output;
+  EXPECT_EQ(report["input"]["triangles"], 12);
+  EXPECT_EQ(report["input"]["closed"], true);
+  EXPECT_NEAR(report["input"]["volume"].get<double>(), 1.0, 1e-9);
+  ASSERT_EQ(report["pieces"].size(), 2u);
+  double total = 0.0;
+  for (const auto& piece : report["pieces"]) {
+    total += piece["volume"].get<double>();
+    EXPECT_EQ(piece["closed"], true);
+    EXPECT_GE(piece["cap_triangles"].get<int>(), 2);
+    EXPECT_EQ(piece["cap_loops"], 1);
+    EXPECT_EQ(piece["inertia"].size(), 6u);
+  }
+  EXPECT_NEAR(total, 1.0, 1e-6);
+  EXPECT_EQ(report["pieces"][0]["side"], "above");
+  EXPECT_NEAR(report["pieces"][0]["volume"].get<double>(), 0.7, 1e-6);
+  EXPECT_NEAR(report["pieces"][0]["center_of_mass"][0].get<double>(), 0.65, 1e-6);
+  EXPECT_EQ(report["timing"]["repeat"], 3);
+  EXPECT_GE(report["timing"]["split_ms_median"].get<double>(), report["timing"]["split_ms_min"].get<double>());
+
+  // The written pieces read back closed, with a cap material.
+  const MeshReadResult above = loadMesh(out + "/piece_0_above.obj");
+  ASSERT_TRUE(above.ok) << above.error;
+  EXPECT_TRUE(geometry::isClosedAndOriented(above.mesh.positions, above.mesh.indices));
+  EXPECT_NEAR(geometry::computeMassProperties(above.mesh).volume, 0.7, 1e-6);
+  EXPECT_NE(std::find(above.materialNames.begin(), above.materialNames.end(), "cap"),
+            above.materialNames.end());
+  EXPECT_TRUE(std::filesystem::exists(out + "/piece_1_below.obj"));
+}
+
+TEST(CleaveSplitTool, ErrorsGiveOneLineAndTheDocumentedExitCodes) {
+  if (!std::filesystem::exists(splitTool())) GTEST_SKIP() << "cleave-split not built";
+  TempDir dir;
+  const std::string tool = quote(splitTool()) + ' ';
+  std::string output;
+  EXPECT_EQ(run(tool + "--help", output), 0);
+  EXPECT_NE(output.find("usage"), std::string::npos);
+  EXPECT_EQ(run(tool + "cube.obj 2>&1", output), 2);  // no plane
+  EXPECT_EQ(run(tool + "cube.obj --plane 0 0 0 1 2>&1", output), 2);
+  EXPECT_EQ(run(tool + "cube.obj --plane 1 0 0 --json 2>&1", output), 2);
+  EXPECT_EQ(run(tool + "cube.obj --plane 1 0 0 0 --bogus 2>&1", output), 2);
+
+  const std::string missing = dir.file("missing.obj");
+  EXPECT_EQ(run(tool + quote(missing) + " --plane 1 0 0 0 2>&1", output), 1);
+  EXPECT_NE(output.find(missing), std::string::npos);
+  EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
+
+  const std::string corrupt = dir.write("corrupt.stl", std::string(90, '\x01'));
+  EXPECT_EQ(run(tool + quote(corrupt) + " --plane 1 0 0 0 2>&1", output), 1);
+  EXPECT_NE(output.find(corrupt), std::string::npos);
+
+  // A plane that misses the mesh is a split failure: reported in JSON, exit 1.
+  const std::string cube = dir.write("cube.obj", test::cubeObj());
+  EXPECT_EQ(run(tool + quote(cube) + " --plane 0 1 0 5 --json 2>/dev/null", output), 1);
+  const nlohmann::json report = nlohmann::json::parse(output, nullptr, false);
+  ASSERT_FALSE(report.is_discarded()) << output;
+  EXPECT_TRUE(report.contains("message"));  // only present when the split failed
+  EXPECT_TRUE(report["pieces"].empty());
+}
+
+}  // namespace
+}  // namespace cleave::assets

@@ -1,0 +1,212 @@
+// MeshContainer: validation, welding, cut space (transform, mirroring, skinning), extraction.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/geometry/mesh_splitter.h"
+
+namespace cleave::geometry {
+namespace {
+
+// Unit cube [0,1]^3 with 4 vertices per face (split seams), uv per face, normals, one run.
+MeshData seamCube() {
+  MeshData m;
+  const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const glm::vec3& n : normals) {
+    // Two axes spanning the face so that (a, b, n) is right-handed.
+    glm::vec3 a = std::abs(n.x) > 0.5f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    glm::vec3 b = glm::cross(n, a);
+    const glm::vec3 centre = glm::vec3(0.5f) + 0.5f * n;
+    const uint32_t base = static_cast<uint32_t>(m.positions.size());
+    const glm::vec2 corners[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (const glm::vec2& c : corners) {
+      m.positions.push_back(centre + 0.5f * c.x * a + 0.5f * c.y * b);
+      m.normals.push_back(n);
+      m.uv0.push_back(0.5f * (c + 1.f));
+    }
+    for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
+  }
+  return m;
+}
+
+TEST(MeshContainer, AcceptsAValidMeshAndWeldsItsSeams) {
+  MeshContainer c;
+  std::string why = "stale";
+  ASSERT_EQ(c.setMesh(seamCube(), &why), SplitStatus::Ok);
+  EXPECT_TRUE(why.empty());
+  EXPECT_EQ(c.mesh().vertexCount(), 24u);
+  EXPECT_EQ(c.positionIdCount(), 8u);
+  EXPECT_TRUE(c.closed());
+  EXPECT_FALSE(c.mirrored());
+  EXPECT_NEAR(c.boundsDiagonal(), std::sqrt(3.0), 1e-12);
+  // Ids are numbered by first vertex, and the first vertex of each id is its representative.
+  std::span<const uint32_t> ids = c.positionIds();
+  EXPECT_EQ(ids[0], 0u);
+  uint32_t next = 0;
+  for (size_t v = 0; v < ids.size(); ++v) {
+    if (ids[v] == next) {
+      EXPECT_EQ(c.positionRepresentatives()[next], v);
+      ++next;
+    }
+    EXPECT_LT(ids[v], next);
+    EXPECT_EQ(c.mesh().positions[v], c.mesh().positions[c.positionRepresentatives()[ids[v]]]);
+  }
+}
+
+TEST(MeshContainer, WeldsWithinTheToleranceScaledToTheMesh) {
+  MeshData m = seamCube();
+  m.positions[5] += glm::vec3(2e-7f, 0.f, 0.f);  // 2e-7 < 1e-6 * sqrt(3): same point
+  MeshContainer c;
+  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  EXPECT_EQ(c.positionIdCount(), 8u);
+  EXPECT_TRUE(c.closed());
+  m.positions[5] += glm::vec3(1e-4f, 0.f, 0.f);  // far beyond the tolerance: a new point, an open mesh
+  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  EXPECT_EQ(c.positionIdCount(), 9u);
+  EXPECT_FALSE(c.closed());
+}
+
+TEST(MeshContainer, ScaledMeshWeldsWithAScaledTolerance) {
+  MeshData m = seamCube();
+  for (glm::vec3& p : m.positions) p *= 1000.f;
+  m.positions[5] += glm::vec3(1e-4f, 0.f, 0.f);  // 1e-4 < 1e-6 * 1732
+  MeshContainer c;
+  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  EXPECT_EQ(c.positionIdCount(), 8u);
+}
+
+TEST(MeshContainer, OpenMeshIsNotClosed) {
+  MeshData m = seamCube();
+  m.indices.resize(m.indices.size() - 3);
+  MeshContainer c;
+  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  EXPECT_FALSE(c.closed());
+}
+
+TEST(MeshContainer, RejectsNaNAndInfinitePositions) {
+  MeshContainer c;
+  MeshData m = seamCube();
+  m.positions[3].y = std::numeric_limits<float>::quiet_NaN();
+  std::string why;
+  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+  EXPECT_NE(why.find("vertex 3"), std::string::npos) << why;
+  m = seamCube();
+  m.positions[7].z = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+  EXPECT_NE(why.find("vertex 7"), std::string::npos) << why;
+  EXPECT_TRUE(c.mesh().empty());  // a rejected mesh leaves nothing to split
+}
+
+TEST(MeshContainer, RejectsBadIndices) {
+  MeshContainer c;
+  std::string why;
+  MeshData m = seamCube();
+  m.indices[10] = 24;
+  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+  EXPECT_NE(why.find("out of range"), std::string::npos) << why;
+  m = seamCube();
+  m.indices.push_back(0);
+  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+  EXPECT_NE(why.find("multiple of 3"), std::string::npos) << why;
+  m.indices.clear();
+  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+}
+
+TEST(MeshContainer, RejectsMismatchedAttributesAndRuns) {
+  MeshContainer c;
+  std::string why;
+  MeshData m = seamCube();
+  m.normals.pop_back();
+  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+  EXPECT_NE(why.find("normals"), std::string::npos) << why;
+  m = seamCube();
+  m.joints.assign(24, glm::u16vec4(0));
+  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);  // joints without weights
+  EXPECT_NE(why.find("weights"), std::string::npos) << why;
+  m = seamCube();
+  m.submeshes = {{0, 18, 0}, {21, 15, 1}};  // a gap
+  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+  m.submeshes = {{0, 18, 0}, {18, 12, 1}};  // short of the end
+  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+  m.submeshes = {{0, 18, 0}, {18, 18, 1}};
+  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::Ok) << why;
+}
+
+TEST(MeshContainer, TransformMakesCutSpaceAndDetectsMirroring) {
+  MeshContainer c;
+  ASSERT_EQ(c.setMesh(seamCube()), SplitStatus::Ok);
+  const glm::mat4 model = glm::translate(glm::mat4(1.f), glm::vec3(1, 2, 3)) *
+                          glm::scale(glm::mat4(1.f), glm::vec3(2.f, 1.f, 1.f));
+  c.setTransform(model);
+  EXPECT_FALSE(c.mirrored());
+  const glm::dvec3 p = c.cutPositions()[2];
+  const glm::vec3 q = c.mesh().positions[2];
+  EXPECT_DOUBLE_EQ(p.x, 2.0 * q.x + 1.0);
+  EXPECT_DOUBLE_EQ(p.y, q.y + 2.0);
+  EXPECT_NEAR(c.boundsDiagonal(), std::sqrt(6.0), 1e-12);
+  c.setTransform(glm::scale(glm::mat4(1.f), glm::vec3(1.f, -1.f, 1.f)));
+  EXPECT_TRUE(c.mirrored());
+  c.setTransform(glm::scale(glm::mat4(1.f), glm::vec3(-1.f, -1.f, 1.f)));  // a rotation by pi
+  EXPECT_FALSE(c.mirrored());
+}
+
+TEST(MeshContainer, SkinningPoseBlendsJointMatrices) {
+  MeshData m = seamCube();
+  for (const glm::vec3& p : m.positions) {
+    m.joints.emplace_back(0, 1, 0, 0);
+    m.weights.emplace_back(1.f - p.x, p.x, 0.f, 0.f);
+  }
+  MeshContainer c;
+  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  const std::vector<glm::mat4> joints = {glm::mat4(1.f), glm::translate(glm::mat4(1.f), glm::vec3(0, 1, 0))};
+  const glm::mat4 model = glm::translate(glm::mat4(1.f), glm::vec3(10, 0, 0));
+  ASSERT_EQ(c.setSkinningPose(joints, model), SplitStatus::Ok);
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    const glm::dvec3 expected = glm::dvec3(m.positions[i]) + glm::dvec3(10.0, m.positions[i].x, 0.0);
+    EXPECT_NEAR(glm::length(c.cutPositions()[i] - expected), 0.0, 1e-6) << i;
+  }
+  EXPECT_EQ(c.jointMatrices().size(), 2u);
+  std::string why;
+  EXPECT_EQ(c.setSkinningPose(std::span<const glm::mat4>(joints.data(), 1), model, &why), SplitStatus::InvalidInput);
+  EXPECT_NE(why.find("joint 1"), std::string::npos) << why;
+  ASSERT_EQ(c.setMesh(seamCube()), SplitStatus::Ok);
+  EXPECT_EQ(c.setSkinningPose(joints, model, &why), SplitStatus::InvalidInput);  // no skin data
+}
+
+TEST(MeshContainer, ExtractTrianglesRemapsVerticesAndKeepsRuns) {
+  MeshData m = seamCube();
+  for (size_t i = 0; i < m.positions.size(); ++i) m.colors.emplace_back(float(i), 0.f, 0.f, 1.f);
+  m.submeshes = {{0, 12, 4}, {12, 24, 7}};  // faces 0-1 material 4, faces 2-5 material 7
+  MeshContainer c;
+  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  MeshData out;
+  const std::vector<uint32_t> triangles = {5, 0, 1};  // face 2's second triangle, face 0
+  c.extractTriangles(triangles, out);
+  ASSERT_EQ(out.triangleCount(), 3u);
+  ASSERT_EQ(out.submeshes.size(), 2u);  // runs in source order: material 4 first
+  EXPECT_EQ(out.submeshes[0].materialId, 4u);
+  EXPECT_EQ(out.submeshes[0].firstIndex, 0u);
+  EXPECT_EQ(out.submeshes[0].indexCount, 6u);
+  EXPECT_EQ(out.submeshes[1].materialId, 7u);
+  EXPECT_EQ(out.submeshes[1].indexCount, 3u);
+  EXPECT_EQ(out.vertexCount(), 7u);  // 4 of face 0, 3 of face 2's second triangle
+  EXPECT_EQ(out.normals.size(), 7u);
+  EXPECT_EQ(out.uv0.size(), 7u);
+  EXPECT_EQ(out.colors.size(), 7u);
+  EXPECT_TRUE(out.tangents.empty());
+  for (size_t k = 0; k < out.indices.size(); ++k) {
+    const size_t t = k < 6 ? k / 3 : 5;  // source triangle of this corner
+    const uint32_t source = m.indices[3 * t + k % 3];
+    EXPECT_EQ(out.positions[out.indices[k]], m.positions[source]);
+    EXPECT_EQ(out.colors[out.indices[k]], m.colors[source]);
+  }
+}
+
+}  // namespace
+}  // namespace cleave::geometry

@@ -1,0 +1,662 @@
+// Small, hand-checkable splits: exact volumes, cap areas, normals, UVs, islands, failure cases, the
+// thesis's two failure cases, submesh reuse, determinism and the no-allocation guarantee.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/geometry/mesh_splitter.h"
+#include "engine/geometry/primitives.h"
+#include "tests/geometry/test_meshes.h"
+
+// ---- Allocation counting: global operator new/delete replaced for this test binary; they only count
+// while gCountAllocations is set (by the no-allocation test below).
+namespace {
+std::atomic<bool> gCountAllocations{false};
+std::atomic<size_t> gAllocations{0};
+void* countedAllocate(std::size_t size) {
+  if (gCountAllocations.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
+  void* p = std::malloc(size ? size : 1);
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+}  // namespace
+
+void* operator new(std::size_t size) { return countedAllocate(size); }
+void* operator new[](std::size_t size) { return countedAllocate(size); }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  try {
+    return countedAllocate(size);
+  } catch (...) {
+    return nullptr;
+  }
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  try {
+    return countedAllocate(size);
+  } catch (...) {
+    return nullptr;
+  }
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+
+namespace cleave::geometry {
+namespace {
+
+using testing::capArea;
+using testing::closedAndOriented;
+using testing::toCutSpace;
+
+Plane planeOf(glm::dvec3 normal, double offset) {
+  Plane p;
+  p.normal = normal;
+  p.offset = offset;
+  return p;
+}
+
+// Unit cube [0,1]^3, 24 vertices (4 per face: UV and normal seams), CCW from outside, one run.
+MeshData seamCube() {
+  MeshData m;
+  const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const glm::vec3& n : normals) {
+    const glm::vec3 a = std::abs(n.x) > 0.5f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::vec3 b = glm::cross(n, a);
+    const glm::vec3 centre = glm::vec3(0.5f) + 0.5f * n;
+    const uint32_t base = static_cast<uint32_t>(m.positions.size());
+    const glm::vec2 corners[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (const glm::vec2& c : corners) {
+      m.positions.push_back(centre + 0.5f * c.x * a + 0.5f * c.y * b);
+      m.normals.push_back(n);
+      m.tangents.emplace_back(a, 1.f);
+      m.uv0.push_back(0.5f * (c + 1.f));
+    }
+    for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
+  }
+  return m;
+}
+
+// Adds the quad a-b-c-d (a cycle, either orientation) as two triangles facing `outward`; `other`
+// picks the diagonal b-d instead of a-c.
+void addQuad(MeshData& m, uint32_t a, uint32_t b, uint32_t c, uint32_t d, const glm::vec3& outward,
+             bool other = false) {
+  const glm::vec3 n = glm::cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
+  if (glm::dot(n, outward) < 0.f) std::swap(b, d);
+  if (!other) {
+    for (uint32_t i : {a, b, c, a, c, d}) m.indices.push_back(i);
+  } else {
+    for (uint32_t i : {a, b, d, b, c, d}) m.indices.push_back(i);
+  }
+}
+
+// Box [lo, hi] with 8 shared vertices; `otherDiagonal` flips the diagonal of the y faces.
+MeshData box8(const glm::vec3& lo, const glm::vec3& hi, bool otherDiagonal = false) {
+  MeshData m;
+  for (int i = 0; i < 8; ++i) {
+    m.positions.emplace_back(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+  }
+  addQuad(m, 0, 2, 6, 4, {-1, 0, 0});
+  addQuad(m, 1, 3, 7, 5, {1, 0, 0});
+  addQuad(m, 0, 1, 5, 4, {0, -1, 0}, otherDiagonal);
+  addQuad(m, 2, 3, 7, 6, {0, 1, 0}, otherDiagonal);
+  addQuad(m, 0, 1, 3, 2, {0, 0, -1});
+  addQuad(m, 4, 5, 7, 6, {0, 0, 1});
+  return m;
+}
+
+void append(MeshData& a, const MeshData& b) {
+  const uint32_t base = static_cast<uint32_t>(a.positions.size());
+  a.positions.insert(a.positions.end(), b.positions.begin(), b.positions.end());
+  for (uint32_t i : b.indices) a.indices.push_back(base + i);
+}
+
+// A square ring prism: outer square [-R, R]^2 and hole [-r, r]^2 in xz, y in [0, h]; 16 vertices.
+MeshData squareRing(float R, float r, float h) {
+  MeshData m;
+  const glm::vec2 corners[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  for (float y : {0.f, h}) {
+    for (const glm::vec2& c : corners) m.positions.emplace_back(R * c.x, y, R * c.y);  // outer: 0-3, 8-11
+    for (const glm::vec2& c : corners) m.positions.emplace_back(r * c.x, y, r * c.y);  // inner: 4-7, 12-15
+  }
+  for (uint32_t i = 0; i < 4; ++i) {
+    const uint32_t j = (i + 1) % 4;
+    const glm::vec2 mid = 0.5f * (corners[i] + corners[j]);
+    const glm::vec3 away(mid.x, 0.f, mid.y);
+    addQuad(m, i, j, 8 + j, 8 + i, away);                  // outer wall, facing out
+    addQuad(m, 4 + i, 4 + j, 12 + j, 12 + i, -away);       // hole wall, facing into the hole
+    addQuad(m, 8 + i, 8 + j, 12 + j, 12 + i, {0, 1, 0});   // top
+    addQuad(m, i, j, 4 + j, 4 + i, {0, -1, 0});            // bottom
+  }
+  return m;
+}
+
+// Tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1); every face listed starting at the origin when it
+// holds it, so the first vertex of three faces lies on a plane through the origin.
+MeshData cornerTetrahedron() {
+  MeshData m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  return m;
+}
+
+struct Split {
+  SplitStatus status;
+  SplitResult result;
+};
+
+Split run(const MeshData& mesh, const Plane& plane, SplitOptions options = {}, const glm::mat4& model = glm::mat4(1.f),
+          bool convex = false) {
+  MeshContainer container;
+  std::string why;
+  EXPECT_EQ(container.setMesh(mesh, &why), SplitStatus::Ok) << why;
+  container.setTransform(model);
+  auto splitter = convex ? makeConvexSplitter() : makeConcaveSplitter();
+  Split s;
+  s.status = splitter->split(container, plane, options, s.result);
+  EXPECT_EQ(s.status, s.result.status);
+  return s;
+}
+
+double pieceVolumeInSource(const MeshData& m) {
+  return testing::signedVolume(toCutSpace(m, glm::dmat4(1.0)), m.indices);
+}
+
+void expectClosed(const MeshData& m) {
+  const std::vector<glm::dvec3> p = toCutSpace(m, glm::dmat4(1.0));
+  EXPECT_TRUE(closedAndOriented(p, m.indices, 1e-9));  // exact positions: tolerance only for rounding
+}
+
+double minTriangleArea(const MeshData& m) {
+  double smallest = INFINITY;
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    smallest = std::min(smallest, testing::triangleArea(glm::dvec3(m.positions[m.indices[t]]),
+                                                        glm::dvec3(m.positions[m.indices[t + 1]]),
+                                                        glm::dvec3(m.positions[m.indices[t + 2]])));
+  }
+  return smallest;
+}
+
+// Every vertex of the cap run of `m`: calls f(vertex index).
+template <typename F>
+void forCapVertices(const MeshData& m, uint32_t capMaterial, F f) {
+  for (const SubMesh& run : m.submeshes) {
+    if (run.materialId != capMaterial) continue;
+    for (uint32_t k = run.firstIndex; k < run.firstIndex + run.indexCount; ++k) f(m.indices[k]);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(ConcaveSplitter, UnitCubeCutAtHalfGivesTwoBoxes) {
+  Split s = run(seamCube(), planeOf({1, 0, 0}, 0.5));
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  EXPECT_TRUE(s.result.message.empty());
+  EXPECT_EQ(s.result.sectionLoops, 1u);
+  ASSERT_EQ(s.result.pieces.size(), 2u);
+  for (const SplitPiece& piece : s.result.pieces) {
+    const double sign = piece.side;  // above first: x > 0.5
+    EXPECT_NEAR(piece.mass.volume, 0.5, 1e-12);
+    EXPECT_TRUE(piece.mass.closed);
+    EXPECT_NEAR(piece.mass.centerOfMass.x, 0.5 + 0.25 * sign, 1e-12);
+    EXPECT_NEAR(piece.mass.centerOfMass.y, 0.5, 1e-12);
+    EXPECT_NEAR(pieceVolumeInSource(piece.mesh), 0.5, 1e-7);
+    EXPECT_EQ(piece.capLoops, 1u);
+    // The square's 4 corners and, where each side face's diagonal crosses the plane, 4 collinear
+    // points that must stay (no T-junction): 8 points, 6 triangles.
+    EXPECT_EQ(piece.capTriangles, 6u);
+    uint32_t capTriangles = 0;
+    EXPECT_NEAR(capArea(piece.mesh, 1, glm::dmat4(1.0), &capTriangles), 1.0, 1e-7);
+    EXPECT_EQ(capTriangles, 6u);
+    expectClosed(piece.mesh);
+    ASSERT_EQ(piece.mesh.submeshes.size(), 2u);  // the cube's run, then the cap run
+    EXPECT_EQ(piece.mesh.submeshes[0].materialId, 0u);
+    EXPECT_EQ(piece.mesh.submeshes[1].materialId, 1u);
+    // Cap vertices: on the plane, normal out of the piece (opposite per side), tangent w = +1.
+    forCapVertices(piece.mesh, 1, [&](uint32_t v) {
+      EXPECT_FLOAT_EQ(piece.mesh.positions[v].x, 0.5f);
+      EXPECT_EQ(piece.mesh.normals[v], glm::vec3(-float(sign), 0.f, 0.f));
+      EXPECT_NEAR(glm::dot(glm::vec3(piece.mesh.tangents[v]), piece.mesh.normals[v]), 0.f, 1e-6f);
+      EXPECT_EQ(piece.mesh.tangents[v].w, 1.f);
+    });
+    // Side vertices stay on their side.
+    for (const glm::vec3& p : piece.mesh.positions) EXPECT_GE(sign * (p.x - 0.5f), 0.f);
+  }
+  EXPECT_EQ(s.result.pieces[0].side, 1);
+  EXPECT_EQ(s.result.pieces[1].side, -1);
+}
+
+TEST(ConcaveSplitter, CapUvsAreWorldPlanarOrNormalisedAndMappedIntoTheAtlas) {
+  SplitOptions options;
+  options.uvPerMetre = 2.0;
+  options.atlasRect = {0.5f, 0.f, 0.5f, 0.5f};
+  Split s = run(seamCube(), planeOf({1, 0, 0}, 0.5), options);
+  ASSERT_EQ(s.status, SplitStatus::Ok);
+  // For the normal +x the basis is u = +z, v = -y; the above cap mirrors u so that its tangent (-z)
+  // keeps w = +1 seen from outside.
+  for (const SplitPiece& piece : s.result.pieces) {
+    forCapVertices(piece.mesh, 1, [&](uint32_t v) {
+      const glm::vec3 p = piece.mesh.positions[v];
+      const float u = piece.side < 0 ? p.z : -p.z;
+      EXPECT_NEAR(piece.mesh.uv0[v].x, 0.5f + 0.5f * 2.f * u, 1e-6f);
+      EXPECT_NEAR(piece.mesh.uv0[v].y, 0.5f * 2.f * -p.y, 1e-6f);
+      EXPECT_NEAR(piece.mesh.tangents[v].z, piece.side < 0 ? 1.f : -1.f, 1e-6f);
+    });
+  }
+  options.uvMode = CapUvMode::NormalizedBounds;
+  options.atlasRect = {0.f, 0.f, 1.f, 1.f};
+  s = run(seamCube(), planeOf({1, 0, 0}, 0.5), options);
+  ASSERT_EQ(s.status, SplitStatus::Ok);
+  for (const SplitPiece& piece : s.result.pieces) {
+    forCapVertices(piece.mesh, 1, [&](uint32_t v) {
+      const glm::vec3 p = piece.mesh.positions[v];
+      EXPECT_NEAR(piece.mesh.uv0[v].x, piece.side < 0 ? p.z : 1.f - p.z, 1e-6f);
+      EXPECT_NEAR(piece.mesh.uv0[v].y, 1.f - p.y, 1e-6f);
+    });
+  }
+}
+
+// Thesis failure case 1: the plane z = x passes through cube vertices and, on the y faces, through a
+// vertex of each triangle and its opposite edge. Each such triangle must split into exactly two
+// proper triangles through the vertex, never a zero-area sliver.
+TEST(ConcaveSplitter, CubeCutThroughAVertexAndTheOppositeEdge) {
+  for (bool otherDiagonal : {false, true}) {
+    SCOPED_TRACE(otherDiagonal ? "y faces split along the crossing diagonal" : "y faces split along the plane");
+    const MeshData cube = box8(glm::vec3(0.f), glm::vec3(1.f), otherDiagonal);
+    Split s = run(cube, planeOf({-1, 0, 1}, 0.0));
+    ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+    ASSERT_EQ(s.result.pieces.size(), 2u);
+    EXPECT_EQ(s.result.sectionLoops, 1u);
+    for (const SplitPiece& piece : s.result.pieces) {
+      EXPECT_NEAR(piece.mass.volume, 0.5, 1e-12);
+      EXPECT_NEAR(capArea(piece.mesh, 1, glm::dmat4(1.0)), std::sqrt(2.0), 1e-6);
+      EXPECT_GT(minTriangleArea(piece.mesh), 0.1) << "a sliver triangle";
+      expectClosed(piece.mesh);
+      // A triangular prism and its cap corners; the crossing diagonals add a cut point on each y face,
+      // which is also a (collinear) cap point.
+      EXPECT_EQ(piece.mesh.vertexCount(), otherDiagonal ? 6u + 2u + 6u : 6u + 4u);
+    }
+  }
+}
+
+// Thesis failure case 2: the first vertex of a triangle lies on the plane.
+TEST(ConcaveSplitter, FirstTriangleVertexOnThePlane) {
+  const MeshData tetra = cornerTetrahedron();
+  Split s = run(tetra, planeOf({1, -1, 0}, 0.0));  // x = y: through (0,0,0) and (0,0,1)
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  ASSERT_EQ(s.result.pieces.size(), 2u);
+  const double cap = 0.5 * glm::length(glm::cross(glm::dvec3(0, 0, 1), glm::dvec3(0.5, 0.5, 0)));
+  for (const SplitPiece& piece : s.result.pieces) {
+    EXPECT_NEAR(piece.mass.volume, 1.0 / 12.0, 1e-12);
+    EXPECT_NEAR(capArea(piece.mesh, 1, glm::dmat4(1.0)), cap, 1e-7);
+    EXPECT_EQ(piece.capTriangles, 1u);
+    EXPECT_GT(minTriangleArea(piece.mesh), 0.05);
+    expectClosed(piece.mesh);
+  }
+}
+
+TEST(ConcaveSplitter, PlaneThroughAFaceLeavesOneSideEmptyAndMisses) {
+  const MeshData cube = box8(glm::vec3(0.f), glm::vec3(1.f));
+  SplitResult result;
+  auto splitter = makeConcaveSplitter();
+  MeshContainer container;
+  ASSERT_EQ(container.setMesh(cube), SplitStatus::Ok);
+  ASSERT_EQ(splitter->split(container, planeOf({1, 0, 0}, 0.5), {}, result), SplitStatus::Ok);
+  ASSERT_EQ(result.pieces.size(), 2u);
+  for (const Plane& plane : {planeOf({1, 0, 0}, 0.0), planeOf({-1, 0, 0}, 0.0), planeOf({0, 1, 0}, 1.0),
+                             planeOf({0, 0, -2}, -2.0)}) {
+    EXPECT_EQ(splitter->split(container, plane, {}, result), SplitStatus::PlaneMissesMesh);
+    EXPECT_EQ(result.status, SplitStatus::PlaneMissesMesh);
+    EXPECT_TRUE(result.pieces.empty()) << "no partial output";
+    EXPECT_FALSE(result.message.empty());
+  }
+}
+
+TEST(ConcaveSplitter, PlaneMissingTheMesh) {
+  Split s = run(seamCube(), planeOf({0, 1, 0}, 5.0));
+  EXPECT_EQ(s.status, SplitStatus::PlaneMissesMesh);
+  EXPECT_TRUE(s.result.pieces.empty());
+  s = run(seamCube(), planeOf({1, 1, 1}, -0.01));
+  EXPECT_EQ(s.status, SplitStatus::PlaneMissesMesh);
+}
+
+TEST(ConcaveSplitter, TetrahedronCutAcross) {
+  Split s = run(cornerTetrahedron(), planeOf({0, 0, 1}, 0.5));
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  ASSERT_EQ(s.result.pieces.size(), 2u);
+  EXPECT_NEAR(s.result.pieces[0].mass.volume, 1.0 / 48.0, 1e-12);
+  EXPECT_NEAR(s.result.pieces[1].mass.volume, 7.0 / 48.0, 1e-12);
+  for (const SplitPiece& piece : s.result.pieces) {
+    EXPECT_NEAR(capArea(piece.mesh, 1, glm::dmat4(1.0)), 0.125, 1e-7);
+    expectClosed(piece.mesh);
+  }
+}
+
+TEST(ConcaveSplitter, SeamCubeCutObliquelyIsWatertight) {
+  const MeshData cube = seamCube();
+  for (const Plane& plane : {planeOf({1, 2, 3}, 3.0), planeOf({0.3, -1, 0.2}, -0.3), planeOf({1, 1, 0}, 1.0)}) {
+    Split s = run(cube, plane);
+    ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+    double volume = 0.0;
+    for (const SplitPiece& piece : s.result.pieces) {
+      expectClosed(piece.mesh);  // every edge shared by exactly two triangles, in opposite directions
+      volume += piece.mass.volume;
+      // Seam vertices keep their own UVs: every vertex's normal is one of the six face normals or,
+      // for a cap vertex, the cap normal.
+      const glm::vec3 capNormal = glm::normalize(glm::vec3(plane.normal)) * float(-piece.side);
+      for (const glm::vec3& n : piece.mesh.normals) {
+        const float largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+        EXPECT_TRUE(std::abs(largest - 1.f) < 1e-6f || glm::length(n - capNormal) < 1e-6f);
+      }
+    }
+    EXPECT_NEAR(volume, 1.0, 1e-12);
+  }
+}
+
+TEST(ConcaveSplitter, MirroredTransformKeepsVolumesPositiveAndWindingOutward) {
+  const glm::mat4 model = glm::translate(glm::mat4(1.f), glm::vec3(3, 0, 0)) *
+                          glm::scale(glm::mat4(1.f), glm::vec3(-2.f, 1.f, 1.f));  // x' = 3 - 2x
+  Split s = run(seamCube(), planeOf({1, 0, 0}, 2.0), {}, model);  // x' = 2 <=> x = 0.5
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  ASSERT_EQ(s.result.pieces.size(), 2u);
+  for (const SplitPiece& piece : s.result.pieces) {
+    EXPECT_NEAR(piece.mass.volume, 1.0, 1e-12);  // half of the doubled cube
+    EXPECT_NEAR(pieceVolumeInSource(piece.mesh), 0.5, 1e-7);  // outward in source space
+    expectClosed(piece.mesh);
+    // Above (x' > 2) is source x < 0.5: the cap normal there points to +x in source space.
+    forCapVertices(piece.mesh, 1, [&](uint32_t v) {
+      EXPECT_NEAR(piece.mesh.normals[v].x, piece.side > 0 ? 1.f : -1.f, 1e-6f);
+    });
+  }
+  EXPECT_NEAR(s.result.pieces[0].mass.centerOfMass.x, 2.5, 1e-12);
+}
+
+TEST(ConcaveSplitter, InvalidInputGivesNoPieces) {
+  MeshData bad = seamCube();
+  bad.positions[0].x = std::numeric_limits<float>::quiet_NaN();
+  MeshContainer container;
+  std::string why;
+  EXPECT_EQ(container.setMesh(bad, &why), SplitStatus::InvalidInput);
+  EXPECT_FALSE(why.empty());
+  auto splitter = makeConcaveSplitter();
+  SplitResult result;
+  MeshContainer good;
+  ASSERT_EQ(good.setMesh(seamCube()), SplitStatus::Ok);
+  ASSERT_EQ(splitter->split(good, planeOf({1, 0, 0}, 0.5), {}, result), SplitStatus::Ok);
+  EXPECT_EQ(splitter->split(container, planeOf({1, 0, 0}, 0.5), {}, result), SplitStatus::InvalidInput);
+  EXPECT_TRUE(result.pieces.empty());
+  EXPECT_FALSE(result.message.empty());
+
+  bad = seamCube();
+  bad.indices[4] = 99;
+  EXPECT_EQ(container.setMesh(bad, &why), SplitStatus::InvalidInput);
+  EXPECT_NE(why.find("99"), std::string::npos) << why;
+  EXPECT_EQ(splitter->split(container, planeOf({1, 0, 0}, 0.5), {}, result), SplitStatus::InvalidInput);
+  EXPECT_TRUE(result.pieces.empty());
+
+  EXPECT_EQ(splitter->split(good, planeOf({0, 0, 0}, 0.5), {}, result), SplitStatus::InvalidInput);
+  EXPECT_EQ(splitter->split(good, planeOf({1, 0, 0}, NAN), {}, result), SplitStatus::InvalidInput);
+}
+
+TEST(ConcaveSplitter, TwoDisjointBoxesGiveFourPiecesOrTwoWithoutIslands) {
+  MeshData boxes = box8(glm::vec3(0.f), glm::vec3(1.f));
+  append(boxes, box8(glm::vec3(2.f, 0.f, 0.f), glm::vec3(3.f, 2.f, 1.f)));
+  Split s = run(boxes, planeOf({0, 1, 0}, 0.5));
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  ASSERT_EQ(s.result.pieces.size(), 4u);
+  EXPECT_EQ(s.result.sectionLoops, 2u);
+  const double volumes[4] = {0.5, 1.5, 0.5, 0.5};  // above: first box, second box; then below
+  const int sides[4] = {1, 1, -1, -1};
+  for (size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(s.result.pieces[k].side, sides[k]);
+    EXPECT_NEAR(s.result.pieces[k].mass.volume, volumes[k], 1e-12) << k;
+    EXPECT_EQ(s.result.pieces[k].capLoops, 1u);
+    expectClosed(s.result.pieces[k].mesh);
+  }
+  EXPECT_LT(s.result.pieces[0].mass.centerOfMass.x, 1.0);  // ordered by smallest source triangle
+
+  SplitOptions whole;
+  whole.separateIslands = false;
+  s = run(boxes, planeOf({0, 1, 0}, 0.5), whole);
+  ASSERT_EQ(s.status, SplitStatus::Ok);
+  ASSERT_EQ(s.result.pieces.size(), 2u);
+  EXPECT_NEAR(s.result.pieces[0].mass.volume, 2.0, 1e-12);
+  EXPECT_NEAR(s.result.pieces[1].mass.volume, 1.0, 1e-12);
+  EXPECT_EQ(s.result.pieces[0].capLoops, 2u);
+  EXPECT_EQ(s.result.pieces[0].capTriangles, 2u * 6u);  // 4 corners + 4 diagonal crossings per loop
+}
+
+TEST(ConcaveSplitter, PlaneBetweenTwoBoxesSeparatesThemWithoutCaps) {
+  MeshData boxes = box8(glm::vec3(0.f), glm::vec3(1.f));
+  append(boxes, box8(glm::vec3(2.f, 0.f, 0.f), glm::vec3(3.f, 1.f, 1.f)));
+  Split s = run(boxes, planeOf({1, 0, 0}, 1.5));
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  ASSERT_EQ(s.result.pieces.size(), 2u);
+  EXPECT_EQ(s.result.sectionLoops, 0u);
+  for (const SplitPiece& piece : s.result.pieces) {
+    EXPECT_EQ(piece.capTriangles, 0u);
+    EXPECT_NEAR(piece.mass.volume, 1.0, 1e-12);
+  }
+}
+
+TEST(ConcaveSplitter, SquareRingCutHorizontallyGivesAnAnnulus) {
+  const MeshData ring = squareRing(1.5f, 0.5f, 1.f);  // outer 3 x 3, hole 1 x 1
+  for (bool convex : {false, true}) {  // the convex splitter falls back to the general path
+    Split s = run(ring, planeOf({0, 1, 0}, 0.5), {}, glm::mat4(1.f), convex);
+    ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+    EXPECT_EQ(s.result.sectionLoops, 2u);
+    ASSERT_EQ(s.result.pieces.size(), 2u);
+    for (const SplitPiece& piece : s.result.pieces) {
+      EXPECT_EQ(piece.capLoops, 2u);
+      EXPECT_NEAR(piece.mass.volume, 4.0, 1e-12);
+      EXPECT_NEAR(capArea(piece.mesh, 1, glm::dmat4(1.0)), 9.0 - 1.0, 1e-6);
+      expectClosed(piece.mesh);
+    }
+  }
+}
+
+TEST(ConcaveSplitter, IslandInAHoleInAnIsland) {
+  MeshData scene = squareRing(2.5f, 1.5f, 1.f);                          // area 25 - 9
+  append(scene, box8(glm::vec3(-0.5f, 0.f, -0.5f), glm::vec3(0.5f, 1.f, 0.5f)));  // area 1, in the hole
+  Split s = run(scene, planeOf({0, 1, 0}, 0.25));
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  EXPECT_EQ(s.result.sectionLoops, 3u);
+  ASSERT_EQ(s.result.pieces.size(), 4u);
+  const double areas[4] = {16.0, 1.0, 16.0, 1.0};
+  const uint32_t loops[4] = {2, 1, 2, 1};
+  for (size_t k = 0; k < 4; ++k) {
+    const SplitPiece& piece = s.result.pieces[k];
+    EXPECT_NEAR(capArea(piece.mesh, 1, glm::dmat4(1.0)), areas[k], 1e-6) << k;
+    EXPECT_EQ(piece.capLoops, loops[k]) << k;
+    EXPECT_NEAR(piece.mass.volume, areas[k] * (piece.side > 0 ? 0.75 : 0.25), 1e-12) << k;
+    expectClosed(piece.mesh);
+  }
+}
+
+TEST(ConcaveSplitter, HollowSphereCavityStaysWithItsShell) {
+  // The plane only grazes the outer sphere: the inner (inward) sphere lies whole on one side and is a
+  // cavity of that side's piece, not a piece of its own.
+  const MeshData shell = primitives::hollowSphere(1.f, 0.5f, 24, 12);
+  Split s = run(shell, planeOf({0, 1, 0}, 0.7));
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  ASSERT_EQ(s.result.pieces.size(), 2u);
+  for (const SplitPiece& piece : s.result.pieces) EXPECT_GT(piece.mass.volume, 0.0);
+}
+
+TEST(ConcaveSplitter, CapSubmeshIsReusedWhenAPieceIsCutAgain) {
+  SplitOptions options;
+  options.capMaterialId = 3;
+  Split first = run(seamCube(), planeOf({1, 0, 0}, 0.5), options);
+  ASSERT_EQ(first.status, SplitStatus::Ok);
+  const MeshData piece = first.result.pieces[1].mesh;  // x < 0.5: runs {0, 3}
+  ASSERT_EQ(piece.submeshes.size(), 2u);
+  Split second = run(piece, planeOf({0, 0, 1}, 0.5), options);
+  ASSERT_EQ(second.status, SplitStatus::Ok) << second.result.message;
+  ASSERT_EQ(second.result.pieces.size(), 2u);
+  for (const SplitPiece& p : second.result.pieces) {
+    ASSERT_EQ(p.mesh.submeshes.size(), 2u) << "no growth in submesh count";
+    EXPECT_EQ(p.mesh.submeshes[0].materialId, 0u);
+    EXPECT_EQ(p.mesh.submeshes[1].materialId, 3u);
+    EXPECT_EQ(p.capTriangles, p.mesh.submeshes[1].indexCount / 3);
+    EXPECT_NEAR(capArea(p.mesh, 3, glm::dmat4(1.0)), 0.5 + 0.5, 1e-7);
+    EXPECT_NEAR(p.mass.volume, 0.25, 1e-12);
+    expectClosed(p.mesh);
+  }
+}
+
+TEST(ConcaveSplitter, HollowModeMakesNoCapsAndAllowsOpenSections) {
+  SplitOptions hollow;
+  hollow.cap = false;
+  Split s = run(seamCube(), planeOf({1, 0, 0}, 0.5), hollow);
+  ASSERT_EQ(s.status, SplitStatus::Ok);
+  ASSERT_EQ(s.result.pieces.size(), 2u);
+  for (const SplitPiece& piece : s.result.pieces) {
+    EXPECT_EQ(piece.capTriangles, 0u);
+    EXPECT_EQ(piece.mesh.triangleCount(), 2u + 4u * 3u);  // one whole face; 3 triangles of each cut face
+  }
+  MeshData open = seamCube();
+  open.indices.resize(open.indices.size() - 6);  // drop the z = 0 face
+  s = run(open, planeOf({1, 0, 0}, 0.5));
+  EXPECT_EQ(s.status, SplitStatus::OpenSection);
+  EXPECT_TRUE(s.result.pieces.empty());
+  EXPECT_FALSE(s.result.message.empty());
+  s = run(open, planeOf({1, 0, 0}, 0.5), hollow);
+  EXPECT_EQ(s.status, SplitStatus::Ok);
+  EXPECT_EQ(s.result.pieces.size(), 2u);
+}
+
+TEST(ConcaveSplitter, NewVerticesInterpolateAttributesAndMergeSkinWeights) {
+  MeshData cube = seamCube();
+  for (const glm::vec3& p : cube.positions) {
+    const bool right = p.x > 0.5f;
+    cube.joints.emplace_back(right ? 4 : 2, 9, 0, 0);
+    cube.weights.emplace_back(0.75f, 0.25f, 0.f, 0.f);
+    cube.colors.emplace_back(p.x, 0.f, 0.f, 1.f);
+  }
+  Split s = run(cube, planeOf({1, 0, 0}, 0.25));
+  ASSERT_EQ(s.status, SplitStatus::Ok);
+  const MeshData& below = s.result.pieces[1].mesh;
+  bool sawCut = false;
+  for (size_t v = 0; v < below.positions.size(); ++v) {
+    if (std::abs(below.positions[v].x - 0.25f) > 1e-6f) continue;
+    sawCut = true;
+    // Joint 2 at 0.75 * 0.75, joint 4 at 0.25 * 0.75, joint 9 at 0.25: sorted by weight.
+    EXPECT_EQ(below.joints[v], glm::u16vec4(2, 9, 4, 0));
+    EXPECT_NEAR(below.weights[v].x, 0.5625f, 1e-6f);
+    EXPECT_NEAR(below.weights[v].y, 0.25f, 1e-6f);
+    EXPECT_NEAR(below.weights[v].z, 0.1875f, 1e-6f);
+    EXPECT_EQ(below.weights[v].w, 0.f);
+    EXPECT_NEAR(below.colors[v].x, 0.25f, 1e-6f);
+    EXPECT_NEAR(glm::length(below.normals[v]), 1.f, 1e-6f);
+    EXPECT_NEAR(glm::length(glm::vec3(below.tangents[v])), 1.f, 1e-6f);
+  }
+  EXPECT_TRUE(sawCut);
+}
+
+TEST(ConvexSplitter, GivesTheSameVolumesAndCapsAsTheConcavePath) {
+  const MeshData sphere = primitives::uvSphere(1.f, 24, 12);
+  const Plane plane = planeOf({0.3, 1, -0.2}, 0.2);
+  Split concave = run(sphere, plane);
+  Split convex = run(sphere, plane, {}, glm::mat4(1.f), true);
+  ASSERT_EQ(concave.status, SplitStatus::Ok);
+  ASSERT_EQ(convex.status, SplitStatus::Ok) << convex.result.message;
+  ASSERT_EQ(convex.result.pieces.size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    const SplitPiece &a = concave.result.pieces[k], &b = convex.result.pieces[k];
+    EXPECT_NEAR(a.mass.volume, b.mass.volume, 1e-12);
+    EXPECT_NEAR(capArea(a.mesh, 1, glm::dmat4(1.0)), capArea(b.mesh, 1, glm::dmat4(1.0)), 1e-6);
+    EXPECT_EQ(a.capTriangles, b.capTriangles);  // a fan and ear clipping both give n - 2 triangles
+    expectClosed(b.mesh);
+  }
+  // A cut through cube edges makes collinear cap points: they stay in the fan (no T-junction).
+  Split cube = run(seamCube(), planeOf({1, 1, 0}, 1.0), {}, glm::mat4(1.f), true);
+  ASSERT_EQ(cube.status, SplitStatus::Ok);
+  for (const SplitPiece& piece : cube.result.pieces) expectClosed(piece.mesh);
+}
+
+bool sameBytes(const SplitResult& a, const SplitResult& b) {
+  auto same = [](const auto& x, const auto& y) {
+    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0);
+  };
+  if (a.status != b.status || a.pieces.size() != b.pieces.size() || a.sectionLoops != b.sectionLoops) return false;
+  for (size_t k = 0; k < a.pieces.size(); ++k) {
+    const MeshData &x = a.pieces[k].mesh, &y = b.pieces[k].mesh;
+    if (!same(x.positions, y.positions) || !same(x.normals, y.normals) || !same(x.tangents, y.tangents) ||
+        !same(x.uv0, y.uv0) || !same(x.uv1, y.uv1) || !same(x.colors, y.colors) || !same(x.joints, y.joints) ||
+        !same(x.weights, y.weights) || !same(x.indices, y.indices) || !same(x.submeshes, y.submeshes)) {
+      return false;
+    }
+    const MassProperties &p = a.pieces[k].mass, &q = b.pieces[k].mass;
+    if (std::memcmp(&p.volume, &q.volume, sizeof p.volume) != 0 ||
+        std::memcmp(&p.centerOfMass, &q.centerOfMass, sizeof p.centerOfMass) != 0 ||
+        std::memcmp(&p.inertia, &q.inertia, sizeof p.inertia) != 0 || a.pieces[k].capLoops != b.pieces[k].capLoops ||
+        a.pieces[k].capTriangles != b.pieces[k].capTriangles || a.pieces[k].side != b.pieces[k].side) {
+      return false;
+    }
+  }
+  return true;
+}
+
+TEST(ConcaveSplitter, SameInputGivesTheSameBytes) {
+  const MeshData torus = primitives::torus(1.f, 0.3f, 32, 12);
+  const Plane plane = planeOf({0.1, 1, 0.05}, 0.02);
+  Split first = run(torus, plane);
+  ASSERT_EQ(first.status, SplitStatus::Ok) << first.result.message;
+  Split second = run(torus, plane);
+  EXPECT_TRUE(sameBytes(first.result, second.result));
+  // A reused splitter and result, dirty from another split, give the same bytes too.
+  MeshContainer container;
+  ASSERT_EQ(container.setMesh(seamCube()), SplitStatus::Ok);
+  auto splitter = makeConcaveSplitter();
+  SplitResult reused;
+  ASSERT_EQ(splitter->split(container, planeOf({1, 1, 1}, 1.5), {}, reused), SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(torus), SplitStatus::Ok);
+  ASSERT_EQ(splitter->split(container, plane, {}, reused), SplitStatus::Ok);
+  EXPECT_TRUE(sameBytes(first.result, reused));
+}
+
+TEST(ConcaveSplitter, WarmSplitOfASameSizeMeshDoesNotAllocate) {
+  struct Case {
+    MeshData mesh;
+    Plane planes[2];
+    bool convex;
+  };
+  Case cases[] = {
+      {primitives::torus(1.f, 0.3f, 48, 16), {planeOf({0, 1, 0}, 0.05), planeOf({1, 0.2, 0}, 0.1)}, false},
+      {primitives::uvSphere(1.f, 32, 16), {planeOf({0.2, 1, 0.1}, 0.1), planeOf({1, 0, 0}, -0.3)}, true},
+      {primitives::combPrism(8), {planeOf({0, 1, 0}, 0.5), planeOf({0, 0, 1}, 0.02)}, false},
+  };
+  for (Case& c : cases) {
+    MeshContainer container;
+    ASSERT_EQ(container.setMesh(c.mesh), SplitStatus::Ok);
+    container.setTransform(glm::rotate(glm::mat4(1.f), 0.3f, glm::vec3(0, 0, 1)));
+    auto splitter = c.convex ? makeConvexSplitter() : makeConcaveSplitter();
+    SplitResult result;
+    SplitOptions options;
+    for (int warm = 0; warm < 2; ++warm) {
+      for (const Plane& plane : c.planes) ASSERT_EQ(splitter->split(container, plane, options, result), SplitStatus::Ok);
+    }
+    for (const Plane& plane : c.planes) {
+      gAllocations = 0;
+      gCountAllocations = true;
+      const SplitStatus status = splitter->split(container, plane, options, result);
+      gCountAllocations = false;
+      EXPECT_EQ(status, SplitStatus::Ok);
+      EXPECT_EQ(gAllocations.load(), 0u) << "heap allocations in a warm split";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace cleave::geometry

@@ -1,0 +1,533 @@
+// Invariants of the split over generated meshes and many seeded planes, for the concave splitter
+// (every mesh) and the convex splitter (convex meshes):
+//   - the status is Ok when the plane crosses the mesh beyond the tolerance, PlaneMissesMesh when it
+//     does not; a failed split holds no pieces;
+//   - every piece is closed and consistently wound, with valid arrays, submesh runs and cap counts,
+//     and a positive volume;
+//   - the volumes of the pieces (as reported, and recomputed from the piece meshes) sum to the
+//     volume of the original within 1e-6 relative;
+//   - the cap area on each side equals the section area computed independently of the splitter;
+//   - no vertex lies on the wrong side of the plane beyond the tolerance;
+//   - island counts where they are known (meshes made of disjoint convex parts; special planes).
+// A failing plane is reported with its index and values, and dumped as a corpus-ready text file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "engine/geometry/mass_properties.h"
+#include "engine/geometry/mesh_splitter.h"
+#include "engine/geometry/primitives.h"
+#include "tests/geometry/test_meshes.h"
+
+namespace cleave::geometry {
+namespace {
+
+namespace prim = primitives;
+using testing::SeededRandom;
+constexpr double kPi = std::numbers::pi;
+
+struct InvariantCase {
+  std::string name;
+  MeshData mesh;
+  glm::mat4 model{1.f};
+  std::vector<glm::mat4> jointMatrices;  // non-empty: cut space is this skinning pose
+  bool convex = false;
+  // Vertex ranges [first, second) of disjoint convex parts: islands per side are then predictable.
+  std::vector<std::pair<uint32_t, uint32_t>> convexParts;
+  uint32_t planeCount = 100;
+  uint64_t seed = 1;
+};
+
+std::vector<std::pair<uint32_t, uint32_t>> whole(const MeshData& m) {
+  return {{0u, static_cast<uint32_t>(m.positions.size())}};
+}
+
+// A bent limb: an elongated ellipsoid with two joints, the upper one rotated 35 degrees about z
+// around the origin, with a smooth weight ramp over y in [-0.25, 0.25].
+InvariantCase bentSkinCase() {
+  InvariantCase c;
+  c.name = "skinnedBentLimb";
+  c.mesh = prim::ellipsoid(glm::vec3(0.3f, 1.f, 0.3f), 24, 32);
+  for (const glm::vec3& p : c.mesh.positions) {
+    float t = glm::clamp((p.y + 0.25f) / 0.5f, 0.f, 1.f);
+    float w = t * t * (3.f - 2.f * t);
+    c.mesh.joints.emplace_back(0, 1, 0, 0);
+    c.mesh.weights.emplace_back(1.f - w, w, 0.f, 0.f);
+  }
+  c.jointMatrices = {glm::mat4(1.f), glm::rotate(glm::mat4(1.f), glm::radians(35.f), glm::vec3(0, 0, 1))};
+  c.model = glm::translate(glm::mat4(1.f), glm::vec3(0.2f, 1.f, -0.3f)) *
+            glm::rotate(glm::mat4(1.f), 0.3f, glm::vec3(0, 1, 0));
+  c.planeCount = 100;
+  c.seed = 16;
+  return c;
+}
+
+InvariantCase makeCase(const std::string& name) {
+  InvariantCase c;
+  c.name = name;
+  const glm::mat4 turn = glm::rotate(glm::mat4(1.f), 0.6f, glm::normalize(glm::vec3(1, 2, -1)));
+  const glm::mat4 shift = glm::translate(glm::mat4(1.f), glm::vec3(0.4f, -1.2f, 2.f));
+  if (name == "sphere") {
+    c.mesh = prim::uvSphere(1.f, 32, 16);
+    c.convex = true;
+    c.planeCount = 150;
+    c.seed = 1;
+  } else if (name == "sphereFine") {
+    c.mesh = prim::uvSphere(0.5f, 64, 32);
+    c.convex = true;
+    c.planeCount = 50;
+    c.seed = 2;
+  } else if (name == "ellipsoidNonUniform") {
+    c.mesh = prim::ellipsoid(glm::vec3(1.f, 0.5f, 0.8f), 24, 12);
+    c.model = shift * turn * glm::scale(glm::mat4(1.f), glm::vec3(2.f, 0.5f, 1.3f));
+    c.convex = true;
+    c.seed = 3;
+  } else if (name == "boxSeams") {
+    c.mesh = prim::box(glm::vec3(0.5f, 1.f, 0.25f));
+    c.convex = true;
+    c.planeCount = 150;
+    c.seed = 4;
+  } else if (name == "boxMirrored") {
+    c.mesh = prim::box(glm::vec3(0.5f, 1.f, 0.25f));
+    c.model = shift * turn * glm::scale(glm::mat4(1.f), glm::vec3(-1.5f, 1.f, 0.7f));
+    c.convex = true;
+    c.seed = 5;
+  } else if (name == "cylinder") {
+    c.mesh = prim::cylinder(0.5f, 2.f, 24);
+    c.convex = true;
+    c.seed = 6;
+  } else if (name == "capsule") {
+    c.mesh = prim::capsule(0.4f, 1.f, 20, 10);
+    c.convex = true;
+    c.seed = 7;
+  } else if (name == "tetrahedron") {
+    c.mesh = prim::tetrahedron(1.f);
+    c.convex = true;
+    c.seed = 8;
+  } else if (name == "torus") {
+    c.mesh = prim::torus(1.f, 0.3f, 48, 16);
+    c.planeCount = 150;
+    c.seed = 9;
+  } else if (name == "torusMirroredSheared") {
+    c.mesh = prim::torus(1.f, 0.3f, 32, 12);
+    glm::mat4 shear(1.f);
+    shear[1][0] = 0.4f;  // x += 0.4 y
+    c.model = shift * turn * shear * glm::scale(glm::mat4(1.f), glm::vec3(1.5f, -0.8f, 1.f));
+    c.seed = 10;
+  } else if (name == "hollowSphere") {
+    c.mesh = prim::hollowSphere(1.f, 0.6f, 32, 16);
+    c.seed = 11;
+  } else if (name == "nestedShells3") {
+    c.mesh = prim::nestedShells(3, 1.f, 32, 16);
+    c.seed = 12;
+  } else if (name == "comb16") {
+    c.mesh = prim::combPrism(16);
+    c.planeCount = 150;
+    c.seed = 13;
+  } else if (name == "star7") {
+    c.mesh = prim::starPrism(7);
+    c.planeCount = 150;
+    c.seed = 14;
+  } else if (name == "twoDisjointSpheres") {
+    c.mesh = prim::twoDisjointSpheres(0.5f, 0.3f, 24, 12);
+    const uint32_t half = static_cast<uint32_t>(c.mesh.positions.size() / 2);
+    c.convexParts = {{0u, half}, {half, 2 * half}};
+    c.planeCount = 150;
+    c.seed = 15;
+  } else if (name == "skinnedBentLimb") {
+    return bentSkinCase();
+  } else {
+    ADD_FAILURE() << "unknown case " << name;
+  }
+  if (c.convex && c.convexParts.empty()) c.convexParts = whole(c.mesh);
+  return c;
+}
+
+const std::vector<std::string> kAllCases = {
+    "sphere",  "sphereFine",   "ellipsoidNonUniform", "boxSeams",      "boxMirrored",
+    "cylinder", "capsule",     "tetrahedron",         "torus",         "torusMirroredSheared",
+    "hollowSphere", "nestedShells3", "comb16",        "star7",         "twoDisjointSpheres",
+    "skinnedBentLimb"};
+const std::vector<std::string> kConvexCases = {"sphere",   "sphereFine", "ellipsoidNonUniform", "boxSeams",
+                                               "boxMirrored", "cylinder", "capsule",            "tetrahedron"};
+
+struct Expected {
+  int above = -1;  // pieces expected above, -1 when unknown
+  int below = -1;
+  int loopsPerPiece = -1;  // cap loops expected on every piece, -1 when unknown
+};
+
+bool prepare(MeshContainer& container, const InvariantCase& c, std::string& why) {
+  if (container.setMesh(c.mesh, &why) != SplitStatus::Ok) return false;
+  if (c.jointMatrices.empty()) {
+    container.setTransform(c.model);
+    return true;
+  }
+  return container.setSkinningPose(c.jointMatrices, c.model, &why) == SplitStatus::Ok;
+}
+
+// Checks one split; returns the problems found (empty when every invariant holds).
+std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer& container,
+                                    const InvariantCase& c, const Plane& plane, const Expected& expected,
+                                    SplitResult& result) {
+  std::vector<std::string> problems;
+  auto problem = [&](const std::string& text) { problems.push_back(text); };
+  SplitOptions options;
+  options.capMaterialId = 1;
+  const bool skinned = !c.jointMatrices.empty();
+  const glm::dmat4 model(c.model);
+  const bool mirrored = glm::determinant(glm::dmat3(model)) < 0.0;
+  const std::span<const glm::dvec3> cut = container.cutPositions();
+  const MeshData& source = c.mesh;
+  const double diagonal = testing::boundsDiagonal(cut);
+  const double tol = options.relativeTolerance * container.boundsDiagonal();
+  const glm::dvec3 n = plane.normal / glm::length(plane.normal);
+  const double offset = plane.offset / glm::length(plane.normal);
+
+  double minD = INFINITY, maxD = -INFINITY;
+  for (const glm::dvec3& p : cut) {
+    const double d = glm::dot(n, p) - offset;
+    minD = std::min(minD, d);
+    maxD = std::max(maxD, d);
+  }
+  const bool misses = maxD <= tol || minD >= -tol;
+  const bool ambiguous = std::abs(maxD - tol) < 0.5 * tol || std::abs(minD + tol) < 0.5 * tol;
+
+  const SplitStatus status = splitter.split(container, plane, options, result);
+  if (status != result.status) problem("returned status differs from result.status");
+  if (!ambiguous && misses && status != SplitStatus::PlaneMissesMesh) {
+    problem(std::string("plane misses the mesh (signed distances ") + std::to_string(minD) + " .. " +
+            std::to_string(maxD) + ") but status is " + toString(status));
+  }
+  if (!ambiguous && !misses && status != SplitStatus::Ok) {
+    problem(std::string("plane crosses the mesh but status is ") + toString(status) + ": " + result.message);
+  }
+  if (status != SplitStatus::Ok) {
+    if (!result.pieces.empty()) problem("a failed split returned pieces");
+    if (result.message.empty()) problem("a failed split gave no reason");
+    return problems;
+  }
+
+  const std::vector<glm::dvec3> cutCopy(cut.begin(), cut.end());
+  // The source winding is outward in source space; a mirroring cut space turns it inside out.
+  const double orientation = mirrored ? -1.0 : 1.0;
+  const double originalVolume =
+      orientation * computeMassProperties(std::span<const glm::dvec3>(cutCopy), source.indices).volume;
+  const double section = orientation * testing::sectionArea(cut, source.indices, plane);
+  double reportedVolume = 0.0, recomputedVolume = 0.0, capAbove = 0.0, capBelow = 0.0;
+  int above = 0, below = 0;
+  bool seenBelow = false;
+  for (size_t k = 0; k < result.pieces.size(); ++k) {
+    const SplitPiece& piece = result.pieces[k];
+    const MeshData& m = piece.mesh;
+    const std::string at = "piece " + std::to_string(k) + " (side " + std::to_string(piece.side) + "): ";
+    if (piece.side == 1) {
+      ++above;
+      if (seenBelow) problem(at + "an above piece after a below piece");
+    } else if (piece.side == -1) {
+      ++below;
+      seenBelow = true;
+    } else {
+      problem(at + "side is neither +1 nor -1");
+    }
+    if (m.empty() || m.indices.size() % 3 != 0) {
+      problem(at + "empty or ragged index list");
+      continue;
+    }
+    const size_t nv = m.positions.size();
+    auto sized = [&](size_t s) { return s == 0 || s == nv; };
+    if (!sized(m.normals.size()) || !sized(m.tangents.size()) || !sized(m.uv0.size()) ||
+        !sized(m.uv1.size()) || !sized(m.colors.size()) || !sized(m.joints.size()) ||
+        m.weights.size() != m.joints.size()) {
+      problem(at + "an attribute array does not match the vertex count");
+    }
+    if (m.normals.empty() != source.normals.empty() || m.tangents.empty() != source.tangents.empty() ||
+        m.uv0.empty() != source.uv0.empty() || m.joints.empty() != source.joints.empty()) {
+      problem(at + "an attribute of the source was dropped or invented");
+    }
+    bool inRange = true;
+    for (uint32_t i : m.indices) inRange = inRange && i < nv;
+    if (!inRange) {
+      problem(at + "index out of range");
+      continue;
+    }
+    uint32_t covered = 0;
+    for (const SubMesh& run : m.submeshes) {
+      if (run.firstIndex != covered) problem(at + "submesh runs have a gap or overlap");
+      covered = run.firstIndex + run.indexCount;
+    }
+    if (!m.submeshes.empty() && covered != m.indices.size()) problem(at + "submesh runs do not cover the indices");
+
+    std::vector<glm::dvec3> src = testing::toCutSpace(m, glm::dmat4(1.0));
+    ::testing::AssertionResult closed = testing::closedAndOriented(src, m.indices, 1e-7 * testing::boundsDiagonal(src));
+    if (!closed) problem(at + "not closed and oriented: " + closed.message());
+    if (!piece.mass.closed) problem(at + "mass properties say the piece is open");
+    if (!(piece.mass.volume > 0.0)) problem(at + "volume " + std::to_string(piece.mass.volume) + " is not positive");
+    reportedVolume += piece.mass.volume;
+
+    uint32_t capTriangles = 0;
+    const double capArea = testing::capArea(m, options.capMaterialId, model, &capTriangles);
+    if (capTriangles != piece.capTriangles) {
+      problem(at + "capTriangles " + std::to_string(piece.capTriangles) + " but " + std::to_string(capTriangles) +
+              " triangles carry the cap material");
+    }
+    if (expected.loopsPerPiece >= 0 && int(piece.capLoops) != expected.loopsPerPiece) {
+      problem(at + std::to_string(piece.capLoops) + " cap loops, expected " + std::to_string(expected.loopsPerPiece));
+    }
+    if (skinned) continue;  // source-space pieces cannot be re-posed exactly (skinning is not linear along an edge)
+
+    (piece.side > 0 ? capAbove : capBelow) += capArea;
+    const std::vector<glm::dvec3> inCut = testing::toCutSpace(m, model);
+    const double v = testing::signedVolume(inCut, m.indices);
+    recomputedVolume += mirrored ? -v : v;
+    // Positions are stored in float: allow their rounding on top of the on-plane tolerance.
+    const double slack = tol + 1e-6 * diagonal;
+    double worst = 0.0;
+    for (const glm::dvec3& p : inCut) worst = std::max(worst, -double(piece.side) * (glm::dot(n, p) - offset));
+    if (worst > slack) {
+      problem(at + "a vertex lies " + std::to_string(worst) + " on the wrong side (allowed " + std::to_string(slack) + ")");
+    }
+  }
+
+  auto relative = [](double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); };
+  if (relative(reportedVolume, originalVolume) > 1e-6) {
+    problem("reported piece volumes sum to " + std::to_string(reportedVolume) + ", original " +
+            std::to_string(originalVolume));
+  }
+  if (!skinned) {
+    if (relative(recomputedVolume, originalVolume) > 1e-6) {
+      problem("piece meshes enclose " + std::to_string(recomputedVolume) + " in total, original " +
+              std::to_string(originalVolume));
+    }
+    const double areaSlack = 1e-6 * std::abs(section) + 1e-10 * diagonal * diagonal;
+    if (std::abs(capAbove - section) > areaSlack || std::abs(capBelow - section) > areaSlack) {
+      char text[200];
+      std::snprintf(text, sizeof text, "cap areas above %.12g and below %.12g, section area %.12g", capAbove,
+                    capBelow, section);
+      problem(text);
+    }
+  }
+
+  Expected want = expected;
+  if (want.above < 0 && !c.convexParts.empty()) {
+    // Each convex part yields one island on every side it reaches beyond the tolerance; skip planes
+    // that graze a part within a few tolerances, where either answer is right.
+    want.above = want.below = 0;
+    for (const auto& [first, last] : c.convexParts) {
+      double lo = INFINITY, hi = -INFINITY;
+      for (uint32_t i = first; i < last; ++i) {
+        const double d = glm::dot(n, cut[i]) - offset;
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+      }
+      if (std::abs(hi) < 4 * tol || std::abs(lo) < 4 * tol) want.above = want.below = -1;
+      if (want.above < 0) break;
+      want.above += hi > tol ? 1 : 0;
+      want.below += lo < -tol ? 1 : 0;
+    }
+  }
+  if (want.above >= 0 && (above != want.above || below != want.below)) {
+    problem(std::to_string(above) + " pieces above and " + std::to_string(below) + " below, expected " +
+            std::to_string(want.above) + " and " + std::to_string(want.below));
+  }
+  return problems;
+}
+
+std::string describePlane(const Plane& p) {
+  char text[160];
+  std::snprintf(text, sizeof text, "normal (%.17g, %.17g, %.17g) offset %.17g", p.normal.x, p.normal.y,
+                p.normal.z, p.offset);
+  return text;
+}
+
+// Runs the case over its plane set; reports every failing plane (dumping the first few) and
+// returns how many splits were checked.
+size_t runCase(IMeshSplitter& splitter, const InvariantCase& c, const std::string& label,
+               const std::vector<std::pair<Plane, Expected>>& extraPlanes = {}) {
+  MeshContainer container;
+  std::string why;
+  if (!prepare(container, c, why)) {
+    ADD_FAILURE() << c.name << ": the container rejected the mesh: " << why;
+    return 0;
+  }
+  std::vector<std::pair<Plane, Expected>> planes = extraPlanes;
+  glm::dvec3 lo, hi;
+  testing::bounds(container.cutPositions(), lo, hi);
+  if (extraPlanes.empty()) {
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    for (int a = 0; a < 3; ++a) {  // axis planes through the centre: on-plane vertices are likely
+      Plane p;
+      p.normal = glm::dvec3(0.0);
+      p.normal[a] = 1.0;
+      p.offset = centre[a];
+      planes.push_back({p, Expected{}});
+    }
+    for (const Plane& p : testing::randomPlanes(c.seed, c.planeCount, lo, hi)) planes.push_back({p, Expected{}});
+  }
+  SplitResult result;  // reused, as the engine does
+  size_t failures = 0;
+  for (size_t k = 0; k < planes.size(); ++k) {
+    std::vector<std::string> problems = checkSplit(splitter, container, c, planes[k].first, planes[k].second, result);
+    if (problems.empty()) continue;
+    std::ostringstream text;
+    text << label << " / " << c.name << " plane #" << k << " (" << describePlane(planes[k].first) << "):";
+    for (const std::string& s : problems) text << "\n  - " << s;
+    if (failures < 5) {
+      std::string path = testing::dumpCase(label + "_" + c.name + "_plane" + std::to_string(k), c.mesh,
+                                           glm::dmat4(c.model), planes[k].first, problems.front(), c.jointMatrices);
+      text << "\n  case written to " << path;
+    }
+    ADD_FAILURE() << text.str();
+    ++failures;
+  }
+  std::cout << "[ checked  ] " << label << " / " << c.name << ": " << planes.size() << " split cases, "
+            << failures << " failing\n";
+  ::testing::Test::RecordProperty("splitCases", static_cast<int>(planes.size()));
+  return planes.size();
+}
+
+class ConcaveSplitInvariants : public ::testing::TestWithParam<std::string> {};
+class ConvexSplitInvariants : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ConcaveSplitInvariants, PiecesAreClosedAndKeepVolumeAndSectionArea) {
+  auto splitter = makeConcaveSplitter();
+  ASSERT_NE(splitter, nullptr);
+  EXPECT_GT(runCase(*splitter, makeCase(GetParam()), "concave"), 0u);
+}
+
+TEST_P(ConvexSplitInvariants, PiecesAreClosedAndKeepVolumeAndSectionArea) {
+  auto splitter = makeConvexSplitter();
+  ASSERT_NE(splitter, nullptr);
+  EXPECT_GT(runCase(*splitter, makeCase(GetParam()), "convex"), 0u);
+}
+
+std::string caseName(const ::testing::TestParamInfo<std::string>& info) { return info.param; }
+
+INSTANTIATE_TEST_SUITE_P(Generated, ConcaveSplitInvariants, ::testing::ValuesIn(kAllCases), caseName);
+INSTANTIATE_TEST_SUITE_P(Generated, ConvexSplitInvariants, ::testing::ValuesIn(kConvexCases), caseName);
+
+Plane planeOf(glm::dvec3 normal, double offset) {
+  Plane p;
+  p.normal = normal;
+  p.offset = offset;
+  return p;
+}
+
+// ---- Special planes with known island counts (both splitters where the input is convex). ----
+
+void runSpecial(const std::string& caseName, const Plane& plane, const Expected& expected) {
+  auto splitter = makeConcaveSplitter();
+  ASSERT_NE(splitter, nullptr);
+  EXPECT_EQ(runCase(*splitter, makeCase(caseName), "special", {{plane, expected}}), 1u);
+}
+
+// A vertical plane through the axis crosses the tube twice: the section is two discs, and each side
+// is one C-shaped half (the core circle splits into one arc per side) carrying both discs as caps.
+TEST(SplitInvariants, TorusVerticalCutThroughAxisGivesOneHalfWithTwoCapsPerSide) {
+  runSpecial("torus", planeOf({1, 0, 0}, 0.0), Expected{1, 1, 2});
+  runSpecial("torus", planeOf({0.3, 0, 1}, 0.01), Expected{1, 1, 2});
+}
+
+// A vertical plane through the tube only (between R - r and R + r from the axis): one loop.
+TEST(SplitInvariants, TorusCutThroughOneSideOfTheTubeGivesOneLoop) {
+  runSpecial("torus", planeOf({1, 0, 0}, 1.1), Expected{1, 1, 1});
+}
+
+TEST(SplitInvariants, TorusHorizontalCutGivesAnnulusOnEachSide) {
+  runSpecial("torus", planeOf({0, 1, 0}, 0.05), Expected{1, 1, 2});
+}
+
+TEST(SplitInvariants, TwoDisjointSpheresCutThroughBothGiveTwoPlusTwo) {
+  runSpecial("twoDisjointSpheres", planeOf({0, 1, 0}, 0.1), Expected{2, 2, 1});
+}
+
+TEST(SplitInvariants, PlaneThroughOneOfTwoSpheresGivesTwoPlusOne) {
+  runSpecial("twoDisjointSpheres", planeOf({1, 0, 0}, 0.5), Expected{1, 2, -1});
+}
+
+TEST(SplitInvariants, HollowSphereCutThroughCentreGivesOneBowlPerSide) {
+  runSpecial("hollowSphere", planeOf({0, 1, 0}, 0.05), Expected{1, 1, 2});
+}
+
+TEST(SplitInvariants, NestedShellsCutThroughCentreGiveTwoPiecesPerSide) {
+  runSpecial("nestedShells3", planeOf({0, 1, 0}, 0.03), Expected{2, 2, -1});
+}
+
+TEST(SplitInvariants, CombCutAcrossTeethGivesOnePiecePerTooth) {
+  runSpecial("comb16", planeOf({0, 1, 0}, 0.5), Expected{16, 1, -1});
+}
+
+TEST(SplitInvariants, CombCutAlongExtrusionCapsTheWholeOutline) {
+  runSpecial("comb16", planeOf({0, 0, 1}, 0.02), Expected{1, 1, 1});
+}
+
+TEST(SplitInvariants, StarCutAcrossAxisCapsTheStar) {
+  runSpecial("star7", planeOf({0, 1, 0}, 0.1), Expected{1, 1, 1});
+}
+
+TEST(SplitInvariants, ConvexSplitterGivesOnePiecePerSideOnTheBox) {
+  auto splitter = makeConvexSplitter();
+  ASSERT_NE(splitter, nullptr);
+  EXPECT_EQ(runCase(*splitter, makeCase("boxSeams"), "special", {{planeOf({1, 1, 1}, 0.1), Expected{1, 1, 1}}}), 1u);
+}
+
+// ---- The independent section area, checked on its own so the invariants above can trust it. ----
+
+TEST(SectionArea, AxisCutOfABoxIsTheFaceArea) {
+  MeshData box = prim::box(glm::vec3(0.5f, 1.f, 0.25f));
+  std::vector<glm::dvec3> p = testing::toCutSpace(box, glm::dmat4(1.0));
+  EXPECT_NEAR(testing::sectionArea(p, box.indices, planeOf({0, 1, 0}, 0.3)), 1.0 * 0.5, 1e-15);
+  EXPECT_NEAR(testing::sectionArea(p, box.indices, planeOf({0, -2, 0}, 0.6)), 1.0 * 0.5, 1e-15);
+  EXPECT_NEAR(testing::sectionArea(p, box.indices, planeOf({1, 0, 0}, 0.0)), 2.0 * 0.5, 1e-15);
+  EXPECT_EQ(testing::sectionArea(p, box.indices, planeOf({0, 1, 0}, 5.0)), 0.0);
+}
+
+TEST(SectionArea, TiltedCutOfACubeFollowsTheSlope) {
+  MeshData box = prim::box(glm::vec3(1.f));
+  std::vector<glm::dvec3> p = testing::toCutSpace(box, glm::dmat4(1.0));
+  // y + z/2 = 0 crosses the cube as a 2 x 2 sqrt(1.25) rectangle.
+  EXPECT_NEAR(testing::sectionArea(p, box.indices, planeOf({0, 1, 0.5}, 0.0)), 4.0 * std::sqrt(1.25), 1e-12);
+}
+
+TEST(SectionArea, HoleOfAHollowSphereCountsNegative) {
+  MeshData outer = prim::uvSphere(1.f, 64, 33);  // odd ring count: no vertex on the equator
+  MeshData shell = prim::hollowSphere(1.f, 0.5f, 64, 33);
+  MeshData inner = prim::uvSphere(0.5f, 64, 33);
+  auto area = [](const MeshData& m) {
+    std::vector<glm::dvec3> p = testing::toCutSpace(m, glm::dmat4(1.0));
+    return testing::sectionArea(p, m.indices, planeOf({0, 1, 0}, 0.0));
+  };
+  EXPECT_NEAR(area(shell), area(outer) - area(inner), 1e-12);
+  EXPECT_NEAR(area(shell) / (kPi * 0.75), 1.0, 5e-3);
+}
+
+TEST(SectionArea, VerticalCutOfATorusIsTwoDiscs) {
+  MeshData torus = prim::torus(1.f, 0.25f, 128, 64);
+  std::vector<glm::dvec3> p = testing::toCutSpace(torus, glm::dmat4(1.0));
+  EXPECT_NEAR(testing::sectionArea(p, torus.indices, planeOf({0, 0, 1}, 0.0)) / (2 * kPi * 0.0625), 1.0, 5e-3);
+}
+
+TEST(SectionArea, AgreesForThePlaneAndItsOpposite) {
+  MeshData comb = prim::combPrism(5);
+  std::vector<glm::dvec3> p = testing::toCutSpace(comb, glm::dmat4(1.0));
+  SeededRandom rng(3);
+  for (int k = 0; k < 20; ++k) {
+    glm::dvec3 n = rng.unitVector();
+    double d = rng.uniform(-0.2, 0.2);
+    EXPECT_NEAR(testing::sectionArea(p, comb.indices, planeOf(n, d)),
+                testing::sectionArea(p, comb.indices, planeOf(-n, -d)), 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace cleave::geometry

@@ -1,0 +1,100 @@
+// Split + cap cost against triangle count. Each case builds its mesh and container once, warms a
+// reused splitter and SplitResult up (so steady-state runs allocate nothing), then times split()
+// alone. Counters: triangles of the input, pieces and cap triangles of the last run.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+
+#include "engine/geometry/mesh_splitter.h"
+#include "engine/geometry/primitives.h"
+
+namespace cleave::geometry {
+namespace {
+
+namespace prim = primitives;
+
+enum class Kind { Concave, Convex };
+
+void runSplit(benchmark::State& state, const MeshData& mesh, const Plane& plane, Kind kind) {
+  MeshContainer container;
+  std::string why;
+  if (container.setMesh(mesh, &why) != SplitStatus::Ok) {
+    state.SkipWithError(("setMesh failed: " + why).c_str());
+    return;
+  }
+  container.setTransform(glm::mat4(1.f));
+  std::unique_ptr<IMeshSplitter> splitter = kind == Kind::Concave ? makeConcaveSplitter() : makeConvexSplitter();
+  SplitOptions options;
+  SplitResult result;
+  if (splitter->split(container, plane, options, result) != SplitStatus::Ok) {  // warm-up
+    state.SkipWithError(("split failed: " + result.message).c_str());
+    return;
+  }
+  for (auto _ : state) {
+    splitter->split(container, plane, options, result);
+    benchmark::DoNotOptimize(result.pieces.data());
+    benchmark::ClobberMemory();
+  }
+  uint32_t capTriangles = 0;
+  for (const SplitPiece& piece : result.pieces) capTriangles += piece.capTriangles;
+  state.counters["triangles"] = double(mesh.triangleCount());
+  state.counters["pieces"] = double(result.pieces.size());
+  state.counters["capTriangles"] = double(capTriangles);
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(mesh.triangleCount()));
+}
+
+Plane tilted(double offset) {
+  Plane p;
+  p.normal = glm::normalize(glm::dvec3(0.3, 1.0, 0.2));
+  p.offset = offset;
+  return p;
+}
+
+// UV spheres of about 1k, 10k, 100k and 1M triangles: segments x rings chosen so that
+// 2 * segments * (rings - 1) is close to the target.
+MeshData sphereOf(int64_t target) {
+  switch (target) {
+    case 1000: return prim::uvSphere(1.f, 32, 17);      // 1024
+    case 10000: return prim::uvSphere(1.f, 100, 51);    // 10000
+    case 100000: return prim::uvSphere(1.f, 316, 159);  // 99856
+    default: return prim::uvSphere(1.f, 1000, 501);     // 1000000
+  }
+}
+
+void BM_ConcaveSplitSphere(benchmark::State& state) {
+  runSplit(state, sphereOf(state.range(0)), tilted(0.1), Kind::Concave);
+}
+BENCHMARK(BM_ConcaveSplitSphere)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMicrosecond);
+
+void BM_ConvexSplitSphere(benchmark::State& state) {
+  runSplit(state, sphereOf(state.range(0)), tilted(0.1), Kind::Convex);
+}
+BENCHMARK(BM_ConvexSplitSphere)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMicrosecond);
+
+void BM_ConcaveSplitTorusHorizontal100k(benchmark::State& state) {
+  Plane plane;
+  plane.normal = {0.0, 1.0, 0.0};
+  plane.offset = 0.05;
+  runSplit(state, prim::torus(1.f, 0.3f, 500, 100), plane, Kind::Concave);  // 100000 triangles
+}
+BENCHMARK(BM_ConcaveSplitTorusHorizontal100k)->Unit(benchmark::kMicrosecond);
+
+void BM_ConcaveSplitComb32Teeth(benchmark::State& state) {
+  Plane plane;
+  plane.normal = {0.0, 1.0, 0.05};
+  plane.offset = 0.5;  // across all 32 teeth: 33 pieces
+  runSplit(state, prim::combPrism(32), plane, Kind::Concave);
+}
+BENCHMARK(BM_ConcaveSplitComb32Teeth)->Unit(benchmark::kMicrosecond);
+
+void BM_ConcaveSplitComb32TeethAlongExtrusion(benchmark::State& state) {
+  Plane plane;
+  plane.normal = {0.0, 0.0, 1.0};
+  plane.offset = 0.01;  // one comb-shaped cap with 132 outline vertices
+  runSplit(state, prim::combPrism(32), plane, Kind::Concave);
+}
+BENCHMARK(BM_ConcaveSplitComb32TeethAlongExtrusion)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace cleave::geometry
