@@ -8,7 +8,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "engine/ecs/transform.h"
+#include "engine/ecs/command_buffer.h"
+#include "engine/ecs/hierarchy.h"
 #include "engine/geometry/convex_hull.h"
 #include "engine/geometry/mass_properties.h"
 
@@ -104,7 +105,10 @@ struct SplitSystem::Scratch {
   std::unique_ptr<geometry::IMeshSplitter> concave = geometry::makeConcaveSplitter();
   std::unique_ptr<geometry::IMeshSplitter> convex = geometry::makeConvexSplitter();
   geometry::SplitResult result;
-  ecs::CommandBuffer commands;
+  // Structural changes of the current batch; made for the world of the first call.
+  std::unique_ptr<ecs::CommandBuffer> commands;
+  ecs::World* commandsWorld = nullptr;
+  std::vector<ecs::Entity> doomed;  // entities the batch destroys: their resources go first
   std::vector<SplitRequest> pending;
   uint32_t activationsThisTick = 0;
 };
@@ -112,6 +116,25 @@ struct SplitSystem::Scratch {
 SplitSystem::SplitSystem(SplitBudgetSettings budget)
     : budget_(budget), scratch_(std::make_unique<Scratch>()) {}
 SplitSystem::~SplitSystem() = default;
+
+namespace {
+
+ecs::CommandBuffer& commandsFor(std::unique_ptr<ecs::CommandBuffer>& buffer, ecs::World*& owner,
+                                ecs::World& world) {
+  if (!buffer || owner != &world) {
+    buffer = std::make_unique<ecs::CommandBuffer>(world);
+    owner = &world;
+  }
+  return *buffer;
+}
+
+}  // namespace
+
+void SplitSystem::flush(SplitWorld& w) {
+  for (ecs::Entity e : scratch_->doomed) releaseEntityResources(w, e);
+  scratch_->doomed.clear();
+  if (scratch_->commands && scratch_->commandsWorld == &w.world) w.world.apply(*scratch_->commands);
+}
 
 void SplitSystem::registerHandler(const std::string& name, SplitHandler handler) {
   handlers_[name] = std::move(handler);
@@ -247,13 +270,14 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
     splitter->cuts++;
   }
   // One-tick splitters are gone after the step that reported their touches.
-  ecs::CommandBuffer& commands = scratch_->commands;
+  ecs::CommandBuffer& commands = commandsFor(scratch_->commands, scratch_->commandsWorld, w.world);
   for (auto [e, splitter] : w.world.view<Splitter>()) {
-    if (splitter.lifetime == SplitterLifetime::OneTick && w.physics.isTriggerSpent(splitter.trigger))
+    if (splitter.lifetime == SplitterLifetime::OneTick && w.physics.isTriggerSpent(splitter.trigger)) {
       commands.destroy(e);
+      scratch_->doomed.push_back(e);
+    }
   }
-  for (const auto& cmd : commands.destroyed()) releaseEntityResources(w, cmd);
-  w.world.apply(commands);
+  flush(w);
 }
 
 void SplitSystem::activatePending(SplitWorld& w) {
@@ -276,7 +300,7 @@ void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& came
         return t ? glm::dvec3(t->position) : glm::dvec3(0.0);
       },
       [&](const SplitRequest& r) {
-        SplitEvent ev = splitNow(w, r.target, r, tick);
+        SplitEvent ev = splitOne(w, r.target, r, tick);
         const bool ok = ev.status == geometry::SplitStatus::Ok ||
                         ev.status == geometry::SplitStatus::PlaneMissesMesh;
         events_.push_back(std::move(ev));
@@ -284,11 +308,17 @@ void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& came
       },
       nowMs);
   // Structural changes after the iteration: pieces appear, originals go.
-  for (const auto& e : scratch_->commands.destroyed()) releaseEntityResources(w, e);
-  w.world.apply(scratch_->commands);
+  flush(w);
 }
 
 SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitRequest& request,
+                                 uint64_t tick) {
+  SplitEvent ev = splitOne(w, target, request, tick);
+  flush(w);
+  return ev;
+}
+
+SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitRequest& request,
                                  uint64_t tick) {
   const double start = nowMs();
   SplitEvent ev;
@@ -375,7 +405,7 @@ SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitR
   }
   materials[sp->capMaterialId] = sp->capMaterial;
 
-  ecs::CommandBuffer& commands = s.commands;
+  ecs::CommandBuffer& commands = commandsFor(s.commands, s.commandsWorld, w.world);
   uint32_t k = 0;
   for (auto& piece : s.result.pieces) {
     const double volume = std::max(piece.mass.volume, 0.0);
@@ -464,6 +494,7 @@ SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitR
     ++k;
   }
   commands.destroy(target);
+  s.doomed.push_back(target);
   totalPieces_ += ev.pieces.size();
   ev.milliseconds = nowMs() - start;
   return ev;
@@ -488,7 +519,8 @@ void submitMeshes(SplitWorld& w) {
 }
 
 void updateDebris(SplitWorld& w, float dt) {
-  ecs::CommandBuffer commands;
+  ecs::CommandBuffer commands(w.world);
+  std::vector<ecs::Entity> doomed;
   const glm::vec3 gravity = w.physics.gravity();
   for (auto [e, d, t] : w.world.view<Debris, ecs::Transform>()) {
     d.velocity += gravity * dt;
@@ -496,9 +528,12 @@ void updateDebris(SplitWorld& w, float dt) {
     const float angle = glm::length(d.angularVelocity) * dt;
     if (angle > 0.f) t.rotation = glm::normalize(glm::angleAxis(angle, glm::normalize(d.angularVelocity)) * t.rotation);
     d.secondsLeft -= dt;
-    if (d.secondsLeft <= 0.f || t.position.y < -50.f) commands.destroy(e);
+    if (d.secondsLeft <= 0.f || t.position.y < -50.f) {
+      commands.destroy(e);
+      doomed.push_back(e);
+    }
   }
-  for (const auto& e : commands.destroyed()) releaseEntityResources(w, e);
+  for (ecs::Entity e : doomed) releaseEntityResources(w, e);
   w.world.apply(commands);
 }
 

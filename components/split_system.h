@@ -79,6 +79,10 @@ class SplitSystem {
 
  private:
   struct Scratch;
+  // One split; its structural changes wait in the batch until flush().
+  SplitEvent splitOne(SplitWorld& w, ecs::Entity target, const SplitRequest& request, uint64_t tick);
+  // Frees the resources of the entities the batch destroys, then applies the batch.
+  void flush(SplitWorld& w);
   SplitBudget budget_;
   std::map<std::string, SplitHandler> handlers_;
   std::vector<SplitEvent> events_;

@@ -9,7 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
-#include "engine/ecs/transform.h"
+#include "engine/ecs/hierarchy.h"
 
 namespace cleave::app {
 
@@ -45,12 +45,17 @@ bool App::init(const AppOptions& options, const std::string& title, std::string*
       if (error) *error = loaded.error;
       return false;
     }
-    replay_ = std::make_unique<input::Replay>(std::move(loaded.replay));
+    replay_ = std::make_unique<input::ReplaySource>(std::move(loaded.replay));
   }
   if (!options_.recordPath.empty()) {
-    recorder_ = std::make_unique<input::ReplayWriter>();
+    // Fail now, not after a long session, when the file cannot be written.
+    std::ofstream probe(options_.recordPath, std::ios::app);
+    if (!probe) {
+      if (error) *error = options_.recordPath + ": cannot open the replay file for writing";
+      return false;
+    }
     const std::string scene = options_.scenePath.empty() ? title : options_.scenePath;
-    if (!recorder_->open(options_.recordPath, scene, options_.seed, error)) return false;
+    recorder_ = std::make_unique<input::ReplayRecorder>(scene, options_.seed);
   }
   std::string platformError;
   if (!options_.headless) {
@@ -112,12 +117,11 @@ bool App::runTick(bool render) {
   input::InputFrame frame;
   frame.tick = tick_;
   if (replay_) {
-    replay_->eventsAt(tick_, frame.events);
+    replay_->next(tick_, frame);
   } else {
-    frame.events.swap(liveEvents_);
-    liveEvents_.clear();
+    liveQueue_.next(tick_, frame);
   }
-  if (recorder_) recorder_->write(frame);
+  if (recorder_) recorder_->record(frame);
   inputState_.begin(frame);
 
   TickContext context{*this, tick_, kTickSeconds, world_, inputState_, *renderer_, *platform_,
@@ -190,7 +194,7 @@ int App::run() {
     double fpsWindowStart = previous;
     int fpsFrames = 0;
     while (!quit_ && !platform_->closeRequested()) {
-      platform_->pollEvents([this](const input::InputEvent& e) { liveEvents_.push_back(e); });
+      platform_->pollEvents([this](const input::InputEvent& e) { liveQueue_.push(e); });
       const double now = platform_->timeSeconds();
       accumulator += std::min(now - previous, 0.25);
       previous = now;
@@ -218,11 +222,12 @@ int App::run() {
     }
   }
   if (recorder_) {
-    std::string error;
-    if (!recorder_->close(tick_, &error)) {
-      std::fprintf(stderr, "cleave: %s\n", error.c_str());
+    const input::ReplaySaveResult saved = input::saveReplay(options_.recordPath, recorder_->replay());
+    if (!saved.ok) {
+      std::fprintf(stderr, "cleave: %s\n", saved.error.c_str());
       return 1;
     }
+    std::printf("replay: %s\n", options_.recordPath.c_str());
   }
   for (const auto& path : screenshots_) std::printf("screenshot: %s\n", path.c_str());
   if (options_.printStateHash)

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <string>
@@ -22,6 +23,7 @@
 #include "engine/app/platform.h"
 #include "engine/ecs/world.h"
 #include "engine/input/input_state.h"
+#include "engine/input/input_source.h"
 #include "engine/input/replay.h"
 #include "engine/render/renderer.h"
 
@@ -94,9 +96,9 @@ class App {
   std::unique_ptr<render::Renderer> renderer_;
   ecs::World world_;
   input::InputState inputState_;
-  std::unique_ptr<input::Replay> replay_;
-  std::unique_ptr<input::ReplayWriter> recorder_;
-  std::vector<input::InputEvent> liveEvents_;
+  std::unique_ptr<input::ReplaySource> replay_;
+  input::LiveQueue liveQueue_;
+  std::unique_ptr<input::ReplayRecorder> recorder_;
   std::array<std::vector<std::pair<std::string, System>>, size_t(Phase::Count)> systems_;
   StateDumpExtension dumpExtension_;
   std::unique_ptr<std::ofstream> dumpFile_;

@@ -3,15 +3,61 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include "engine/app/platform.h"
-#include "engine/input/glfw_keys.h"
+#include "engine/input/key.h"
 #include "engine/render/gl_context.h"
 
 namespace cleave::app {
 
 namespace {
+
+// GLFW key code -> engine key; nullopt for keys the engine does not name.
+std::optional<input::Key> keyFromGlfw(int key) {
+  using input::Key;
+  if (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) return Key(int(Key::A) + (key - GLFW_KEY_A));
+  if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9) return Key(int(Key::Num0) + (key - GLFW_KEY_0));
+  if (key >= GLFW_KEY_F1 && key <= GLFW_KEY_F12) return Key(int(Key::F1) + (key - GLFW_KEY_F1));
+  switch (key) {
+    case GLFW_KEY_SPACE: return Key::Space;
+    case GLFW_KEY_ESCAPE: return Key::Escape;
+    case GLFW_KEY_ENTER: return Key::Enter;
+    case GLFW_KEY_TAB: return Key::Tab;
+    case GLFW_KEY_BACKSPACE: return Key::Backspace;
+    case GLFW_KEY_INSERT: return Key::Insert;
+    case GLFW_KEY_DELETE: return Key::Delete;
+    case GLFW_KEY_RIGHT: return Key::Right;
+    case GLFW_KEY_LEFT: return Key::Left;
+    case GLFW_KEY_DOWN: return Key::Down;
+    case GLFW_KEY_UP: return Key::Up;
+    case GLFW_KEY_PAGE_UP: return Key::PageUp;
+    case GLFW_KEY_PAGE_DOWN: return Key::PageDown;
+    case GLFW_KEY_HOME: return Key::Home;
+    case GLFW_KEY_END: return Key::End;
+    case GLFW_KEY_LEFT_SHIFT: return Key::LeftShift;
+    case GLFW_KEY_LEFT_CONTROL: return Key::LeftControl;
+    case GLFW_KEY_LEFT_ALT: return Key::LeftAlt;
+    case GLFW_KEY_RIGHT_SHIFT: return Key::RightShift;
+    case GLFW_KEY_RIGHT_CONTROL: return Key::RightControl;
+    case GLFW_KEY_RIGHT_ALT: return Key::RightAlt;
+    case GLFW_KEY_MINUS: return Key::Minus;
+    case GLFW_KEY_EQUAL: return Key::Equal;
+    case GLFW_KEY_COMMA: return Key::Comma;
+    case GLFW_KEY_PERIOD: return Key::Period;
+    case GLFW_KEY_SLASH: return Key::Slash;
+    case GLFW_KEY_SEMICOLON: return Key::Semicolon;
+    case GLFW_KEY_APOSTROPHE: return Key::Apostrophe;
+    case GLFW_KEY_LEFT_BRACKET: return Key::LeftBracket;
+    case GLFW_KEY_RIGHT_BRACKET: return Key::RightBracket;
+    case GLFW_KEY_BACKSLASH: return Key::Backslash;
+    case GLFW_KEY_GRAVE_ACCENT: return Key::GraveAccent;
+    case GLFW_KEY_CAPS_LOCK: return Key::CapsLock;
+    default: return std::nullopt;
+  }
+}
 
 class WindowPlatform final : public Platform {
  public:
@@ -20,17 +66,21 @@ class WindowPlatform final : public Platform {
     glfwSetKeyCallback(window_, [](GLFWwindow* w, int key, int, int action, int) {
       auto* self = static_cast<WindowPlatform*>(glfwGetWindowUserPointer(w));
       if (action == GLFW_REPEAT) return;
-      const input::Key k = input::keyFromGlfw(key);
-      if (k == input::Key::Unknown) return;
-      self->emit(action == GLFW_PRESS ? input::InputEvent::keyDown(k) : input::InputEvent::keyUp(k));
+      const std::optional<input::Key> k = keyFromGlfw(key);
+      if (!k) return;
+      if (action == GLFW_PRESS) {
+        self->emit(input::KeyDown{*k});
+      } else {
+        self->emit(input::KeyUp{*k});
+      }
     });
     glfwSetCursorPosCallback(window_, [](GLFWwindow* w, double x, double y) {
       auto* self = static_cast<WindowPlatform*>(glfwGetWindowUserPointer(w));
-      const glm::vec2 p(float(x), float(y));
+      const glm::vec2 p{static_cast<float>(x), static_cast<float>(y)};
       const glm::vec2 d = self->haveCursor_ ? p - self->cursor_ : glm::vec2(0.f);
       self->cursor_ = p;
       self->haveCursor_ = true;
-      self->emit(input::InputEvent::mouseMove(p, d));
+      self->emit(input::MouseMove{p.x, p.y, d.x, d.y});
     });
     glfwSetMouseButtonCallback(window_, [](GLFWwindow* w, int button, int action, int) {
       auto* self = static_cast<WindowPlatform*>(glfwGetWindowUserPointer(w));
@@ -38,16 +88,19 @@ class WindowPlatform final : public Platform {
       if (button == GLFW_MOUSE_BUTTON_RIGHT) b = input::MouseButton::Right;
       else if (button == GLFW_MOUSE_BUTTON_MIDDLE) b = input::MouseButton::Middle;
       else if (button != GLFW_MOUSE_BUTTON_LEFT) return;
-      self->emit(action == GLFW_PRESS ? input::InputEvent::mouseDown(b, self->cursor_)
-                                      : input::InputEvent::mouseUp(b, self->cursor_));
+      if (action == GLFW_PRESS) {
+        self->emit(input::MouseDown{b, self->cursor_.x, self->cursor_.y});
+      } else {
+        self->emit(input::MouseUp{b, self->cursor_.x, self->cursor_.y});
+      }
     });
     glfwSetScrollCallback(window_, [](GLFWwindow* w, double dx, double dy) {
       auto* self = static_cast<WindowPlatform*>(glfwGetWindowUserPointer(w));
-      self->emit(input::InputEvent::scroll(glm::vec2(float(dx), float(dy))));
+      self->emit(input::Scroll{float(dx), float(dy)});
     });
     glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int width, int height) {
       auto* self = static_cast<WindowPlatform*>(glfwGetWindowUserPointer(w));
-      self->emit(input::InputEvent::resize(glm::ivec2(width, height)));
+      self->emit(input::Resize{width, height});
     });
   }
 

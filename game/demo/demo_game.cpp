@@ -11,7 +11,7 @@
 #include "components/scene_components.h"
 #include "components/splitable.h"
 #include "engine/assets/procedural_textures.h"
-#include "engine/ecs/transform.h"
+#include "engine/ecs/hierarchy.h"
 #include "engine/geometry/primitives.h"
 
 namespace cleave::demo {
@@ -115,7 +115,7 @@ void DemoGame::createFloor() {
   t.position = glm::vec3(0.f, -0.5f, 0.f);
   world.add<ecs::Transform>(floor, t);
   world.add<ecs::WorldTransform>(floor, ecs::WorldTransform{ecs::localMatrix(t)});
-  auto mesh = std::make_shared<geometry::MeshData>(geometry::makeBox(glm::vec3(60.f, 0.5f, 60.f)));
+  auto mesh = std::make_shared<geometry::MeshData>(geometry::primitives::box(glm::vec3(60.f, 0.5f, 60.f)));
   components::MeshRenderer mr;
   mr.source = mesh;
   mr.gpu = app_->renderer().uploadMesh(*mesh);
@@ -138,21 +138,21 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
   std::string name;
   switch (kind) {
     case ObjectKind::WoodenCube:
-      mesh = geometry::makeBox(glm::vec3(0.5f));
+      mesh = geometry::primitives::box(glm::vec3(0.5f));
       splitable.convexHint = true;
       splitable.density = 600.0;
       look = 0;
       name = "wooden cube";
       break;
     case ObjectKind::MetalSphere:
-      mesh = geometry::makeUvSphere(0.5f, 32, 16);
+      mesh = geometry::primitives::uvSphere(0.5f, 32, 16);
       splitable.convexHint = true;
       splitable.density = 7800.0;
       look = 1;
       name = "metal sphere";
       break;
     case ObjectKind::MarbleCylinder:
-      mesh = geometry::makeCylinder(0.4f, 1.2f, 32);
+      mesh = geometry::primitives::cylinder(0.4f, 1.2f, 32);
       splitable.convexHint = true;
       splitable.density = 2700.0;
       splitable.splitImpulse = 1.5;
@@ -160,7 +160,7 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
       name = "marble cylinder";
       break;
     case ObjectKind::MelonEllipsoid:
-      mesh = geometry::makeEllipsoid(glm::vec3(0.45f, 0.35f, 0.35f), 32, 16);
+      mesh = geometry::primitives::ellipsoid(glm::vec3(0.45f, 0.35f, 0.35f), 32, 16);
       splitable.convexHint = true;
       splitable.density = 950.0;
       splitable.capUvMode = geometry::CapUvMode::NormalizedBounds;
@@ -171,16 +171,16 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
     case ObjectKind::MultiPart: {
       // A figure of convex parts under one Splitable: torso, head, arms and legs, a hand's width
       // apart so every part stays convex and the figure is cut as one object.
-      mesh = geometry::makeBox(glm::vec3(0.25f, 0.35f, 0.15f));
+      mesh = geometry::primitives::box(glm::vec3(0.25f, 0.35f, 0.15f));
       auto add = [&](geometry::MeshData part, glm::vec3 offset) {
-        geometry::transform(part, glm::translate(glm::mat4(1.f), offset));
-        mesh = geometry::merge(mesh, part);
+        geometry::primitives::transform(part, glm::translate(glm::mat4(1.f), offset));
+        mesh = geometry::primitives::merge(mesh, part);
       };
-      add(geometry::makeUvSphere(0.17f, 20, 10), {0.f, 0.56f, 0.f});
-      add(geometry::makeBox(glm::vec3(0.07f, 0.3f, 0.07f)), {-0.36f, 0.03f, 0.f});
-      add(geometry::makeBox(glm::vec3(0.07f, 0.3f, 0.07f)), {0.36f, 0.03f, 0.f});
-      add(geometry::makeBox(glm::vec3(0.09f, 0.32f, 0.09f)), {-0.13f, -0.7f, 0.f});
-      add(geometry::makeBox(glm::vec3(0.09f, 0.32f, 0.09f)), {0.13f, -0.7f, 0.f});
+      add(geometry::primitives::uvSphere(0.17f, 20, 10), {0.f, 0.56f, 0.f});
+      add(geometry::primitives::box(glm::vec3(0.07f, 0.3f, 0.07f)), {-0.36f, 0.03f, 0.f});
+      add(geometry::primitives::box(glm::vec3(0.07f, 0.3f, 0.07f)), {0.36f, 0.03f, 0.f});
+      add(geometry::primitives::box(glm::vec3(0.09f, 0.32f, 0.09f)), {-0.13f, -0.7f, 0.f});
+      add(geometry::primitives::box(glm::vec3(0.09f, 0.32f, 0.09f)), {0.13f, -0.7f, 0.f});
       splitable.separateIslands = false;
       splitable.density = 1000.0;
       look = 5;
@@ -188,13 +188,13 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
       break;
     }
     case ObjectKind::Skinned:
-      mesh = geometry::makeCapsule(0.3f, 0.6f, 24, 12);
+      mesh = geometry::primitives::capsule(0.3f, 0.6f, 24, 12);
       splitable.density = 1000.0;
       look = 4;
       name = "skinned placeholder";
       break;
     case ObjectKind::Torus:
-      mesh = geometry::makeTorus(0.5f, 0.2f, 48, 24);
+      mesh = geometry::primitives::torus(0.5f, 0.2f, 48, 24);
       splitable.density = 1200.0;
       look = 6;
       name = "torus";
@@ -299,6 +299,20 @@ ecs::Entity DemoGame::entityUnderCrosshair(glm::vec3* hitPoint) {
   return e;
 }
 
+namespace {
+
+// The shortest rotation taking +Y to the unit vector `to`.
+glm::quat rotationFromUp(const glm::vec3& to) {
+  const glm::vec3 up(0.f, 1.f, 0.f);
+  const float c = glm::dot(up, to);
+  if (c < -0.99999f) return glm::angleAxis(glm::pi<float>(), glm::vec3(1.f, 0.f, 0.f));
+  const glm::vec3 axis = glm::cross(up, to);
+  const float s = std::sqrt((1.f + c) * 2.f);
+  return glm::normalize(glm::quat(s * 0.5f, axis.x / s, axis.y / s, axis.z / s));
+}
+
+}  // namespace
+
 void DemoGame::dragCut(app::TickContext& c, glm::vec2 from, glm::vec2 to) {
   if (glm::length(to - from) < 4.f) return;
   const glm::vec3 a = rayDirection(from, c.frameSize);
@@ -318,7 +332,7 @@ void DemoGame::dragCut(app::TickContext& c, glm::vec2 from, glm::vec2 to) {
   }
   const glm::vec3 centre = (tips[0] + tips[1] + tips[2]) / 3.f;
   // The splitter frame: origin on the plane, local +Y along the plane normal.
-  const glm::quat rotation = glm::rotation(glm::vec3(0, 1, 0), normal);
+  const glm::quat rotation = rotationFromUp(normal);
   const glm::quat inverse = glm::inverse(rotation);
   for (glm::vec3& p : points) p = inverse * (p - centre);
   auto shape = physics_->createShape(physics::ShapeDef::convexHull(points));
@@ -392,7 +406,7 @@ void DemoGame::gameplay(app::TickContext& c) {
     }
   }
   // Right button pushes the object under the crosshair.
-  if (in.buttonPressed(input::MouseButton::Right)) {
+  if (in.pressed(input::MouseButton::Right)) {
     glm::vec3 point;
     const ecs::Entity target = entityUnderCrosshair(&point);
     if (auto* rb = c.world.tryGet<components::RigidBody>(target)) {
@@ -404,12 +418,12 @@ void DemoGame::gameplay(app::TickContext& c) {
   }
   // Drag to cut, in split mode.
   if (splitMode_) {
-    if (in.buttonPressed(input::MouseButton::Left)) {
+    if (in.pressed(input::MouseButton::Left)) {
       dragging_ = true;
       dragStart_ = dragEnd_ = in.mousePosition();
     }
     if (dragging_) dragEnd_ = in.mousePosition();
-    if (dragging_ && in.buttonReleased(input::MouseButton::Left)) {
+    if (dragging_ && in.released(input::MouseButton::Left)) {
       dragging_ = false;
       dragCut(c, dragStart_, dragEnd_);
     }

@@ -7,7 +7,7 @@
 int main() {
   using namespace cleave::geometry;
   MeshContainer container;
-  if (container.setMesh(makeBox(glm::vec3(0.5f))) != SplitStatus::Ok) return 1;
+  if (container.setMesh(primitives::box(glm::vec3(0.5f))) != SplitStatus::Ok) return 1;
   auto splitter = makeConcaveSplitter();
   SplitResult result;
   const SplitStatus status = splitter->split(container, Plane{{1.0, 0.0, 0.0}, 0.0}, {}, result);
