@@ -33,6 +33,7 @@ void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition
   stats_.dropped = 0;
   stats_.failed = 0;
   stats_.millisecondsUsed = 0.0;
+  stats_.millisecondsCharged = 0.0;
 
   // Stale requests (the entity is gone, e.g. already split or destroyed by gameplay) are dropped.
   const size_t before = queue_.size();
@@ -72,14 +73,22 @@ void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition
     const SplitRequest& r = queue_[k.index];
     if (r.requestedTick >= currentTick) continue;  // gathered this tick: runs from the next one
     if (stats_.executed >= settings_.maxSplitsPerTick) break;
-    if (stats_.executed > 0 && stats_.millisecondsUsed >= settings_.millisecondsPerTick) break;
+    if (stats_.executed > 0 && stats_.millisecondsCharged >= settings_.millisecondsPerTick) break;
     // A second request for a target split this tick waits; next tick its target is gone and the
     // request is dropped as stale (the pieces are new entities).
     if (std::find(splitThisTick.begin(), splitThisTick.end(), r.target) != splitThisTick.end()) continue;
+    const double estimate =
+        settings_.deterministic ? (estimator_ ? std::max(0.0, estimator_(r)) : settings_.millisecondsPerTick)
+                                : 0.0;
     const double start = nowMilliseconds();
     const bool ok = execute(r);
     const double spent = nowMilliseconds() - start;
     stats_.millisecondsUsed += spent;
+    if (settings_.deterministic) {
+      stats_.millisecondsCharged += estimate;
+    } else {
+      stats_.millisecondsCharged += spent;
+    }
     stats_.lastSplitMilliseconds = spent;
     stats_.maxSplitMilliseconds = std::max(stats_.maxSplitMilliseconds, spent);
     stats_.executed++;

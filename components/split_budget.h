@@ -33,6 +33,16 @@ struct SplitBudgetSettings {
   uint32_t maxSplitsPerTick = 8;
   uint32_t maxActivationsPerTick = 16;
   uint32_t maxQueueLength = 1024;     // beyond this the lowest-priority requests are dropped
+  // Deterministic scheduling: each split is charged its estimated cost (from the cost estimator,
+  // e.g. triangles x a per-triangle cost) instead of the measured time, so the same input splits in
+  // the same ticks on every run and machine (replays stay exact). The measured time is still
+  // reported in the stats. False: charge the measured wall time (adapts to the machine, but the
+  // schedule, and so the simulation, depends on timing).
+  bool deterministic = true;
+  // The split system's estimate of one split: a fixed part plus a part per triangle of the target
+  // (collider building dominates; measured on the demo objects).
+  double estimatedMillisecondsPerSplit = 0.3;
+  double estimatedMillisecondsPerTriangle = 0.004;
 };
 
 struct SplitBudgetStats {
@@ -40,7 +50,8 @@ struct SplitBudgetStats {
   uint32_t deferred = 0;      // requests left waiting at the end of this tick
   uint32_t dropped = 0;       // stale or over-capacity requests dropped this tick
   uint32_t failed = 0;        // splits that failed this tick (original kept)
-  double millisecondsUsed = 0.0;
+  double millisecondsUsed = 0.0;      // measured split time this tick
+  double millisecondsCharged = 0.0;   // what the budget counted (the estimate when deterministic)
   double lastSplitMilliseconds = 0.0;
   double maxSplitMilliseconds = 0.0;  // over the whole run
   uint32_t queueLength = 0;
@@ -68,6 +79,12 @@ class SplitBudget {
                const std::function<bool(const SplitRequest&)>& execute,
                const std::function<double()>& nowMilliseconds);
 
+  // Estimated milliseconds of one request, used when settings().deterministic is true. Without an
+  // estimator every split is charged millisecondsPerTick (one split per tick).
+  void setCostEstimator(std::function<double(const SplitRequest&)> estimator) {
+    estimator_ = std::move(estimator);
+  }
+
   // Bodies created by splits wait here and are activated by takeActivations, a few per tick.
   void queueActivation(uint64_t bodyKey) { activations_.push_back(bodyKey); }
   // Returns up to maxActivationsPerTick keys in creation order and removes them from the queue.
@@ -83,6 +100,8 @@ class SplitBudget {
   std::vector<SplitRequest> queue_;
   std::vector<uint64_t> activations_;
   uint64_t nextSequence_ = 0;
+  std::function<double(const SplitRequest&)> estimator_;
+  double chargedMilliseconds_ = 0.0;
 };
 
 }  // namespace cleave::components

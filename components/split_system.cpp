@@ -164,10 +164,12 @@ namespace {
 // Creates a collider for a mesh given in mesh space with the body frame's offset.
 physics::ShapeId makeCollider(SplitWorld& w, geometry::IMeshSplitter& splitter,
                               const geometry::MeshData& mesh, const glm::dmat4& meshOffset,
-                              ColliderMode mode, std::string* reason) {
+                              ColliderMode mode, bool knownConvex, std::string* reason) {
   ColliderMode chosen = mode;
+  // A piece of a convex mesh is convex (the intersection of two convex sets): no check needed.
   if (chosen == ColliderMode::Auto)
-    chosen = geometry::isConvex(mesh, 1e-3) ? ColliderMode::ConvexHull : ColliderMode::Compound;
+    chosen = knownConvex || geometry::isConvex(mesh, 1e-3) ? ColliderMode::ConvexHull
+                                                          : ColliderMode::Compound;
   std::vector<glm::vec3> points = transformedPoints(mesh, meshOffset);
   if (chosen == ColliderMode::ConcaveMesh) {
     auto r = w.physics.createShape(physics::ShapeDef::concaveMesh(points, mesh.indices));
@@ -211,7 +213,8 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
   const BodyFrame frame = bodyFrameFor(props, mass, model);
   auto splitter = geometry::makeConcaveSplitter();
   std::string reason;
-  const physics::ShapeId shape = makeCollider(w, *splitter, *mr->source, frame.meshOffset, collider, &reason);
+  const physics::ShapeId shape = makeCollider(w, *splitter, *mr->source, frame.meshOffset, collider,
+                                               /*knownConvex=*/false, &reason);
   if (shape.isNull()) {
     if (error) *error = "no collider: " + reason;
     return false;
@@ -292,6 +295,13 @@ void SplitSystem::activatePending(SplitWorld& w) {
 
 void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
   events_.clear();
+  budget_.setCostEstimator([&w, this](const SplitRequest& r) {
+    const SplitBudgetSettings& settings = budget_.settings();
+    double triangles = 0.0;
+    if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source)
+      triangles = double(mr->source->indices.size() / 3);
+    return settings.estimatedMillisecondsPerSplit + settings.estimatedMillisecondsPerTriangle * triangles;
+  });
   budget_.runTick(
       tick, cameraPosition,
       [&](ecs::Entity e) { return w.world.alive(e) && w.world.has<Splitable>(e); },
@@ -307,6 +317,7 @@ void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& came
         return ok;
       },
       nowMs);
+  budget_.setCostEstimator({});  // it refers to `w`, which only lives for this call
   // Structural changes after the iteration: pieces appear, originals go.
   flush(w);
 }
@@ -324,6 +335,7 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   SplitEvent ev;
   ev.tick = tick;
   ev.original = target;
+  if (const auto* n = w.world.tryGet<ecs::Name>(target)) ev.originalName = n->value;
   auto fail = [&](geometry::SplitStatus status, const std::string& message) {
     ev.status = status;
     ev.message = message;
@@ -375,7 +387,9 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   options.separateIslands = sp->separateIslands;
   const geometry::Plane plane{request.planeNormal, request.planeOffset};
   geometry::IMeshSplitter& splitter = sp->convexHint ? *s.convex : *s.concave;
+  const double geometryStart = nowMs();
   const geometry::SplitStatus status = splitter.split(s.container, plane, options, s.result);
+  ev.geometryMilliseconds = nowMs() - geometryStart;
   if (status != geometry::SplitStatus::Ok) return fail(status, s.result.message);
 
   if (!sp->handler.empty()) {
@@ -423,7 +437,11 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
     renderer.source = mesh;
     renderer.materials = materials;
     renderer.meshOffset = glm::mat4(frame.meshOffset);
-    if (w.renderer) renderer.gpu = w.renderer->uploadMesh(*mesh);
+    if (w.renderer) {
+      const double uploadStart = nowMs();
+      renderer.gpu = w.renderer->uploadMesh(*mesh);
+      ev.uploadMilliseconds += nowMs() - uploadStart;
+    }
     ecs::Transform transform;
     transform.position = glm::vec3(frame.position);
     transform.rotation = glm::quat(frame.rotation);
@@ -434,7 +452,10 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
     physics::BodyId body;
     if (!debris) {
       std::string reason;
-      shape = makeCollider(w, *s.concave, *mesh, frame.meshOffset, sp->collider, &reason);
+      const double colliderStart = nowMs();
+      shape = makeCollider(w, *s.concave, *mesh, frame.meshOffset, sp->collider,
+                           sp->convexHint, &reason);
+      ev.colliderMilliseconds += nowMs() - colliderStart;
       if (shape.isNull()) debris = true;  // a flat sliver: no hull can hold it
     }
     if (!debris) {

@@ -41,12 +41,16 @@ using SplitHandler = std::function<bool(SplitWorld&, ecs::Entity target, const S
 struct SplitEvent {
   uint64_t tick = 0;
   ecs::Entity original;
+  std::string originalName;     // its Name at the time of the split, if it had one
   std::vector<ecs::Entity> pieces;
   geometry::SplitStatus status = geometry::SplitStatus::Ok;
   std::string message;
   double parentMass = 0.0;
   double piecesMass = 0.0;      // sum over pieces kept with colliders and debris
-  double milliseconds = 0.0;
+  double milliseconds = 0.0;          // the whole split, pieces created
+  double geometryMilliseconds = 0.0;  // of which: cut, caps, islands, mass properties
+  double colliderMilliseconds = 0.0;  // of which: collider shapes
+  double uploadMilliseconds = 0.0;    // of which: GPU mesh upload
 };
 
 class SplitSystem {

@@ -105,6 +105,10 @@ void App::setStateDumpExtension(StateDumpExtension extension) {
   dumpExtension_ = std::move(extension);
 }
 
+void App::setFrameDumpExtension(FrameDumpExtension extension) {
+  frameDumpExtension_ = std::move(extension);
+}
+
 int64_t App::totalTicks() const {
   if (options_.ticks >= 0) return options_.ticks;
   if (replay_) return int64_t(replay_->length());
@@ -265,6 +269,8 @@ void App::dumpState() {
     entities.push_back(std::move(item));
   }
   line["entities"] = std::move(entities);
+  line["state_hash"] = stateHash();
+  if (frameDumpExtension_) frameDumpExtension_(line);
   *dumpFile_ << line.dump() << '\n';
   dumpFile_->flush();
 }

@@ -47,6 +47,8 @@ using System = std::function<void(TickContext&)>;
 
 // Adds fields to an entity's line in the state dump (mass, velocity, split parent, ...).
 using StateDumpExtension = std::function<void(ecs::Entity, nlohmann::json&)>;
+// Adds fields to a whole line of the state dump (split log, budget stats, ...).
+using FrameDumpExtension = std::function<void(nlohmann::json&)>;
 
 class App {
  public:
@@ -62,6 +64,7 @@ class App {
 
   void addSystem(Phase phase, std::string name, System system);
   void setStateDumpExtension(StateDumpExtension extension);
+  void setFrameDumpExtension(FrameDumpExtension extension);
   // Runs until the replay or --ticks ends (headless) or the window closes. Returns the exit code.
   int run();
   void requestQuit() { quit_ = true; }
@@ -101,6 +104,7 @@ class App {
   std::unique_ptr<input::ReplayRecorder> recorder_;
   std::array<std::vector<std::pair<std::string, System>>, size_t(Phase::Count)> systems_;
   StateDumpExtension dumpExtension_;
+  FrameDumpExtension frameDumpExtension_;
   std::unique_ptr<std::ofstream> dumpFile_;
   std::vector<std::string> screenshots_;
   std::array<double, size_t(Phase::Count)> phaseMs_{};

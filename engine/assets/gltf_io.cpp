@@ -13,11 +13,10 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
+#include "engine/assets/gltf_access.h"
 #include "engine/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
-
-namespace {
 
 // ------------------------------------------------------------------------------------------------
 // Loading
@@ -62,15 +61,6 @@ bool geometryNeutral(const std::string& extension) {
 
 // ------------------------------------------------------------------------------------------------
 // Accessors
-
-struct AccessorView {
-  const uint8_t* data = nullptr;
-  size_t count = 0;
-  size_t stride = 0;
-  int componentType = 0;
-  int components = 0;
-  bool normalized = false;
-};
 
 bool viewAccessor(const tinygltf::Model& model, int index, AccessorView& view, std::string& reason) {
   if (index < 0 || static_cast<size_t>(index) >= model.accessors.size()) {
@@ -201,6 +191,8 @@ glm::dmat4 localMatrix(const tinygltf::Node& node) {
   }
   return t * r * s;
 }
+
+namespace {
 
 struct MergeState {
   MergeState(geometry::MeshData& m, std::vector<std::string>& w, const std::string& n)

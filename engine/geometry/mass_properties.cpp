@@ -87,21 +87,33 @@ Moments integrate(std::span<const glm::dvec3> p, std::span<const uint32_t> indic
   Moments m;
   double sixV = 0.0;
   glm::dvec3 first(0.0);
-  glm::dmat3 second(0.0);
+  // The second moment is symmetric: xx, yy, zz, xy, yz, zx.
+  double xx = 0.0, yy = 0.0, zz = 0.0, xy = 0.0, yz = 0.0, zx = 0.0;
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
     glm::dvec3 a = p[indices[t]] - ref;
     glm::dvec3 b = p[indices[t + 1]] - ref;
     glm::dvec3 c = p[indices[t + 2]] - ref;
     if (flip) std::swap(b, c);
-    double det = glm::dot(a, glm::cross(b, c));
-    glm::dvec3 s = a + b + c;
+    const double det = glm::dot(a, glm::cross(b, c));
+    const glm::dvec3 s = a + b + c;
     sixV += det;
     first += det * s;
-    second += det * (glm::outerProduct(a, a) + glm::outerProduct(b, b) + glm::outerProduct(c, c) +
-                     glm::outerProduct(s, s));
+    xx += det * (a.x * a.x + b.x * b.x + c.x * c.x + s.x * s.x);
+    yy += det * (a.y * a.y + b.y * b.y + c.y * c.y + s.y * s.y);
+    zz += det * (a.z * a.z + b.z * b.z + c.z * c.z + s.z * s.z);
+    xy += det * (a.x * a.y + b.x * b.y + c.x * c.y + s.x * s.y);
+    yz += det * (a.y * a.z + b.y * b.z + c.y * c.z + s.y * s.z);
+    zx += det * (a.z * a.x + b.z * b.x + c.z * c.x + s.z * s.x);
   }
   m.volume = sixV / 6.0;
   m.first = first / 24.0;
+  glm::dmat3 second(0.0);
+  second[0][0] = xx;
+  second[1][1] = yy;
+  second[2][2] = zz;
+  second[0][1] = second[1][0] = xy;
+  second[1][2] = second[2][1] = yz;
+  second[2][0] = second[0][2] = zx;
   m.second = second / 120.0;
   return m;
 }

@@ -101,13 +101,105 @@ SplitStatus MeshContainer::setMesh(const MeshData& mesh, std::string* message) {
 }
 
 void MeshContainer::weld() {
-  const size_t n = mesh_.positions.size();
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
   for (const glm::vec3& p : mesh_.positions) {
     lo = glm::min(lo, glm::dvec3(p));
     hi = glm::max(hi, glm::dvec3(p));
   }
   const double tolerance = kWeldRelative * glm::length(hi - lo);
+  if (!weldHashed(tolerance, lo, hi)) weldSorted(tolerance, lo);
+  positionIdCount_ = static_cast<uint32_t>(representatives_.size());
+  computeClosed();
+}
+
+// The fast weld: a hashed grid of cells about one vertex spacing wide (at least four tolerances),
+// each cell's vertices chained in ascending index order. A vertex is compared with the earlier
+// vertices of its own cell and, along an axis where it lies within the tolerance of a cell face, of
+// the neighbouring cell too; the first one within the tolerance (ascending order) is the lowest.
+// Returns false, leaving the ids unset, when the vertices crowd into few cells (more comparisons
+// than a fixed budget): the sorted weld below has no such worst case.
+bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi) {
+  const size_t n = mesh_.positions.size();
+  const glm::dvec3 extent = hi - lo;
+  const double largest = std::max(extent.x, std::max(extent.y, extent.z));
+  // About sqrt(n) cells along the largest side: a surface of n vertices puts a few in each cell.
+  double cell = largest / std::max(1.0, std::ceil(std::sqrt(double(n))));
+  cell = std::max(cell, 4.0 * tolerance);
+  if (!(cell > 0.0) || !std::isfinite(cell)) cell = 1.0;  // every vertex at one point
+  if (largest / cell > double(kCellMask - 2)) return false;
+  size_t capacity = 16;
+  while (capacity < 2 * n) capacity *= 2;
+  const uint64_t mask = capacity - 1;
+  cellKeys_.resize(capacity);
+  cellFirst_.assign(capacity, kNone);
+  cellLast_.resize(capacity);
+  cellNext_.resize(n);
+  positionIds_.resize(n);
+  representatives_.clear();
+  auto slotOf = [&](uint64_t key) {
+    uint64_t h = key * 0x9E3779B97F4A7C15ull;
+    size_t slot = static_cast<size_t>(h >> 20) & mask;
+    while (cellFirst_[slot] != kNone && cellKeys_[slot] != key) slot = (slot + 1) & mask;
+    return slot;
+  };
+  const double tolerance2 = tolerance * tolerance;
+  const double reach = tolerance * 1.001;  // generous: the distance test below decides
+  uint64_t budget = 64 * uint64_t(n) + 4096;
+  for (uint32_t v = 0; v < n; ++v) {
+    const glm::dvec3 p(mesh_.positions[v]);
+    int64_t c[3];
+    int lowSide[3], highSide[3];
+    for (int a = 0; a < 3; ++a) {
+      const double f = (p[a] - lo[a]) / cell;
+      c[a] = static_cast<int64_t>(std::floor(f));
+      const double inCell = p[a] - (lo[a] + double(c[a]) * cell);
+      lowSide[a] = inCell <= reach && c[a] > 0 ? -1 : 0;
+      highSide[a] = cell - inCell <= reach ? 1 : 0;
+    }
+    uint32_t best = kNone;
+    for (int dx = lowSide[0]; dx <= highSide[0]; ++dx) {
+      for (int dy = lowSide[1]; dy <= highSide[1]; ++dy) {
+        for (int dz = lowSide[2]; dz <= highSide[2]; ++dz) {
+          const uint64_t key = (uint64_t(c[0] + dx) << (2 * kCellBits)) | (uint64_t(c[1] + dy) << kCellBits) |
+                               uint64_t(c[2] + dz);
+          const size_t slot = slotOf(key);
+          if (cellFirst_[slot] == kNone) continue;
+          for (uint32_t w = cellFirst_[slot]; w != kNone && w < best; w = cellNext_[w]) {
+            if (budget-- == 0) return false;
+            const glm::dvec3 d = glm::dvec3(mesh_.positions[w]) - p;
+            if (glm::dot(d, d) <= tolerance2) {
+              best = w;
+              break;
+            }
+          }
+        }
+      }
+    }
+    if (best != kNone) {
+      positionIds_[v] = positionIds_[best];
+    } else {
+      positionIds_[v] = static_cast<uint32_t>(representatives_.size());
+      representatives_.push_back(v);
+    }
+    const uint64_t own = (uint64_t(c[0]) << (2 * kCellBits)) | (uint64_t(c[1]) << kCellBits) | uint64_t(c[2]);
+    const size_t slot = slotOf(own);
+    cellNext_[v] = kNone;
+    if (cellFirst_[slot] == kNone) {
+      cellKeys_[slot] = own;
+      cellFirst_[slot] = v;
+    } else {
+      cellNext_[cellLast_[slot]] = v;
+    }
+    cellLast_[slot] = v;
+  }
+  return true;
+}
+
+// The sorted weld: cells twice the tolerance wide; every vertex is sorted by (cell, index); a vertex
+// can only meet a vertex within the tolerance in its own cell or, per axis, in the one neighbouring
+// cell on the side of the cell it is nearest to, so 8 cells are searched by binary search.
+void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
+  const size_t n = mesh_.positions.size();
   const double cell = 2.0 * tolerance;
   auto cellOf = [&](const glm::vec3& p, int axis, double* fraction) -> int64_t {
     if (!(cell > 0.0)) {
@@ -172,23 +264,48 @@ void MeshContainer::weld() {
       representatives_.push_back(v);
     }
   }
-  positionIdCount_ = static_cast<uint32_t>(representatives_.size());
+}
 
-  // Closedness on position ids: each directed edge once, with its reverse once.
-  weldScratch_.clear();
-  for (size_t t = 0; t + 2 < mesh_.indices.size(); t += 3) {
-    const uint32_t ids[3] = {positionIds_[mesh_.indices[t]], positionIds_[mesh_.indices[t + 1]],
-                             positionIds_[mesh_.indices[t + 2]]};
-    if (ids[0] == ids[1] || ids[1] == ids[2] || ids[2] == ids[0]) continue;
-    for (int e = 0; e < 3; ++e) weldScratch_.push_back((uint64_t(ids[e]) << 32) | ids[(e + 1) % 3]);
+// Closedness on position ids: every directed edge of a non-degenerate triangle used once, and its
+// reverse used once. The outgoing edges of each id are gathered by a counting sort; an id has few.
+void MeshContainer::computeClosed() {
+  const uint32_t ids = positionIdCount_;
+  edgeStart_.assign(size_t(ids) + 1, 0u);
+  const size_t indexCount = mesh_.indices.size();
+  auto corners = [&](size_t t, uint32_t (&out)[3]) {
+    out[0] = positionIds_[mesh_.indices[t]];
+    out[1] = positionIds_[mesh_.indices[t + 1]];
+    out[2] = positionIds_[mesh_.indices[t + 2]];
+    return out[0] != out[1] && out[1] != out[2] && out[2] != out[0];
+  };
+  size_t edges = 0;
+  for (size_t t = 0; t + 2 < indexCount; t += 3) {
+    uint32_t c[3];
+    if (!corners(t, c)) continue;
+    for (int e = 0; e < 3; ++e) ++edgeStart_[c[e] + 1];
+    edges += 3;
   }
-  std::sort(weldScratch_.begin(), weldScratch_.end());
-  closed_ = !weldScratch_.empty();
-  for (size_t k = 0; k < weldScratch_.size() && closed_; ++k) {
-    const uint64_t e = weldScratch_[k];
-    if (k + 1 < weldScratch_.size() && weldScratch_[k + 1] == e) closed_ = false;
-    const uint64_t reverse = (e << 32) | (e >> 32);
-    if (!std::binary_search(weldScratch_.begin(), weldScratch_.end(), reverse)) closed_ = false;
+  closed_ = edges > 0;
+  if (!closed_) return;
+  for (uint32_t id = 0; id < ids; ++id) edgeStart_[id + 1] += edgeStart_[id];
+  edgeTargets_.resize(edges);
+  cellNext_.assign(edgeStart_.begin(), edgeStart_.end() - 1);  // reused: fill cursor per id
+  for (size_t t = 0; t + 2 < indexCount; t += 3) {
+    uint32_t c[3];
+    if (!corners(t, c)) continue;
+    for (int e = 0; e < 3; ++e) edgeTargets_[cellNext_[c[e]]++] = c[(e + 1) % 3];
+  }
+  for (uint32_t a = 0; a < ids; ++a) {
+    std::sort(edgeTargets_.begin() + edgeStart_[a], edgeTargets_.begin() + edgeStart_[a + 1]);
+  }
+  for (uint32_t a = 0; a < ids && closed_; ++a) {
+    const uint32_t begin = edgeStart_[a], end = edgeStart_[a + 1];
+    for (uint32_t k = begin; k < end && closed_; ++k) {
+      const uint32_t b = edgeTargets_[k];
+      if (k + 1 < end && edgeTargets_[k + 1] == b) closed_ = false;  // the same directed edge twice
+      closed_ = closed_ && std::binary_search(edgeTargets_.begin() + edgeStart_[b],
+                                              edgeTargets_.begin() + edgeStart_[b + 1], a);
+    }
   }
 }
 

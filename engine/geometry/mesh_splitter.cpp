@@ -31,6 +31,7 @@
 #include "engine/geometry/mesh_splitter.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 
@@ -99,6 +100,29 @@ void mergeSkin(const glm::u16vec4& ja, const glm::vec4& wa, const glm::u16vec4& 
   for (int k = 0; k < count; ++k) {
     joints[k] = id[k];
     weights[k] = static_cast<float>(w[k] / total);
+  }
+}
+
+// The joints a piece still uses (a weight above zero), ascending; the others are dropped from it.
+// A bit set over the joint ids keeps this linear in the vertex count and free of allocation once
+// `used` has grown to its largest size.
+void collectUsedJoints(const MeshData& piece, std::vector<uint16_t>& used) {
+  used.clear();
+  if (piece.joints.empty()) return;
+  uint64_t bits[1024] = {};  // 65536 joint ids
+  uint32_t highest = 0;
+  for (size_t v = 0; v < piece.joints.size(); ++v) {
+    for (int k = 0; k < 4; ++k) {
+      if (!(piece.weights[v][k] > 0.f)) continue;
+      const uint32_t j = piece.joints[v][k];
+      bits[j >> 6] |= uint64_t(1) << (j & 63);
+      highest = std::max(highest, j);
+    }
+  }
+  for (uint32_t word = 0; word <= (highest >> 6); ++word) {
+    for (uint64_t b = bits[word]; b != 0; b &= b - 1) {
+      used.push_back(static_cast<uint16_t>(word * 64 + static_cast<uint32_t>(std::countr_zero(b))));
+    }
   }
 }
 
@@ -182,6 +206,8 @@ class Splitter final : public IMeshSplitter {
   MeshData extra_;                     // attributes of new and cap vertices
   uint32_t capBase_ = 0;               // first cap vertex reference
   std::vector<SideTriangle> sideTris_[2];  // [0] above, [1] below
+  std::vector<uint32_t> planeTris_[2];     // per side: the triangles that may have an on-plane edge
+  std::vector<uint32_t> bucket_;           // counting sort of the output triangles
   std::vector<uint64_t> boundary_[2];
   std::vector<uint64_t> segments_;     // section segments, sorted, counter-clockwise seen from +normal
   std::vector<uint64_t> reversed_;
@@ -457,11 +483,19 @@ void Splitter::cutTriangles() {
   const MeshData& mesh = *mesh_;
   sideTris_[0].clear();
   sideTris_[1].clear();
+  planeTris_[0].clear();
+  planeTris_[1].clear();
   const size_t triangleCount = mesh.indices.size() / 3;
   uint32_t run = 0;
   uint32_t runEnd = mesh.submeshes.empty() ? kNone : mesh.submeshes[0].firstIndex + mesh.submeshes[0].indexCount;
   auto push = [&](int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
     sideTris_[side > 0 ? 0 : 1].push_back({{a, b, c}, source, run});
+  };
+  // A triangle with two or more on-plane corners may have an edge on the plane.
+  auto pushPlanar = [&](int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
+    const int index = side > 0 ? 0 : 1;
+    planeTris_[index].push_back(static_cast<uint32_t>(sideTris_[index].size()));
+    sideTris_[index].push_back({{a, b, c}, source, run});
   };
   for (uint32_t t = 0; t < triangleCount; ++t) {
     while (runEnd != kNone && 3 * t >= runEnd && run + 1 < mesh.submeshes.size()) {
@@ -473,19 +507,20 @@ void Splitter::cutTriangles() {
     const int s[3] = {side_[ids_[g[0]]], side_[ids_[g[1]]], side_[ids_[g[2]]]};
     const bool anyAbove = s[0] > 0 || s[1] > 0 || s[2] > 0;
     const bool anyBelow = s[0] < 0 || s[1] < 0 || s[2] < 0;
-    if (anyAbove && !anyBelow) {
-      push(1, g[0], g[1], g[2], t);
-      continue;
-    }
-    if (anyBelow && !anyAbove) {
-      push(-1, g[0], g[1], g[2], t);
+    const int zeros = (s[0] == 0) + (s[1] == 0) + (s[2] == 0);
+    if (anyAbove != anyBelow) {
+      if (zeros >= 2) {
+        pushPlanar(anyAbove ? 1 : -1, g[0], g[1], g[2], t);
+      } else {
+        push(anyAbove ? 1 : -1, g[0], g[1], g[2], t);
+      }
       continue;
     }
     if (!anyAbove && !anyBelow) {
       // A face in the plane: the solid lies behind it, on the side its normal points away from.
       const glm::dvec3 p0 = cut_[reps_[ids_[g[0]]]], p1 = cut_[reps_[ids_[g[1]]]], p2 = cut_[reps_[ids_[g[2]]]];
       const double facing = glm::dot(glm::cross(p1 - p0, p2 - p0), normal_);
-      push(facing > 0.0 ? -1 : 1, g[0], g[1], g[2], t);
+      pushPlanar(facing > 0.0 ? -1 : 1, g[0], g[1], g[2], t);
       continue;
     }
     int zero = -1;
@@ -496,8 +531,8 @@ void Splitter::cutTriangles() {
       // Through the on-plane vertex: two triangles, one per side.
       const uint32_t o = g[zero], x = g[(zero + 1) % 3], y = g[(zero + 2) % 3];
       const uint32_t c = pairVertex(x, y);
-      push(s[(zero + 1) % 3], o, x, c, t);
-      push(s[(zero + 2) % 3], o, c, y, t);
+      pushPlanar(s[(zero + 1) % 3], o, x, c, t);
+      pushPlanar(s[(zero + 2) % 3], o, c, y, t);
       continue;
     }
     int lone = 0;
@@ -507,13 +542,13 @@ void Splitter::cutTriangles() {
     const uint32_t l = g[lone], a = g[(lone + 1) % 3], b = g[(lone + 2) % 3];
     const uint32_t ca = pairVertex(l, a), cb = pairVertex(l, b);
     const int loneSide = s[lone], otherSide = -s[lone];
-    push(loneSide, l, ca, cb, t);
+    pushPlanar(loneSide, l, ca, cb, t);
     const glm::dvec3 d1 = cutOf(ca) - cutOf(b), d2 = cutOf(a) - cutOf(cb);
     if (glm::dot(d1, d1) <= glm::dot(d2, d2)) {
       push(otherSide, ca, a, b, t);
-      push(otherSide, ca, b, cb, t);
+      pushPlanar(otherSide, ca, b, cb, t);
     } else {
-      push(otherSide, ca, a, cb, t);
+      pushPlanar(otherSide, ca, a, cb, t);
       push(otherSide, a, b, cb, t);
     }
   }
@@ -523,7 +558,8 @@ void Splitter::cutTriangles() {
 void Splitter::collectBoundary(int sideIndex, std::vector<uint64_t>& boundary) {
   std::vector<uint64_t>& edges = reversed_;
   edges.clear();
-  for (const SideTriangle& tri : sideTris_[sideIndex]) {
+  for (uint32_t index : planeTris_[sideIndex]) {
+    const SideTriangle& tri = sideTris_[sideIndex][index];
     for (int e = 0; e < 3; ++e) {
       const uint32_t a = tri.v[e], b = tri.v[(e + 1) % 3];
       if (!onPlane(a) || !onPlane(b)) continue;
@@ -936,14 +972,26 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
           options.separateIslands ? pieceMap_[label_[find(loopIds_[loops_[l].begin])]] : 0;
     }
     // Order: by piece, then output run slot, then as generated (source order, then caps).
+    // A stable counting sort on (piece, slot); the plain sort only for an extreme bucket count.
     order_.resize(tris.size());
-    std::iota(order_.begin(), order_.end(), 0u);
-    const std::vector<uint32_t>& piece = pieceOf_;
-    std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
-      if (piece[a] != piece[b]) return piece[a] < piece[b];
-      if (tris[a].slot != tris[b].slot) return tris[a].slot < tris[b].slot;
-      return a < b;
-    });
+    const size_t slots = size_t(std::max(slotCount_, capSlot_)) + 1;
+    const size_t buckets = size_t(pieces) * slots;
+    if (buckets <= 4 * tris.size() + 4096) {
+      bucket_.assign(buckets + 1, 0u);
+      for (size_t k = 0; k < tris.size(); ++k) ++bucket_[size_t(pieceOf_[k]) * slots + tris[k].slot + 1];
+      for (size_t b = 0; b < buckets; ++b) bucket_[b + 1] += bucket_[b];
+      for (size_t k = 0; k < tris.size(); ++k) {
+        order_[bucket_[size_t(pieceOf_[k]) * slots + tris[k].slot]++] = static_cast<uint32_t>(k);
+      }
+    } else {
+      std::iota(order_.begin(), order_.end(), 0u);
+      const std::vector<uint32_t>& piece = pieceOf_;
+      std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
+        if (piece[a] != piece[b]) return piece[a] < piece[b];
+        if (tris[a].slot != tris[b].slot) return tris[a].slot < tris[b].slot;
+        return a < b;
+      });
+    }
     preparePieces(result, totalPieces);
     size_t k = 0;
     for (uint32_t p = 0; p < pieces; ++p) {
@@ -1018,6 +1066,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
       for (size_t l = 0; l < loops_.size(); ++l) {
         if (loops_[l].capped && loopPiece_[2 * l + side] == p) ++out.capLoops;
       }
+      collectUsedJoints(m, out.joints);
       if (options.computeMass) {
         if (options.cap && container_->closed()) {
           out.mass = integrateClosedSurface(pieceCut_, m.indices, mirrored_);

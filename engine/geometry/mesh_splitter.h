@@ -66,6 +66,11 @@ struct SplitPiece {
   uint32_t capTriangles = 0;     // triangles in the cap-material run (earlier cuts' caps included)
   uint32_t capLoops = 0;        // boundary loops capped on this piece (outer borders and holes)
   MassProperties mass;          // in cut space
+  // Skinned meshes: the joints this piece still uses (some vertex weight > 0), ascending. Joint ids
+  // in the mesh stay those of the source skeleton, so the piece renders with the same joint
+  // matrices; joints not listed are unused by this piece (a ragdoll builds bones for these only).
+  // Empty for meshes without skin.
+  std::vector<uint16_t> joints;
 };
 
 struct SplitResult {
@@ -124,7 +129,16 @@ class MeshContainer {
   double boundsDiagonal_ = 0.0;
   std::vector<uint64_t> weldScratch_;
   // Additions (private): see mesh_container.cpp.
+  bool weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi);
+  void weldSorted(double tolerance, const glm::dvec3& lo);
+  void computeClosed();
   void updateBounds();
+  std::vector<uint64_t> cellKeys_;    // weld hash table: cell key per slot
+  std::vector<uint32_t> cellFirst_;   // weld hash table: first vertex per slot (kNone: empty slot)
+  std::vector<uint32_t> cellLast_;    // weld hash table: last vertex per slot
+  std::vector<uint32_t> cellNext_;    // per vertex: the next vertex of its cell, ascending
+  std::vector<uint32_t> edgeStart_;   // closedness: outgoing edges per position id (offsets)
+  std::vector<uint32_t> edgeTargets_; // closedness: outgoing edges per position id (targets)
   glm::dmat4 model_{1.0};
   std::vector<glm::dmat4> jointMatrices_;
   std::vector<uint32_t> representatives_;

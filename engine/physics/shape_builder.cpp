@@ -133,17 +133,23 @@ Hull buildHull(std::span<const glm::vec3> points, uint32_t maxVertices, const st
 
   const float margin =
       float(std::min<double>(kMaxConvexMargin, kRelativeConvexMargin * width));
+  // Shrinking costs far more than hulling and grows with the vertex count: reduce a dense hull
+  // (a finely tessellated piece) to its most extreme vertices first.
+  std::vector<btVector3> source(&exact.vertices[0], &exact.vertices[0] + exact.vertices.size());
+  if (source.size() > maxVertices) {
+    std::vector<btVector3> reduced = reduceBySupport(source, maxVertices);
+    if (reduced.size() >= 4) source = std::move(reduced);
+  }
   btConvexHullComputer shrunk;
   const btScalar applied =
-      shrunk.compute(exact.vertices[0].m_floats, int(sizeof(btVector3)),
-                     int(exact.vertices.size()), margin, 0.0f);
+      shrunk.compute(source[0].m_floats, int(sizeof(btVector3)), int(source.size()), margin, 0.0f);
   if (applied >= 0.0f && shrunk.vertices.size() >= 4) {
     hull.vertices.assign(&shrunk.vertices[0], &shrunk.vertices[0] + shrunk.vertices.size());
     hull.margin = applied;
   } else {
     // Shrinking emptied the hull (not expected for margin <= width / 10; kept as a safe path): use
     // the exact hull with no margin, which does not inflate it either.
-    hull.vertices.assign(&exact.vertices[0], &exact.vertices[0] + exact.vertices.size());
+    hull.vertices = std::move(source);
     hull.margin = 0.0f;
   }
   // Reduce after shrinking: moving faces inwards splits vertices where more than three faces meet,

@@ -73,6 +73,23 @@ class DemoGame {
   render::Material floorMaterial_;
   std::vector<render::TextureHandle> textures_;
 
+  // Every split of the run, for the state dump (replay tests check mass conservation per cut).
+  struct SplitLogEntry {
+    uint64_t tick = 0;
+    std::string original;
+    std::string status;
+    size_t pieces = 0;
+    double parentMass = 0.0;
+    double piecesMass = 0.0;
+    double milliseconds = 0.0;
+    double geometryMilliseconds = 0.0;
+    double colliderMilliseconds = 0.0;
+    double uploadMilliseconds = 0.0;
+  };
+  std::vector<SplitLogEntry> splitLog_;
+  uint64_t deferredTotal_ = 0;
+  uint32_t maxQueue_ = 0;
+
   // HUD history: split milliseconds of the last ticks.
   std::deque<float> splitMsHistory_;
   uint32_t splitsThisTick_ = 0;

@@ -1,0 +1,43 @@
+// Internal to engine/assets: checked access to glTF accessors and nodes through tinygltf, shared by
+// the static mesh reader (gltf_io.cpp) and the model loader (gltf_model.cpp). Not installed for
+// users' code in any other way than as a header of the assets layer; it needs <tiny_gltf.h>.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <tiny_gltf.h>
+
+namespace cleave::assets::detail {
+
+// One accessor's elements in its buffer, after every offset, stride and count was checked.
+struct AccessorView {
+  const uint8_t* data = nullptr;
+  size_t count = 0;
+  size_t stride = 0;
+  int componentType = 0;
+  int components = 0;
+  bool normalized = false;
+};
+
+// Fills `view` for accessor `index`; false with a reason (naming the accessor) when it cannot be read.
+bool viewAccessor(const tinygltf::Model& model, int index, AccessorView& view, std::string& reason);
+// Component c of element i as a double (normalized integers mapped to [0, 1] or [-1, 1]).
+double component(const AccessorView& view, size_t i, int c);
+// A node's local matrix (matrix, or T * R * S); a zero-length rotation gives NaNs.
+glm::dmat4 localMatrix(const tinygltf::Node& node);
+// One line out of tinygltf's multi-line messages.
+std::string oneLine(const std::string& text);
+// Extensions that only change materials or textures: geometry can be read without them.
+bool geometryNeutral(const std::string& extension);
+
+// tinygltf callbacks: skip image decoding; refuse external files (glTF read from memory).
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*);
+bool noFileExists(const std::string&, void*);
+std::string sameFilePath(const std::string& path, void*);
+bool noReadWholeFile(std::vector<unsigned char>*, std::string* err, const std::string& path, void*);
+bool noWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*);
+
+}  // namespace cleave::assets::detail

@@ -1,0 +1,690 @@
+// The glTF model loader: scene nodes, static and skinned meshes, materials with decoded images,
+// skins and animations (see model.h). tinygltf parses the JSON and the GLB container; everything it
+// hands over (indices of nodes, meshes, accessors, materials, textures, images, skins) is checked
+// here before use, because a file can claim anything.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include <glm/gtc/quaternion.hpp>
+#include <stb_image.h>
+#include <tiny_gltf.h>
+
+#include "engine/assets/gltf_access.h"
+#include "engine/assets/model.h"
+
+namespace cleave::assets {
+
+size_t Model::triangleCount() const {
+  size_t total = 0;
+  for (const ModelMesh& m : meshes) total += m.mesh.triangleCount();
+  return total;
+}
+
+namespace {
+
+using detail::AccessorView;
+using detail::component;
+using detail::viewAccessor;
+
+// Decodes embedded and external images to RGBA8 with stb_image. A failure leaves the image empty
+// and adds a warning: a broken texture must not make the geometry unusable.
+bool decodeImage(tinygltf::Image* image, const int index, std::string*, std::string* warn, int, int,
+                 const unsigned char* bytes, int size, void*) {
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = size > 0 ? stbi_load_from_memory(bytes, size, &w, &h, &channels, 4) : nullptr;
+  if (pixels == nullptr || w <= 0 || h <= 0) {
+    if (warn) {
+      *warn += "image " + std::to_string(index) + " could not be decoded (" +
+               (stbi_failure_reason() ? stbi_failure_reason() : "no data") + ")\n";
+    }
+    if (pixels) stbi_image_free(pixels);
+    image->width = image->height = 0;
+    image->image.clear();
+    return true;
+  }
+  image->width = w;
+  image->height = h;
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image->image.assign(pixels, pixels + size_t(w) * size_t(h) * 4);
+  stbi_image_free(pixels);
+  return true;
+}
+
+bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+class Loader {
+ public:
+  Loader(const tinygltf::Model& gltf, const std::string& name, size_t fileBytes)
+      : gltf_(gltf), name_(name) {
+    budget_ = (uint64_t{1} << 24) + 64 * uint64_t{fileBytes};
+    for (const tinygltf::Buffer& buffer : gltf.buffers) budget_ += buffer.data.size();
+  }
+
+  bool run(ModelLoadResult& result) {
+    result_ = &result;
+    Model& model = result.model;
+    for (const std::string& extension : gltf_.extensionsRequired) {
+      if (detail::geometryNeutral(extension)) continue;
+      return fail("requires the glTF extension " + extension + ", which is not supported");
+    }
+    if (gltf_.scenes.empty()) return fail("the file has no scene");
+    const int sceneIndex = gltf_.defaultScene < 0 ? 0 : gltf_.defaultScene;
+    if (static_cast<size_t>(sceneIndex) >= gltf_.scenes.size()) {
+      return fail("default scene " + std::to_string(sceneIndex) + " does not exist");
+    }
+    if (!buildHierarchy(gltf_.scenes[static_cast<size_t>(sceneIndex)].nodes)) return false;
+    readImages(model);
+    if (!readMaterials(model)) return false;
+    if (!readSkins(model)) return false;
+    for (size_t n : order_) {
+      const tinygltf::Node& node = gltf_.nodes[n];
+      if (node.mesh < 0) continue;
+      if (static_cast<size_t>(node.mesh) >= gltf_.meshes.size()) {
+        return fail("node " + std::to_string(n) + " refers to missing mesh " + std::to_string(node.mesh));
+      }
+      if (node.skin >= 0 && static_cast<size_t>(node.skin) >= gltf_.skins.size()) {
+        return fail("node " + std::to_string(n) + " refers to missing skin " + std::to_string(node.skin));
+      }
+      ModelMesh out;
+      out.skin = node.skin;
+      const tinygltf::Mesh& mesh = gltf_.meshes[static_cast<size_t>(node.mesh)];
+      out.name = !node.name.empty() ? node.name : mesh.name;
+      const glm::dmat4 transform = node.skin >= 0 ? glm::dmat4(1.0) : global_[n];
+      if (!readMesh(static_cast<size_t>(node.mesh), transform, out)) return false;
+      if (!out.mesh.indices.empty()) model.meshes.push_back(std::move(out));
+    }
+    if (usesDefaultMaterial_) {
+      ModelMaterial fallback;
+      fallback.name = "default";
+      model.materials.push_back(fallback);
+    }
+    if (model.meshes.empty()) return fail("the scene has no triangle mesh");
+    if (!readAnimations(model)) return false;
+    return true;
+  }
+
+ private:
+  bool fail(const std::string& reason) {
+    result_->error = name_ + ": " + reason;
+    return false;
+  }
+  void warn(const std::string& text) { result_->warnings.push_back(name_ + ": " + text); }
+
+  // Parent of every node and the scene's nodes in depth-first order with their scene transforms.
+  // A node reached twice from the scene (a cycle, or a child of two parents) is an error.
+  bool buildHierarchy(const std::vector<int>& roots) {
+    const size_t n = gltf_.nodes.size();
+    parent_.assign(n, -1);
+    for (size_t i = 0; i < n; ++i) {
+      for (int child : gltf_.nodes[i].children) {
+        if (child < 0 || static_cast<size_t>(child) >= n) {
+          return fail("node " + std::to_string(i) + " has a missing child " + std::to_string(child));
+        }
+        if (parent_[static_cast<size_t>(child)] >= 0 || static_cast<size_t>(child) == i) {
+          return fail("node " + std::to_string(child) + " has two parents or is its own child (a node cycle)");
+        }
+        parent_[static_cast<size_t>(child)] = static_cast<int>(i);
+      }
+    }
+    // A cycle without a root never reaches one walking up.
+    for (size_t i = 0; i < n; ++i) {
+      int at = static_cast<int>(i);
+      size_t steps = 0;
+      while (at >= 0 && steps <= n) {
+        at = parent_[static_cast<size_t>(at)];
+        ++steps;
+      }
+      if (at >= 0) return fail("node " + std::to_string(i) + " is part of a node cycle");
+    }
+    global_.assign(n, glm::dmat4(1.0));
+    std::vector<uint8_t> visited(n, 0);
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0)});
+    while (!stack.empty()) {
+      const auto [node, parentMatrix] = stack.back();
+      stack.pop_back();
+      if (node < 0 || static_cast<size_t>(node) >= n) return fail("the scene names missing node " + std::to_string(node));
+      const size_t i = static_cast<size_t>(node);
+      if (visited[i]) return fail("node " + std::to_string(node) + " is reached twice from the scene (a node cycle)");
+      visited[i] = 1;
+      global_[i] = parentMatrix * detail::localMatrix(gltf_.nodes[i]);
+      order_.push_back(i);
+      const auto& children = gltf_.nodes[i].children;
+      for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, global_[i]});
+    }
+    // Nodes outside the scene (joints may be) get their transform through their parent chain.
+    for (size_t i = 0; i < n; ++i) {
+      if (visited[i]) continue;
+      glm::dmat4 m(1.0);
+      for (int at = static_cast<int>(i); at >= 0; at = parent_[static_cast<size_t>(at)]) {
+        m = detail::localMatrix(gltf_.nodes[static_cast<size_t>(at)]) * m;
+      }
+      global_[i] = m;
+    }
+    return true;
+  }
+
+  void readImages(Model& model) {
+    for (size_t i = 0; i < gltf_.images.size(); ++i) {
+      const tinygltf::Image& image = gltf_.images[i];
+      ModelImage out;
+      out.name = !image.name.empty() ? image.name : image.uri;
+      const size_t expected = size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) * 4;
+      if (image.width > 0 && image.height > 0 && image.component == 4 && image.bits == 8 &&
+          image.image.size() == expected) {
+        out.width = image.width;
+        out.height = image.height;
+        out.rgba = image.image;
+      } else {
+        warn("image " + std::to_string(i) + " ('" + out.name + "') has no decoded pixels");
+      }
+      model.images.push_back(std::move(out));
+    }
+  }
+
+  // The image behind texture `texture`, -1 for none or a broken reference (with a warning).
+  int32_t imageOfTexture(int texture, size_t material) {
+    if (texture < 0) return -1;
+    if (static_cast<size_t>(texture) >= gltf_.textures.size()) {
+      warn("material " + std::to_string(material) + " names missing texture " + std::to_string(texture));
+      return -1;
+    }
+    const int source = gltf_.textures[static_cast<size_t>(texture)].source;
+    if (source < 0 || static_cast<size_t>(source) >= gltf_.images.size()) {
+      warn("texture " + std::to_string(texture) + " names missing image " + std::to_string(source));
+      return -1;
+    }
+    return source;
+  }
+
+  bool readMaterials(Model& model) {
+    for (size_t i = 0; i < gltf_.materials.size(); ++i) {
+      const tinygltf::Material& material = gltf_.materials[i];
+      ModelMaterial out;
+      out.name = material.name.empty() ? "material_" + std::to_string(i) : material.name;
+      const std::vector<double>& factor = material.pbrMetallicRoughness.baseColorFactor;
+      if (factor.size() == 4) {
+        out.baseColorFactor = glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
+        for (int c = 0; c < 4; ++c) {
+          if (!std::isfinite(out.baseColorFactor[c])) return fail("material " + std::to_string(i) + " has a non-finite base colour");
+        }
+      }
+      out.baseColorImage = imageOfTexture(material.pbrMetallicRoughness.baseColorTexture.index, i);
+      out.normalImage = imageOfTexture(material.normalTexture.index, i);
+      out.doubleSided = material.doubleSided;
+      model.materials.push_back(std::move(out));
+    }
+    return true;
+  }
+
+  // One skeleton per skin. A joint's parent is its nearest ancestor node that is a joint of the
+  // same skin; non-joint nodes between them (or above a root joint) become the joint's fixed offset.
+  bool readSkins(Model& model) {
+    for (size_t s = 0; s < gltf_.skins.size(); ++s) {
+      const tinygltf::Skin& skin = gltf_.skins[s];
+      const std::string what = "skin " + std::to_string(s);
+      if (skin.joints.empty()) return fail(what + " has no joints");
+      if (skin.joints.size() > 65535) return fail(what + " has too many joints");
+      std::map<int, int32_t> jointOf;
+      for (size_t j = 0; j < skin.joints.size(); ++j) {
+        const int node = skin.joints[j];
+        if (node < 0 || static_cast<size_t>(node) >= gltf_.nodes.size()) {
+          return fail(what + " names missing joint node " + std::to_string(node));
+        }
+        if (!jointOf.emplace(node, static_cast<int32_t>(j)).second) {
+          return fail(what + " names node " + std::to_string(node) + " twice");
+        }
+      }
+      std::vector<glm::mat4> inverseBind(skin.joints.size(), glm::mat4(1.f));
+      if (skin.inverseBindMatrices >= 0) {
+        AccessorView view;
+        std::string reason;
+        if (!viewAccessor(gltf_, skin.inverseBindMatrices, view, reason)) return fail(what + ": " + reason);
+        if (view.components != 16 || view.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
+            view.count < skin.joints.size()) {
+          return fail(what + ": inverse bind matrices must be float MAT4, one per joint");
+        }
+        for (size_t j = 0; j < skin.joints.size(); ++j) {
+          for (int c = 0; c < 16; ++c) {
+            const double v = component(view, j, c);
+            if (!std::isfinite(v)) return fail(what + ": inverse bind matrix " + std::to_string(j) + " is not finite");
+            inverseBind[j][c / 4][c % 4] = static_cast<float>(v);
+          }
+        }
+      }
+      ModelSkin out;
+      out.name = skin.name.empty() ? what : skin.name;
+      out.skeleton.joints.resize(skin.joints.size());
+      for (size_t j = 0; j < skin.joints.size(); ++j) {
+        const size_t node = static_cast<size_t>(skin.joints[j]);
+        const tinygltf::Node& n = gltf_.nodes[node];
+        anim::Joint& joint = out.skeleton.joints[j];
+        joint.name = n.name.empty() ? "joint_" + std::to_string(j) : n.name;
+        joint.inverseBind = inverseBind[j];
+        glm::dmat4 offset(1.0);
+        if (n.matrix.size() == 16) {
+          offset = detail::localMatrix(n);  // matrix nodes are not animated (glTF rule)
+        } else {
+          if (n.translation.size() == 3) joint.rest.translation = glm::vec3(n.translation[0], n.translation[1], n.translation[2]);
+          if (n.rotation.size() == 4) {
+            glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]));
+            const float len = glm::length(q);
+            if (!(len > 0.f) || !std::isfinite(len)) return fail("node " + std::to_string(node) + " has an invalid rotation");
+            joint.rest.rotation = q / len;
+          }
+          if (n.scale.size() == 3) joint.rest.scale = glm::vec3(n.scale[0], n.scale[1], n.scale[2]);
+        }
+        int at = parent_[node];
+        glm::dmat4 between(1.0);
+        while (at >= 0 && jointOf.find(at) == jointOf.end()) {
+          between = detail::localMatrix(gltf_.nodes[static_cast<size_t>(at)]) * between;
+          at = parent_[static_cast<size_t>(at)];
+        }
+        joint.parent = at >= 0 ? jointOf[at] : -1;
+        joint.offset = glm::mat4(between * offset);
+        for (int c = 0; c < 4; ++c) {
+          for (int r = 0; r < 4; ++r) {
+            if (!std::isfinite(joint.offset[c][r])) return fail(what + ": joint " + std::to_string(j) + " has a non-finite transform");
+          }
+        }
+      }
+      std::string reason;
+      if (!anim::validateSkeleton(out.skeleton, &reason)) return fail(what + ": " + reason);
+      model.skins.push_back(std::move(out));
+    }
+    return true;
+  }
+
+  bool readAnimations(Model& model) {
+    for (size_t a = 0; a < gltf_.animations.size(); ++a) {
+      const tinygltf::Animation& animation = gltf_.animations[a];
+      const std::string what = "animation " + std::to_string(a);
+      // Decode every sampler once.
+      struct Sampler {
+        std::vector<float> times;
+        std::vector<glm::vec4> values;  // raw, components padded with 0
+        anim::Interpolation interpolation = anim::Interpolation::Linear;
+        int components = 0;
+      };
+      std::vector<Sampler> samplers(animation.samplers.size());
+      for (size_t s = 0; s < animation.samplers.size(); ++s) {
+        const tinygltf::AnimationSampler& in = animation.samplers[s];
+        Sampler& out = samplers[s];
+        if (in.interpolation == "STEP") out.interpolation = anim::Interpolation::Step;
+        else if (in.interpolation == "CUBICSPLINE") out.interpolation = anim::Interpolation::CubicSpline;
+        else if (in.interpolation.empty() || in.interpolation == "LINEAR") out.interpolation = anim::Interpolation::Linear;
+        else return fail(what + " sampler " + std::to_string(s) + ": unknown interpolation " + in.interpolation);
+        AccessorView input, output;
+        std::string reason;
+        if (!viewAccessor(gltf_, in.input, input, reason) || !viewAccessor(gltf_, in.output, output, reason)) {
+          return fail(what + " sampler " + std::to_string(s) + ": " + reason);
+        }
+        if (input.components != 1 || input.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+          return fail(what + " sampler " + std::to_string(s) + ": key times must be float scalars");
+        }
+        out.components = output.components;
+        for (size_t k = 0; k < input.count; ++k) {
+          const float t = static_cast<float>(component(input, k, 0));
+          if (!std::isfinite(t) || (!out.times.empty() && !(t > out.times.back()))) {
+            return fail(what + " sampler " + std::to_string(s) + ": key times must be finite and increasing");
+          }
+          out.times.push_back(t);
+        }
+        if (output.components <= 4) {
+          for (size_t k = 0; k < output.count; ++k) {
+            glm::vec4 v(0.f);
+            for (int c = 0; c < output.components; ++c) v[c] = static_cast<float>(component(output, k, c));
+            out.values.push_back(v);
+          }
+        }
+      }
+      for (size_t s = 0; s < model.skins.size(); ++s) {
+        const tinygltf::Skin& skin = gltf_.skins[s];
+        anim::AnimationClip clip;
+        clip.name = animation.name.empty() ? what : animation.name;
+        for (size_t c = 0; c < animation.channels.size(); ++c) {
+          const tinygltf::AnimationChannel& channel = animation.channels[c];
+          if (channel.sampler < 0 || static_cast<size_t>(channel.sampler) >= samplers.size()) {
+            return fail(what + " channel " + std::to_string(c) + " names missing sampler " + std::to_string(channel.sampler));
+          }
+          if (channel.target_node < 0) continue;
+          const auto it = std::find(skin.joints.begin(), skin.joints.end(), channel.target_node);
+          if (it == skin.joints.end()) continue;
+          anim::Channel out;
+          out.joint = static_cast<uint32_t>(it - skin.joints.begin());
+          int components = 0;
+          if (channel.target_path == "translation") out.path = anim::ChannelPath::Translation, components = 3;
+          else if (channel.target_path == "rotation") out.path = anim::ChannelPath::Rotation, components = 4;
+          else if (channel.target_path == "scale") out.path = anim::ChannelPath::Scale, components = 3;
+          else continue;  // morph-target weights
+          const Sampler& sampler = samplers[static_cast<size_t>(channel.sampler)];
+          out.interpolation = sampler.interpolation;
+          out.times = sampler.times;
+          out.values = sampler.values;
+          const size_t perKey = out.interpolation == anim::Interpolation::CubicSpline ? 3 : 1;
+          if (sampler.components != components || out.values.size() != out.times.size() * perKey || out.times.empty()) {
+            return fail(what + " channel " + std::to_string(c) + ": the sampler output does not match its " +
+                        channel.target_path + " keys");
+          }
+          if (out.path == anim::ChannelPath::Rotation && out.interpolation != anim::Interpolation::CubicSpline) {
+            for (glm::vec4& q : out.values) {
+              const float len = glm::length(q);
+              if (len > 0.f && std::isfinite(len)) q /= len;
+            }
+          }
+          clip.channels.push_back(std::move(out));
+        }
+        if (clip.channels.empty()) continue;
+        clip.updateDuration();
+        std::string reason;
+        if (!anim::validateClip(clip, model.skins[s].skeleton.size(), &reason)) return fail(reason);
+        model.skins[s].clips.push_back(std::move(clip));
+      }
+    }
+    return true;
+  }
+
+  bool readMesh(size_t meshIndex, const glm::dmat4& transform, ModelMesh& out) {
+    const tinygltf::Mesh& mesh = gltf_.meshes[meshIndex];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      if (!readPrimitive(meshIndex, p, transform, out)) return false;
+    }
+    geometry::MeshData& m = out.mesh;
+    if (!anyUv_) m.uv0.clear();
+    if (out.skin < 0) {
+      m.joints.clear();
+      m.weights.clear();
+    }
+    anyUv_ = false;
+    return true;
+  }
+
+  bool readPrimitive(size_t meshIndex, size_t primitiveIndex, const glm::dmat4& transform, ModelMesh& out) {
+    const tinygltf::Primitive& primitive = gltf_.meshes[meshIndex].primitives[primitiveIndex];
+    const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex) + ": ";
+    if (primitive.extensions.count("KHR_draco_mesh_compression") != 0) {
+      return fail(where + "uses KHR_draco_mesh_compression, which is not supported");
+    }
+    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      warn(where + "mode " + std::to_string(mode) + " (points or lines) skipped");
+      return true;
+    }
+    auto attribute = [&](const char* key, AccessorView& view, bool& present) -> bool {
+      present = false;
+      const auto it = primitive.attributes.find(key);
+      if (it == primitive.attributes.end()) return true;
+      std::string reason;
+      if (!viewAccessor(gltf_, it->second, view, reason)) return fail(where + std::string(key) + ": " + reason);
+      present = true;
+      return true;
+    };
+    AccessorView positions, normals, uvs, joints, weights;
+    bool hasPosition, hasNormal, hasUv, hasJoints, hasWeights;
+    if (!attribute("POSITION", positions, hasPosition) || !attribute("NORMAL", normals, hasNormal) ||
+        !attribute("TEXCOORD_0", uvs, hasUv) || !attribute("JOINTS_0", joints, hasJoints) ||
+        !attribute("WEIGHTS_0", weights, hasWeights)) {
+      return false;
+    }
+    if (!hasPosition) return fail(where + "has no POSITION attribute");
+    const size_t n = positions.count;
+    if (positions.components != 3 || positions.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+      return fail(where + "POSITION must be a float VEC3");
+    }
+    if (hasNormal && (normals.components != 3 || normals.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || normals.count != n)) {
+      return fail(where + "NORMAL must be a float VEC3 with one entry per vertex");
+    }
+    if (hasUv) {
+      const bool typeOk = uvs.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                          (uvs.normalized && (uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                              uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+      if (uvs.components != 2 || !typeOk || uvs.count != n) {
+        return fail(where + "TEXCOORD_0 must be a VEC2 (float or normalized unsigned) per vertex");
+      }
+    }
+    const bool skinned = out.skin >= 0;
+    const size_t jointCount = skinned ? gltf_.skins[static_cast<size_t>(out.skin)].joints.size() : 0;
+    if (skinned && hasJoints != hasWeights) return fail(where + "JOINTS_0 and WEIGHTS_0 must come together");
+    if (skinned && hasJoints) {
+      if (joints.components != 4 || joints.count != n ||
+          (joints.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+           joints.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)) {
+        return fail(where + "JOINTS_0 must be an unsigned byte or short VEC4 per vertex");
+      }
+      const bool weightTypeOk = weights.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                                (weights.normalized && (weights.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                        weights.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+      if (weights.components != 4 || weights.count != n || !weightTypeOk) {
+        return fail(where + "WEIGHTS_0 must be a float or normalized unsigned VEC4 per vertex");
+      }
+    } else if (skinned) {
+      warn(where + "a skinned mesh without JOINTS_0: bound to joint 0");
+    }
+
+    // Corners: the indices, or 0..n-1.
+    std::vector<uint32_t> corners;
+    if (primitive.indices >= 0) {
+      AccessorView indexView;
+      std::string reason;
+      if (!viewAccessor(gltf_, primitive.indices, indexView, reason)) return fail(where + "indices: " + reason);
+      if (indexView.components != 1 || (indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                                        indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                                        indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
+        return fail(where + "indices must be unsigned byte, short or int scalars");
+      }
+      corners.resize(indexView.count);
+      for (size_t i = 0; i < indexView.count; ++i) {
+        const double value = component(indexView, i, 0);
+        if (value >= static_cast<double>(n)) {
+          return fail(where + "index " + std::to_string(static_cast<uint64_t>(value)) + " at position " +
+                      std::to_string(i) + " is out of range (" + std::to_string(n) + " vertices)");
+        }
+        corners[i] = static_cast<uint32_t>(value);
+      }
+    } else {
+      if (n > UINT32_MAX) return fail(where + "too many vertices");
+      corners.resize(n);
+      for (size_t i = 0; i < n; ++i) corners[i] = static_cast<uint32_t>(i);
+    }
+    std::vector<uint32_t> triangles;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      if (corners.size() % 3 != 0) warn(where + "index count not a multiple of 3; the last partial triangle is ignored");
+      triangles.assign(corners.begin(), corners.begin() + static_cast<std::ptrdiff_t>(corners.size() / 3 * 3));
+    } else {
+      for (size_t i = 0; i + 2 < corners.size(); ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+          const bool odd = (i % 2) == 1;
+          triangles.insert(triangles.end(), {corners[i], corners[odd ? i + 2 : i + 1], corners[odd ? i + 1 : i + 2]});
+        } else {
+          triangles.insert(triangles.end(), {corners[i + 1], corners[i + 2], corners[0]});
+        }
+      }
+    }
+    if (triangles.empty()) return true;
+    const uint64_t elements = uint64_t{n} + triangles.size();
+    if (elements > budget_) return fail("the scene instantiates more geometry than the file size allows");
+    budget_ -= elements;
+
+    geometry::MeshData& m = out.mesh;
+    const size_t base = m.positions.size();
+    if (base + n > UINT32_MAX) return fail("too many vertices");
+    const glm::dmat3 linear(transform);
+    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+    const bool mirrored = glm::determinant(linear) < 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      const glm::dvec3 local(component(positions, i, 0), component(positions, i, 1), component(positions, i, 2));
+      const glm::dvec3 p = glm::dvec3(transform * glm::dvec4(local, 1.0));
+      if (!finite3(local) || !finite3(p)) {
+        return fail(where + "vertex " + std::to_string(i) + " has a non-finite position");
+      }
+      m.positions.emplace_back(p);
+      glm::vec3 normal(0.f);
+      if (hasNormal) {
+        const glm::dvec3 t = normalMatrix * glm::dvec3(component(normals, i, 0), component(normals, i, 1), component(normals, i, 2));
+        const double len = glm::length(t);
+        if (len > 0.0 && std::isfinite(len)) normal = glm::vec3(t / len);
+      }
+      m.normals.push_back(normal);
+      m.uv0.push_back(hasUv ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1)) : glm::vec2(0.f));
+      if (skinned) {
+        glm::u16vec4 j(0);
+        glm::vec4 w(1.f, 0.f, 0.f, 0.f);
+        if (hasJoints) {
+          double raw[4], total = 0.0;
+          for (int k = 0; k < 4; ++k) {
+            raw[k] = component(weights, i, k);
+            if (!std::isfinite(raw[k]) || raw[k] < 0.0) raw[k] = 0.0;
+            const double joint = component(joints, i, k);
+            if (raw[k] > 0.0 && joint >= static_cast<double>(jointCount)) {
+              return fail(where + "vertex " + std::to_string(i) + " uses joint " + std::to_string(uint64_t(joint)) +
+                          " of a skin with " + std::to_string(jointCount) + " joints");
+            }
+            j[k] = raw[k] > 0.0 ? static_cast<uint16_t>(joint) : 0;
+            total += raw[k];
+          }
+          if (total > 0.0) {
+            for (int k = 0; k < 4; ++k) w[k] = static_cast<float>(raw[k] / total);
+          } else {
+            j = glm::u16vec4(0);
+          }
+        }
+        m.joints.push_back(j);
+        m.weights.push_back(w);
+      }
+    }
+    anyUv_ = anyUv_ || hasUv;
+
+    uint32_t materialId;
+    if (primitive.material >= 0) {
+      if (static_cast<size_t>(primitive.material) >= gltf_.materials.size()) {
+        return fail(where + "material " + std::to_string(primitive.material) + " does not exist");
+      }
+      materialId = static_cast<uint32_t>(primitive.material);
+    } else {
+      materialId = static_cast<uint32_t>(gltf_.materials.size());
+      usesDefaultMaterial_ = true;
+    }
+    m.submeshes.push_back(geometry::SubMesh{static_cast<uint32_t>(m.indices.size()), 0, materialId});
+    const size_t firstIndex = m.indices.size();
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+      const uint32_t a = static_cast<uint32_t>(base) + triangles[t];
+      const uint32_t b = static_cast<uint32_t>(base) + triangles[t + 1];
+      const uint32_t c = static_cast<uint32_t>(base) + triangles[t + 2];
+      m.indices.insert(m.indices.end(), {a, mirrored ? c : b, mirrored ? b : c});
+    }
+    m.submeshes.back().indexCount = static_cast<uint32_t>(m.indices.size() - firstIndex);
+
+    // Missing (or degenerate) normals: area-weighted smooth normals of this primitive's triangles.
+    bool needNormals = !hasNormal;
+    for (size_t i = base; i < m.positions.size() && !needNormals; ++i) needNormals = m.normals[i] == glm::vec3(0.f);
+    if (needNormals) {
+      std::vector<glm::dvec3> sum(n, glm::dvec3(0.0));
+      for (size_t t = firstIndex; t < m.indices.size(); t += 3) {
+        const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]), c(m.positions[m.indices[t + 2]]);
+        const glm::dvec3 face = glm::cross(b - a, c - a);
+        for (int k = 0; k < 3; ++k) sum[m.indices[t + k] - base] += face;
+      }
+      for (size_t i = 0; i < n; ++i) {
+        if (hasNormal && m.normals[base + i] != glm::vec3(0.f)) continue;
+        const double len = glm::length(sum[i]);
+        m.normals[base + i] = len > 0.0 && std::isfinite(len) ? glm::vec3(sum[i] / len) : glm::vec3(0.f, 1.f, 0.f);
+      }
+    }
+    return true;
+  }
+
+  const tinygltf::Model& gltf_;
+  const std::string& name_;
+  ModelLoadResult* result_ = nullptr;
+  uint64_t budget_ = 0;
+  std::vector<int> parent_;
+  std::vector<glm::dmat4> global_;
+  std::vector<size_t> order_;
+  bool usesDefaultMaterial_ = false;
+  bool anyUv_ = false;
+};
+
+ModelLoadResult failed(const std::string& name, const std::string& reason, std::vector<std::string> warnings = {}) {
+  ModelLoadResult result;
+  result.error = name + ": " + reason;
+  result.warnings = std::move(warnings);
+  return result;
+}
+
+ModelLoadResult readModel(std::span<const uint8_t> bytes, const std::string& name, const std::optional<std::string>& baseDir) {
+  if (bytes.size() > UINT32_MAX) return failed(name, "file too large for glTF");
+  if (bytes.empty()) return failed(name, "the file is empty");
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(decodeImage, nullptr);
+  if (!baseDir) {
+    tinygltf::FsCallbacks callbacks{detail::noFileExists, detail::sameFilePath, detail::noReadWholeFile,
+                                    detail::noWriteWholeFile, nullptr};
+    loader.SetFsCallbacks(callbacks);
+  }
+  tinygltf::Model gltf;
+  std::string err, warn;
+  bool loaded = false;
+  try {
+    const std::string dir = baseDir.value_or("");
+    if (binary) {
+      loaded = loader.LoadBinaryFromMemory(&gltf, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), dir);
+    } else {
+      loaded = loader.LoadASCIIFromString(&gltf, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                          static_cast<unsigned int>(bytes.size()), dir);
+    }
+  } catch (const std::exception& e) {
+    return failed(name, std::string("glTF parse error: ") + e.what());
+  } catch (...) {
+    return failed(name, "glTF parse error");
+  }
+  std::vector<std::string> warnings;
+  if (const std::string w = detail::oneLine(warn); !w.empty()) warnings.push_back(name + ": " + w);
+  if (!loaded) {
+    const std::string e = detail::oneLine(err);
+    return failed(name, e.empty() ? "tinygltf could not load the file" : e, std::move(warnings));
+  }
+  ModelLoadResult result;
+  result.warnings = std::move(warnings);
+  Loader reader(gltf, name, bytes.size());
+  if (!reader.run(result)) {
+    ModelLoadResult failure;
+    failure.error = std::move(result.error);
+    failure.warnings = std::move(result.warnings);
+    return failure;
+  }
+  result.ok = true;
+  return result;
+}
+
+}  // namespace
+
+ModelLoadResult loadModel(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return failed(path, "is a directory, not a glTF file");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return failed(path, "cannot open the file");
+  file.seekg(0, std::ios::end);
+  const std::streamoff size = file.tellg();
+  if (size < 0) return failed(path, "cannot read the file");
+  if (static_cast<uint64_t>(size) > UINT32_MAX) return failed(path, "file too large for glTF");
+  std::vector<uint8_t> bytes(static_cast<size_t>(size));
+  file.seekg(0);
+  if (size > 0 && !file.read(reinterpret_cast<char*>(bytes.data()), size)) return failed(path, "cannot read the file");
+  std::string baseDir = std::filesystem::path(path).parent_path().string();
+  if (baseDir.empty()) baseDir = ".";
+  return readModel(bytes, path, baseDir);
+}
+
+ModelLoadResult readModelFromMemory(std::span<const uint8_t> bytes, const std::string& name) {
+  return readModel(bytes, name, std::nullopt);
+}
+
+}  // namespace cleave::assets

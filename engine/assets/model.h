@@ -1,0 +1,91 @@
+// Models: glTF 2.0 scenes with static and skinned meshes, materials with decoded textures, skins
+// and animations, as plain data (no tinygltf type leaks out of engine/assets).
+//
+// What is read. The default scene (else scene 0) and every node under it. A node with a mesh and no
+// skin becomes a static ModelMesh whose vertices are baked into scene space (the node hierarchy is
+// flattened). A node with a mesh and a skin becomes a skinned ModelMesh in bind space, as stored in
+// the file; glTF places skinned meshes by their joints only, so its node transform is not applied.
+// All triangle primitives of a mesh are merged into one MeshData with one submesh per primitive
+// (materialId = index into Model::materials); points and lines are skipped with a warning.
+// Attributes: POSITION (float), NORMAL (computed, area-weighted smooth, when missing), TEXCOORD_0
+// (float or normalised integers), JOINTS_0 (unsigned byte or short) and WEIGHTS_0 (float or
+// normalised unsigned byte or short; renormalised to sum 1). No indices means a plain triangle list.
+// Animations: translation, rotation and scale channels, step, linear and cubic spline. Each glTF
+// animation becomes one clip per skin whose joints it moves (morph-target weights are skipped).
+//
+// Units: those of the file (the engine reads them as metres). Winding: counter-clockwise seen from
+// outside; a mirroring node transform of a static mesh flips the triangles back.
+//
+// Failure: no function throws and no input crashes; on failure `ok` is false, the model is empty and
+// `error` is one line "<file>: <reason>": an index out of range, a non-finite position, a missing
+// buffer, a node cycle, no scene, a required extension that is not supported (named, for example
+// KHR_draco_mesh_compression), joints outside their skin, a file without a triangle.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/anim/animation_clip.h"
+#include "engine/anim/skeleton.h"
+#include "engine/geometry/mesh_data.h"
+
+namespace cleave::assets {
+
+// An image decoded to RGBA8, rows top to bottom. Empty (width 0) when the file's image could not be
+// loaded or decoded (a warning says why).
+struct ModelImage {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba;  // width * height * 4 bytes
+};
+
+struct ModelMaterial {
+  std::string name;
+  glm::vec4 baseColorFactor{1.f};  // linear RGBA
+  int32_t baseColorImage = -1;     // index into Model::images, -1 for none
+  int32_t normalImage = -1;        // index into Model::images, -1 for none
+  bool doubleSided = false;
+};
+
+struct ModelMesh {
+  std::string name;           // the node's name, else the mesh's
+  geometry::MeshData mesh;    // static: scene space; skinned: bind space with joints and weights
+  int32_t skin = -1;          // index into Model::skins for a skinned mesh, -1 for a static one
+};
+
+struct ModelSkin {
+  std::string name;
+  anim::Skeleton skeleton;                // joint j is the skin's j-th joint (JOINTS_0 values index it)
+  std::vector<anim::AnimationClip> clips; // the file's animations that move this skin, in file order
+};
+
+struct Model {
+  std::vector<ModelMesh> meshes;
+  std::vector<ModelMaterial> materials;  // the file's, then "default" when a primitive has none
+  std::vector<ModelImage> images;
+  std::vector<ModelSkin> skins;
+
+  size_t triangleCount() const;
+};
+
+struct ModelLoadResult {
+  bool ok = false;
+  Model model;
+  std::string error;                  // one line naming the file and the reason; empty when ok
+  std::vector<std::string> warnings;  // non-fatal remarks, each naming the file
+};
+
+// Loads a .gltf (external or embedded buffers and images, looked up beside the file) or a .glb.
+// The kind is chosen by content (the GLB magic), not by the extension.
+ModelLoadResult loadModel(const std::string& path);
+
+// The same from bytes in memory; `name` is used in messages only. Only data: URIs and GLB chunks
+// can be read (there is no folder to look in).
+ModelLoadResult readModelFromMemory(std::span<const uint8_t> bytes, const std::string& name);
+
+}  // namespace cleave::assets
