@@ -54,8 +54,14 @@ bool App::init(const AppOptions& options, const std::string& title, std::string*
       if (error) *error = options_.recordPath + ": cannot open the replay file for writing";
       return false;
     }
-    const std::string scene = options_.scenePath.empty() ? title : options_.scenePath;
-    recorder_ = std::make_unique<input::ReplayRecorder>(scene, options_.seed);
+    // A recording of a replayed run names the same scene and seed as the replay.
+    std::string scene = options_.sceneName;
+    uint64_t seed = options_.seed;
+    if (replay_) {
+      scene = replay_->replay().scene;
+      seed = replay_->replay().seed;
+    }
+    recorder_ = std::make_unique<input::ReplayRecorder>(scene, seed);
   }
   std::string platformError;
   if (!options_.headless) {

@@ -85,26 +85,40 @@ struct Moments {
 Moments integrate(std::span<const glm::dvec3> p, std::span<const uint32_t> indices,
                   const glm::dvec3& ref, bool flip) {
   Moments m;
-  double sixV = 0.0;
-  glm::dvec3 first(0.0);
-  // The second moment is symmetric: xx, yy, zz, xy, yz, zx.
-  double xx = 0.0, yy = 0.0, zz = 0.0, xy = 0.0, yz = 0.0, zx = 0.0;
-  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-    glm::dvec3 a = p[indices[t]] - ref;
-    glm::dvec3 b = p[indices[t + 1]] - ref;
-    glm::dvec3 c = p[indices[t + 2]] - ref;
-    if (flip) std::swap(b, c);
-    const double det = glm::dot(a, glm::cross(b, c));
-    const glm::dvec3 s = a + b + c;
-    sixV += det;
-    first += det * s;
-    xx += det * (a.x * a.x + b.x * b.x + c.x * c.x + s.x * s.x);
-    yy += det * (a.y * a.y + b.y * b.y + c.y * c.y + s.y * s.y);
-    zz += det * (a.z * a.z + b.z * b.z + c.z * c.z + s.z * s.z);
-    xy += det * (a.x * a.y + b.x * b.y + c.x * c.y + s.x * s.y);
-    yz += det * (a.y * a.z + b.y * b.z + c.y * c.z + s.y * s.z);
-    zx += det * (a.z * a.x + b.z * b.x + c.z * c.x + s.z * s.x);
+  // Two interleaved sums (even and odd triangles) keep more additions in flight; the order is fixed,
+  // so the result is still the same for the same input.
+  struct Sums {
+    double sixV = 0.0, fx = 0.0, fy = 0.0, fz = 0.0;
+    // The second moment is symmetric: xx, yy, zz, xy, yz, zx.
+    double xx = 0.0, yy = 0.0, zz = 0.0, xy = 0.0, yz = 0.0, zx = 0.0;
+    void add(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, bool swapped) {
+      if (swapped) std::swap(b, c);
+      const double det = glm::dot(a, glm::cross(b, c));
+      const glm::dvec3 s = a + b + c;
+      sixV += det;
+      fx += det * s.x;
+      fy += det * s.y;
+      fz += det * s.z;
+      xx += det * (a.x * a.x + b.x * b.x + c.x * c.x + s.x * s.x);
+      yy += det * (a.y * a.y + b.y * b.y + c.y * c.y + s.y * s.y);
+      zz += det * (a.z * a.z + b.z * b.z + c.z * c.z + s.z * s.z);
+      xy += det * (a.x * a.y + b.x * b.y + c.x * c.y + s.x * s.y);
+      yz += det * (a.y * a.z + b.y * b.z + c.y * c.z + s.y * s.z);
+      zx += det * (a.z * a.x + b.z * b.x + c.z * c.x + s.z * s.x);
+    }
+  };
+  Sums even, odd;
+  const size_t count = indices.size() / 3 * 3;
+  size_t t = 0;
+  for (; t + 5 < count; t += 6) {
+    even.add(p[indices[t]] - ref, p[indices[t + 1]] - ref, p[indices[t + 2]] - ref, flip);
+    odd.add(p[indices[t + 3]] - ref, p[indices[t + 4]] - ref, p[indices[t + 5]] - ref, flip);
   }
+  if (t + 2 < count) even.add(p[indices[t]] - ref, p[indices[t + 1]] - ref, p[indices[t + 2]] - ref, flip);
+  const double sixV = even.sixV + odd.sixV;
+  const glm::dvec3 first(even.fx + odd.fx, even.fy + odd.fy, even.fz + odd.fz);
+  const double xx = even.xx + odd.xx, yy = even.yy + odd.yy, zz = even.zz + odd.zz;
+  const double xy = even.xy + odd.xy, yz = even.yz + odd.yz, zx = even.zx + odd.zx;
   m.volume = sixV / 6.0;
   m.first = first / 24.0;
   glm::dmat3 second(0.0);
@@ -118,12 +132,6 @@ Moments integrate(std::span<const glm::dvec3> p, std::span<const uint32_t> indic
   return m;
 }
 
-glm::dvec3 boundsCentre(std::span<const glm::dvec3> p, std::span<const uint32_t> indices) {
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (uint32_t index : indices) {
-    lo = glm::min(lo, p[index]);
-    hi = glm::max(hi, p[index]);
-  }
   return 0.5 * (lo + hi);
 }
 
@@ -137,15 +145,15 @@ glm::dvec3 vertexCentroid(std::span<const glm::dvec3> p, std::span<const uint32_
 MassProperties fromSurface(std::span<const glm::dvec3> p, std::span<const uint32_t> indices,
                            bool flip) {
   MassProperties out;
-  const glm::dvec3 ref = boundsCentre(p, indices);
-  Moments m = integrate(p, indices, ref, flip);
-  out.volume = m.volume;
-  // Scale for "zero": the volume of a tetrahedron whose edges are 1e-12 of the mesh size.
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
   for (uint32_t index : indices) {
     lo = glm::min(lo, p[index]);
     hi = glm::max(hi, p[index]);
   }
+  const glm::dvec3 ref = 0.5 * (lo + hi);
+  Moments m = integrate(p, indices, ref, flip);
+  out.volume = m.volume;
+  // Scale for "zero": the volume of a tetrahedron whose edges are 1e-12 of the mesh size.
   const double size = glm::length(hi - lo);
   if (!(std::abs(m.volume) > 1e-36 * size * size * size) || size == 0.0) {
     out.volume = 0.0;

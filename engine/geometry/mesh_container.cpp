@@ -295,16 +295,28 @@ void MeshContainer::computeClosed() {
     if (!corners(t, c)) continue;
     for (int e = 0; e < 3; ++e) edgeTargets_[cellNext_[c[e]]++] = c[(e + 1) % 3];
   }
+  // Lists longer than kShort are sorted and searched by bisection; short ones are scanned.
+  constexpr uint32_t kShort = 16;
   for (uint32_t a = 0; a < ids; ++a) {
-    std::sort(edgeTargets_.begin() + edgeStart_[a], edgeTargets_.begin() + edgeStart_[a + 1]);
+    if (edgeStart_[a + 1] - edgeStart_[a] > kShort) {
+      std::sort(edgeTargets_.begin() + edgeStart_[a], edgeTargets_.begin() + edgeStart_[a + 1]);
+    }
   }
+  auto count = [&](uint32_t from, uint32_t to) -> uint32_t {
+    const auto first = edgeTargets_.begin() + edgeStart_[from], last = edgeTargets_.begin() + edgeStart_[from + 1];
+    if (last - first > kShort) {
+      const auto range = std::equal_range(first, last, to);
+      return static_cast<uint32_t>(range.second - range.first);
+    }
+    uint32_t found = 0;
+    for (auto it = first; it != last; ++it) found += *it == to;
+    return found;
+  };
   for (uint32_t a = 0; a < ids && closed_; ++a) {
-    const uint32_t begin = edgeStart_[a], end = edgeStart_[a + 1];
-    for (uint32_t k = begin; k < end && closed_; ++k) {
+    for (uint32_t k = edgeStart_[a]; k < edgeStart_[a + 1] && closed_; ++k) {
       const uint32_t b = edgeTargets_[k];
-      if (k + 1 < end && edgeTargets_[k + 1] == b) closed_ = false;  // the same directed edge twice
-      closed_ = closed_ && std::binary_search(edgeTargets_.begin() + edgeStart_[b],
-                                              edgeTargets_.begin() + edgeStart_[b + 1], a);
+      // Each directed edge once, and its reverse once.
+      closed_ = count(a, b) == 1 && count(b, a) == 1;
     }
   }
 }

@@ -177,6 +177,7 @@ class Splitter final : public IMeshSplitter {
   glm::dvec3 cutOfAny(uint32_t ref) const;
   uint32_t mergeCavities(int side, uint32_t pieces);
   void writePieces(const SplitOptions& options, SplitResult& result);
+  void gatherVertices(MeshData& m);
 
   bool convexFastPath_;
   CapTriangulator triangulator_;
@@ -208,6 +209,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<SideTriangle> sideTris_[2];  // [0] above, [1] below
   std::vector<uint32_t> planeTris_[2];     // per side: the triangles that may have an on-plane edge
   std::vector<uint32_t> bucket_;           // counting sort of the output triangles
+  std::vector<uint32_t> vertexRefs_;       // the vertex references of the piece being written, in order
   std::vector<uint64_t> boundary_[2];
   std::vector<uint64_t> segments_;     // section segments, sorted, counter-clockwise seen from +normal
   std::vector<uint64_t> reversed_;
@@ -919,6 +921,34 @@ uint32_t Splitter::find(uint32_t x) {
   return x;
 }
 
+// The vertices of a piece, one attribute array at a time, from the source arrays or extra_; and
+// their cut-space positions (pieceCut_) for the mass properties.
+void Splitter::gatherVertices(MeshData& m) {
+  const MeshData& mesh = *mesh_;
+  const size_t count = vertexRefs_.size();
+  auto gather = [&](auto& out, const auto& source, const auto& extra) {
+    if (source.empty()) return;
+    out.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+      const uint32_t ref = vertexRefs_[i];
+      out[i] = ref < sourceCount_ ? source[ref] : extra[ref - sourceCount_];
+    }
+  };
+  gather(m.positions, mesh.positions, extra_.positions);
+  gather(m.normals, mesh.normals, extra_.normals);
+  gather(m.tangents, mesh.tangents, extra_.tangents);
+  gather(m.uv0, mesh.uv0, extra_.uv0);
+  gather(m.uv1, mesh.uv1, extra_.uv1);
+  gather(m.colors, mesh.colors, extra_.colors);
+  gather(m.joints, mesh.joints, extra_.joints);
+  gather(m.weights, mesh.weights, extra_.weights);
+  pieceCut_.resize(count);
+  for (size_t i = 0; i < count; ++i) {
+    const uint32_t ref = vertexRefs_[i];
+    pieceCut_[i] = ref < sourceCount_ ? cut_[ref] : cutOfAny(ref);
+  }
+}
+
 void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
   const MeshData& mesh = *mesh_;
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
@@ -1018,6 +1048,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
         stampValue_ = 1;
       }
       uint32_t currentSlot = kNone;
+      vertexRefs_.clear();
       for (; k < order_.size() && pieceOf_[order_[k]] == p; ++k) {
         const SideTriangle& tri = tris[order_[k]];
         if (tri.slot != currentSlot) {
@@ -1031,38 +1062,14 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
         for (uint32_t ref : corner) {
           if (stamp_[ref] != stampValue_) {
             stamp_[ref] = stampValue_;
-            remap_[ref] = static_cast<uint32_t>(m.positions.size());
-            if (ref < sourceCount_) {
-              m.positions.push_back(mesh.positions[ref]);
-              if (!mesh.normals.empty()) m.normals.push_back(mesh.normals[ref]);
-              if (!mesh.tangents.empty()) m.tangents.push_back(mesh.tangents[ref]);
-              if (!mesh.uv0.empty()) m.uv0.push_back(mesh.uv0[ref]);
-              if (!mesh.uv1.empty()) m.uv1.push_back(mesh.uv1[ref]);
-              if (!mesh.colors.empty()) m.colors.push_back(mesh.colors[ref]);
-              if (!mesh.joints.empty()) {
-                m.joints.push_back(mesh.joints[ref]);
-                m.weights.push_back(mesh.weights[ref]);
-              }
-              pieceCut_.push_back(cut_[ref]);
-            } else {
-              const uint32_t x = ref - sourceCount_;
-              m.positions.push_back(extra_.positions[x]);
-              if (!mesh.normals.empty()) m.normals.push_back(extra_.normals[x]);
-              if (!mesh.tangents.empty()) m.tangents.push_back(extra_.tangents[x]);
-              if (!mesh.uv0.empty()) m.uv0.push_back(extra_.uv0[x]);
-              if (!mesh.uv1.empty()) m.uv1.push_back(extra_.uv1[x]);
-              if (!mesh.colors.empty()) m.colors.push_back(extra_.colors[x]);
-              if (!mesh.joints.empty()) {
-                m.joints.push_back(extra_.joints[x]);
-                m.weights.push_back(extra_.weights[x]);
-              }
-              pieceCut_.push_back(cutOfAny(ref));
-            }
+            remap_[ref] = static_cast<uint32_t>(vertexRefs_.size());
+            vertexRefs_.push_back(ref);
           }
           m.indices.push_back(remap_[ref]);
         }
         m.submeshes.back().indexCount += 3;
       }
+      gatherVertices(m);
       for (size_t l = 0; l < loops_.size(); ++l) {
         if (loops_[l].capped && loopPiece_[2 * l + side] == p) ++out.capLoops;
       }

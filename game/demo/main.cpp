@@ -8,6 +8,7 @@
 
 int main(int argc, char** argv) {
   cleave::app::AppOptions options;
+  options.sceneName = "demo";
   const auto parsed = cleave::app::parseAppOptions(argc, argv, options);
   if (!parsed.ok) {
     std::fprintf(stderr, "cleave-demo: %s\n", parsed.error.c_str());

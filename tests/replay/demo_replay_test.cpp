@@ -1,0 +1,204 @@
+// The tech demo's bundled replays, run headless through the real executable: final state
+// (pieces, mass kept by every cut, nothing lost through the floor), determinism (two runs and a
+// recorded-then-replayed run give the same state hash), bad replay files, and golden frames.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/render/renderer.h"
+#include "tests/render/image_compare.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kDemo = std::string(CLEAVE_BINARY_DIR) + "/bin/cleave-demo";
+const std::string kReplays = std::string(CLEAVE_SOURCE_DIR) + "/assets/replays";
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr
+};
+
+RunResult run(const std::string& arguments) {
+  RunResult result;
+  const std::string command = "\"" + kDemo + "\" " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+fs::path scratchDir(const std::string& name) {
+  const fs::path dir = fs::path(CLEAVE_BINARY_DIR) / "test-output" / "replay" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string stateHash(const std::string& output) {
+  const std::string key = "state-hash: ";
+  const size_t at = output.rfind(key);
+  if (at == std::string::npos) return {};
+  return output.substr(at + key.size(), 16);
+}
+
+nlohmann::json lastDumpLine(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last.empty() ? nlohmann::json() : nlohmann::json::parse(last);
+}
+
+// Every cut keeps the mass of the object it cut: the pieces (with colliders or as debris) weigh
+// what the original weighed. Piece masses are density x volume in world space, so the only error is
+// float rounding of the world transform.
+void expectEveryCutKeepsMass(const nlohmann::json& dump) {
+  for (const auto& split : dump.at("splits")) {
+    ASSERT_EQ(split.at("status"), "Ok") << split.dump();
+    const double parent = split.at("parent_mass");
+    const double pieces = split.at("pieces_mass");
+    ASSERT_GT(parent, 0.0);
+    EXPECT_NEAR(pieces / parent, 1.0, 2e-6) << split.dump();
+    EXPECT_GE(split.at("pieces").get<int>(), 2) << split.dump();
+  }
+}
+
+// No entity lost: every position finite, nothing fell through the floor (top at y = 0).
+void expectNothingLost(const nlohmann::json& dump) {
+  for (const auto& e : dump.at("entities")) {
+    for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(e.at("position")[k].get<double>())) << e.dump();
+    EXPECT_GT(e.at("position")[1].get<double>(), -0.6) << "below the floor: " << e.dump();
+  }
+}
+
+size_t countPieces(const nlohmann::json& dump) {
+  size_t pieces = 0;
+  for (const auto& e : dump.at("entities"))
+    if (e.contains("split_from")) ++pieces;
+  return pieces;
+}
+
+TEST(DemoReplay, TourCutsEveryObjectAndKeepsMass) {
+  const fs::path dir = scratchDir("tour");
+  const RunResult r = run("--headless --replay \"" + kReplays + "/demo_tour.replay\" --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\" --print-state-hash");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
+  ASSERT_TRUE(dump.is_object());
+  EXPECT_EQ(dump.at("tick"), 899);
+  expectEveryCutKeepsMass(dump);
+  expectNothingLost(dump);
+
+  // Every one of the seven objects (the placeholder of 6 included) was cut at least once, some
+  // pieces were cut again, and the spawned objects were cut by the final sweep.
+  std::vector<std::string> originals;
+  size_t piecesOfPieces = 0;
+  for (const auto& split : dump.at("splits")) {
+    const std::string name = split.at("original");
+    if (name.find('/') != std::string::npos) ++piecesOfPieces;
+    originals.push_back(name.substr(0, name.find('/')));
+  }
+  for (const char* object : {"wooden cube", "metal sphere", "marble cylinder", "melon", "figure", "torus"}) {
+    EXPECT_NE(std::find(originals.begin(), originals.end(), object), originals.end())
+        << object << " was never cut";
+  }
+  EXPECT_GE(piecesOfPieces, 3u);
+  EXPECT_GE(dump.at("splits").size(), 12u);
+  EXPECT_GE(countPieces(dump), 16u);
+  EXPECT_EQ(dump.at("budget").at("queue"), 0) << "split requests left over at the end";
+  EXPECT_EQ(stateHash(r.output).size(), 16u);
+}
+
+TEST(DemoReplay, BurstOfCutsIsSpreadByTheBudgetAndKeepsMass) {
+  const fs::path dir = scratchDir("burst");
+  const RunResult r = run("--headless --replay \"" + kReplays + "/demo_burst.replay\" --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\"");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
+  expectEveryCutKeepsMass(dump);
+  expectNothingLost(dump);
+  const auto& budget = dump.at("budget");
+  EXPECT_GT(budget.at("deferred_total").get<int>(), 0) << "the burst never had to wait: " << budget.dump();
+  EXPECT_GE(budget.at("max_queue").get<int>(), 3) << budget.dump();
+  EXPECT_EQ(budget.at("queue"), 0) << "requests left over: " << budget.dump();
+  EXPECT_GE(dump.at("splits").size(), 20u);
+}
+
+TEST(DemoReplay, SameReplayGivesTheSameState) {
+  const std::string args = "--headless --replay \"" + kReplays + "/demo_tour.replay\" --ticks 420 --print-state-hash";
+  const RunResult a = run(args);
+  const RunResult b = run(args);
+  ASSERT_EQ(a.exitCode, 0) << a.output;
+  ASSERT_EQ(b.exitCode, 0) << b.output;
+  ASSERT_EQ(stateHash(a.output).size(), 16u) << a.output;
+  EXPECT_EQ(stateHash(a.output), stateHash(b.output));
+}
+
+TEST(DemoReplay, RecordedRunReplaysToTheSameState) {
+  const fs::path dir = scratchDir("record");
+  const fs::path recorded = dir / "recorded.replay";
+  const RunResult original = run("--headless --replay \"" + kReplays + "/demo_tour.replay\" --ticks 420 --record \"" +
+                                 recorded.string() + "\" --print-state-hash");
+  ASSERT_EQ(original.exitCode, 0) << original.output;
+  ASSERT_TRUE(fs::exists(recorded));
+  const RunResult replayed = run("--headless --replay \"" + recorded.string() + "\" --print-state-hash");
+  ASSERT_EQ(replayed.exitCode, 0) << replayed.output;
+  EXPECT_EQ(stateHash(original.output), stateHash(replayed.output));
+}
+
+TEST(DemoReplay, CorruptReplayIsReportedWithFileAndLine) {
+  const fs::path dir = scratchDir("corrupt");
+  const fs::path bad = dir / "bad.replay";
+  std::ofstream(bad) << "cleave-replay 1\nscene demo\nseed 1\n12 kd:w\n7 kd:nosuchkey\n";
+  const RunResult r = run("--headless --replay \"" + bad.string() + "\"");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("bad.replay:5"), std::string::npos) << r.output;
+
+  const RunResult missing = run("--headless --replay \"" + (dir / "missing.replay").string() + "\"");
+  EXPECT_NE(missing.exitCode, 0);
+  EXPECT_NE(missing.output.find("missing.replay"), std::string::npos) << missing.output;
+}
+
+// Frames of the tour against golden images. The HUD's top-left box shows wall-clock figures
+// (FPS, tick ms, split ms) and is blanked before comparing. Goldens are refreshed with
+// CLEAVE_UPDATE_GOLDENS=1.
+TEST(DemoReplay, TourFramesMatchGoldenImages) {
+  const fs::path dir = scratchDir("golden");
+  const RunResult r = run("--headless --replay \"" + kReplays + "/demo_tour.replay\" --width 640 --height 360 "
+                          "--screenshot-dir \"" + dir.string() + "\" --screenshot-every 300");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* frame : {"frame_000300.png", "frame_000600.png", "frame_000899.png"}) {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+    std::string error;
+    ASSERT_TRUE(cleave::render::readPng((dir / frame).string(), width, height, rgba, &error)) << error;
+    ASSERT_EQ(width, 640);
+    ASSERT_EQ(height, 360);
+    for (int y = 0; y < 130 && y < height; ++y)
+      for (int x = 0; x < 345 && x < width; ++x)
+        for (int c = 0; c < 4; ++c) rgba[(size_t(y) * width + x) * 4 + c] = 0;
+    cleave::testing::ImageTolerance tolerance;
+    tolerance.maxChannelDifference = 24;
+    tolerance.maxDifferingShare = 0.01;
+    const std::string golden = std::string(CLEAVE_SOURCE_DIR) + "/tests/replay/goldens/tour_" + frame;
+    const auto comparison = cleave::testing::compareWithGolden(golden, width, height, rgba, tolerance);
+    EXPECT_TRUE(comparison.ok) << frame << ": " << comparison.message;
+  }
+}
+
+}  // namespace
