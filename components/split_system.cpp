@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -96,6 +98,36 @@ void decompose(geometry::IMeshSplitter& splitter, const geometry::MeshData& mesh
     return;
   }
   for (const auto& piece : result.pieces) decompose(splitter, piece.mesh, depth - 1, parts);
+}
+
+// Writes the mesh of a failed split in cut space (an OBJ with the plane in its header) so the case
+// can be reproduced with cleave-split or a unit test.
+void writeFailureCase(const std::string& directory, const std::string& name, uint64_t tick,
+                      ecs::Entity target, const geometry::MeshData& mesh, const glm::dmat4& model,
+                      const geometry::Plane& plane, const char* status, const std::string& message) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  const std::string path = (std::filesystem::path(directory) /
+                            ("split_failure_tick" + std::to_string(tick) + "_e" +
+                             std::to_string(target.index) + ".obj")).string();
+  std::ofstream out(path);
+  if (!out) return;
+  out.precision(17);
+  out << "# split failure: " << (name.empty() ? "unnamed" : name) << ", tick " << tick << ", " << status
+      << ": " << message << "\n";
+  out << "# plane (cut space = world, after the model matrix): normal " << plane.normal.x << " " << plane.normal.y << " "
+      << plane.normal.z << " offset " << plane.offset << "\n";
+  // Vertices in mesh space exactly as stored (floats print exactly with 9 digits), and the model
+  // matrix (column-major) that takes them to cut space, so the failing case replays bit for bit.
+  out << "# model";
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) out << " " << float(model[c][r]);
+  out << "\n";
+  out.precision(9);
+  for (const glm::vec3& p : mesh.positions) out << "v " << p.x << " " << p.y << " " << p.z << "\n";
+  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+    out << "f " << mesh.indices[i] + 1 << " " << mesh.indices[i + 1] + 1 << " " << mesh.indices[i + 2] + 1 << "\n";
+  std::fprintf(stderr, "cleave: failed split written to %s\n", path.c_str());
 }
 
 }  // namespace
@@ -248,17 +280,31 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
 
 void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
   for (const physics::TriggerEvent& ev : w.physics.triggerEvents()) {
-    if (ev.kind != physics::TriggerEventKind::Begin) continue;
+    if (ev.kind == physics::TriggerEventKind::Stay) continue;
     const auto splitterUser = w.physics.triggerUserData(ev.trigger);
     const auto bodyUser = w.physics.bodyUserData(ev.body);
     if (!splitterUser || !bodyUser) continue;
     const ecs::Entity splitterEntity = fromUser(*splitterUser);
     const ecs::Entity target = fromUser(*bodyUser);
     if (!w.world.alive(splitterEntity) || !w.world.alive(target)) continue;
-    if (!w.world.has<Splitable>(target)) continue;
     auto* splitter = w.world.tryGet<Splitter>(splitterEntity);
+    if (!splitter) continue;
+    const bool persistent = splitter->lifetime == SplitterLifetime::Persistent;
+    if (ev.kind == physics::TriggerEventKind::End) {
+      // It left the blade: the next touch is a new pass.
+      if (persistent) std::erase(splitter->passing, *bodyUser);
+      continue;
+    }
+    if (!w.world.has<Splitable>(target)) continue;
+    // A persistent splitter cuts an object once per pass: the pieces of its own cut appear touching
+    // it (their caps lie on its plane) and are not cut again.
+    if (persistent) {
+      if (std::find(splitter->passing.begin(), splitter->passing.end(), *bodyUser) != splitter->passing.end())
+        continue;
+      splitter->passing.push_back(*bodyUser);
+    }
     const auto* wt = w.world.tryGet<ecs::WorldTransform>(splitterEntity);
-    if (!splitter || !wt) continue;
+    if (!wt) continue;
     const glm::dmat4 m(wt->matrix);
     const glm::dvec3 origin(m[3]);
     const glm::dvec3 normal = glm::normalize(glm::transpose(glm::inverse(glm::dmat3(m))) * glm::dvec3(0, 1, 0));
@@ -275,6 +321,7 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
   // One-tick splitters are gone after the step that reported their touches.
   ecs::CommandBuffer& commands = commandsFor(scratch_->commands, scratch_->commandsWorld, w.world);
   for (auto [e, splitter] : w.world.view<Splitter>()) {
+    std::erase_if(splitter.passing, [&](uint64_t id) { return !w.world.alive(fromUser(id)); });
     if (splitter.lifetime == SplitterLifetime::OneTick && w.physics.isTriggerSpent(splitter.trigger)) {
       commands.destroy(e);
       scratch_->doomed.push_back(e);
@@ -284,8 +331,11 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
 }
 
 void SplitSystem::activatePending(SplitWorld& w) {
-  scratch_->activationsThisTick = 0;
-  for (uint64_t key : budget_.takeActivations()) {
+  // Bodies woken here count against this tick's activations, so pieces created awake by this tick's
+  // splits and the queued ones together stay within maxActivationsPerTick.
+  const std::vector<uint64_t> keys = budget_.takeActivations();
+  scratch_->activationsThisTick = uint32_t(keys.size());
+  for (uint64_t key : keys) {
     physics::BodyId body;
     body.index = uint32_t(key & 0xffffffffu);
     body.generation = uint32_t(key >> 32);
@@ -341,7 +391,9 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
     ev.message = message;
     ev.milliseconds = nowMs() - start;
     if (status != geometry::SplitStatus::PlaneMissesMesh)
-      std::fprintf(stderr, "cleave: split of entity %u kept whole: %s\n", target.index, message.c_str());
+      std::fprintf(stderr, "cleave: split of %s (entity %u) at tick %llu kept whole: %s\n",
+                   ev.originalName.empty() ? "an object" : ev.originalName.c_str(), target.index,
+                   static_cast<unsigned long long>(tick), message.c_str());
     return ev;
   };
   const auto* mr = w.world.tryGet<MeshRenderer>(target);
@@ -390,7 +442,12 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   const double geometryStart = nowMs();
   const geometry::SplitStatus status = splitter.split(s.container, plane, options, s.result);
   ev.geometryMilliseconds = nowMs() - geometryStart;
-  if (status != geometry::SplitStatus::Ok) return fail(status, s.result.message);
+  if (status != geometry::SplitStatus::Ok) {
+    if (status != geometry::SplitStatus::PlaneMissesMesh && !failureDumpDirectory_.empty())
+      writeFailureCase(failureDumpDirectory_, ev.originalName, tick, target, *mr->source, model, plane,
+                       geometry::toString(status), s.result.message);
+    return fail(status, s.result.message);
+  }
 
   if (!sp->handler.empty()) {
     auto it = handlers_.find(sp->handler);
@@ -513,6 +570,12 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
     ev.pieces.push_back(e);
     ev.piecesMass += mass;
     ++k;
+  }
+  // A persistent splitter does not cut the pieces of its own cut again during this pass.
+  if (auto* blade = w.world.tryGet<Splitter>(request.splitter);
+      blade && blade->lifetime == SplitterLifetime::Persistent) {
+    std::erase(blade->passing, toUser(target));
+    for (ecs::Entity piece : ev.pieces) blade->passing.push_back(toUser(piece));
   }
   commands.destroy(target);
   s.doomed.push_back(target);

@@ -60,6 +60,9 @@ class SplitSystem {
 
   SplitBudget& budget() { return budget_; }
   void registerHandler(const std::string& name, SplitHandler handler);
+  // When set, a split that fails (other than a plane missing the mesh) writes the mesh in cut space
+  // with the plane to an OBJ file in this directory, for a reproducible bug report.
+  void setFailureDumpDirectory(std::string directory) { failureDumpDirectory_ = std::move(directory); }
 
   // Queues a request from gameplay (e.g. the drag cut). Executed from the next tick on.
   void request(const SplitRequest& request);
@@ -92,6 +95,7 @@ class SplitSystem {
   std::vector<SplitEvent> events_;
   std::unique_ptr<Scratch> scratch_;
   uint64_t totalPieces_ = 0;
+  std::string failureDumpDirectory_;
 };
 
 // Frees the GPU mesh and the physics body of an entity (to be followed by destroying the entity).

@@ -1,5 +1,6 @@
 #include "engine/app/app.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -203,6 +204,7 @@ int App::run() {
     double previous = platform_->timeSeconds();
     double fpsWindowStart = previous;
     int fpsFrames = 0;
+    double lastPresent = -1.0;
     while (!quit_ && !platform_->closeRequested()) {
       platform_->pollEvents([this](const input::InputEvent& e) { liveQueue_.push(e); });
       const double now = platform_->timeSeconds();
@@ -223,6 +225,9 @@ int App::run() {
         platform_->present([r](int w, int h) { r->presentToDefaultFramebuffer(w, h); });
         framePending_ = false;
         ++fpsFrames;
+        const double presented = platform_->timeSeconds();
+        if (lastPresent >= 0.0) frameMs_.push_back((presented - lastPresent) * 1000.0);
+        lastPresent = presented;
       }
       if (now - fpsWindowStart >= 0.5) {
         fps_ = fpsFrames / (now - fpsWindowStart);
@@ -240,6 +245,16 @@ int App::run() {
     std::printf("replay: %s\n", options_.recordPath.c_str());
   }
   for (const auto& path : screenshots_) std::printf("screenshot: %s\n", path.c_str());
+  if (!frameMs_.empty()) {
+    // Frame times of the window run (present to present), for performance reports.
+    std::vector<double> sorted = frameMs_;
+    std::sort(sorted.begin(), sorted.end());
+    double sum = 0.0;
+    for (double ms : sorted) sum += ms;
+    const size_t p95 = std::min(sorted.size() - 1, size_t(double(sorted.size()) * 0.95));
+    std::printf("frames: %zu  mean %.2f ms  median %.2f ms  p95 %.2f ms  max %.2f ms\n", sorted.size(),
+                sum / double(sorted.size()), sorted[sorted.size() / 2], sorted[p95], sorted.back());
+  }
   if (options_.printStateHash)
     std::printf("state-hash: %016llx\n", static_cast<unsigned long long>(stateHash()));
   std::fflush(stdout);

@@ -107,6 +107,7 @@ class App {
   FrameDumpExtension frameDumpExtension_;
   std::unique_ptr<std::ofstream> dumpFile_;
   std::vector<std::string> screenshots_;
+  std::vector<double> frameMs_;  // window runs: milliseconds between presented frames
   std::array<double, size_t(Phase::Count)> phaseMs_{};
   double lastTickMs_ = 0.0;
   double fps_ = 0.0;

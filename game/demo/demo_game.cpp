@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -232,6 +233,8 @@ bool DemoGame::setup(app::App& app, std::string* error) {
   budget.millisecondsPerTick = 6.0;
   budget.maxSplitsPerTick = 12;
   splits_ = std::make_unique<components::SplitSystem>(budget);
+  if (const char* dir = std::getenv("CLEAVE_SPLIT_FAILURE_DIR"); dir && *dir)
+    splits_->setFailureDumpDirectory(dir);
   createMaterials();
   createFloor();
 
