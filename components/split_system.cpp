@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <span>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -61,12 +63,53 @@ std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const g
   return points;
 }
 
+// Collider choice: is the closed mesh convex enough that its convex hull is a faithful collider?
+// The hull of the points extreme along 64 spread directions lies inside the true hull; when even
+// that inscribed hull exceeds the mesh volume by more than `slack`, the mesh has a real concavity.
+// A concavity smaller than the slack is filled by the hull collider, by design. Cheap: 64 passes
+// over the points and a hull of at most 64 points.
+bool nearlyConvex(const geometry::MeshData& mesh, double slack = 0.03) {
+  const size_t n = mesh.positions.size();
+  if (n < 4 || mesh.indices.size() < 12) return false;
+  const geometry::MassProperties props = geometry::computeMassProperties(mesh, glm::dmat4(1.0));
+  if (!props.closed || !(props.volume > 0.0)) return false;
+  constexpr int kDirections = 64;
+  std::vector<uint32_t> extreme;
+  extreme.reserve(kDirections);
+  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < kDirections; ++i) {
+    const double z = 1.0 - 2.0 * (double(i) + 0.5) / double(kDirections);
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const glm::dvec3 dir(r * std::cos(golden * i), r * std::sin(golden * i), z);
+    uint32_t best = 0;
+    double bestDot = -std::numeric_limits<double>::infinity();
+    for (uint32_t v = 0; v < n; ++v) {
+      const double d = glm::dot(dir, glm::dvec3(mesh.positions[v]));
+      if (d > bestDot) {
+        bestDot = d;
+        best = v;
+      }
+    }
+    extreme.push_back(best);
+  }
+  std::sort(extreme.begin(), extreme.end());
+  extreme.erase(std::unique(extreme.begin(), extreme.end()), extreme.end());
+  std::vector<glm::dvec3> points;
+  points.reserve(extreme.size());
+  for (uint32_t v : extreme) points.push_back(glm::dvec3(mesh.positions[v]));
+  const geometry::ConvexHull hull = geometry::computeConvexHull(std::span<const glm::dvec3>(points));
+  if (hull.status != geometry::HullStatus::Ok) return false;
+  const geometry::MassProperties hullProps =
+      geometry::computeMassProperties(std::span<const glm::dvec3>(hull.positions), hull.indices);
+  return hullProps.volume <= props.volume * (1.0 + slack);
+}
+
 // Our own convex decomposition for colliders: cut the piece through its centre along the longest
 // extent of its bounds, recursively, until every part is convex or the depth runs out.
 void decompose(geometry::IMeshSplitter& splitter, const geometry::MeshData& mesh, int depth,
                std::vector<physics::ConvexPart>& parts) {
   if (mesh.positions.size() < 4) return;
-  if (depth <= 0 || geometry::isConvex(mesh, 1e-3)) {
+  if (depth <= 0 || nearlyConvex(mesh)) {
     physics::ConvexPart part;
     part.points = mesh.positions;
     parts.push_back(std::move(part));
@@ -200,8 +243,7 @@ physics::ShapeId makeCollider(SplitWorld& w, geometry::IMeshSplitter& splitter,
   ColliderMode chosen = mode;
   // A piece of a convex mesh is convex (the intersection of two convex sets): no check needed.
   if (chosen == ColliderMode::Auto)
-    chosen = knownConvex || geometry::isConvex(mesh, 1e-3) ? ColliderMode::ConvexHull
-                                                          : ColliderMode::Compound;
+    chosen = knownConvex || nearlyConvex(mesh) ? ColliderMode::ConvexHull : ColliderMode::Compound;
   std::vector<glm::vec3> points = transformedPoints(mesh, meshOffset);
   if (chosen == ColliderMode::ConcaveMesh) {
     auto r = w.physics.createShape(physics::ShapeDef::concaveMesh(points, mesh.indices));
@@ -215,11 +257,15 @@ physics::ShapeId makeCollider(SplitWorld& w, geometry::IMeshSplitter& splitter,
     std::vector<physics::ConvexPart> parts;
     decompose(splitter, bodySpace, 3, parts);
     if (parts.size() > 1) {
-      auto r = w.physics.createShape(physics::ShapeDef::compound(std::move(parts)));
+      physics::ShapeDef def = physics::ShapeDef::compound(std::move(parts));
+      def.maxHullVertices = 24;  // parts are small: a coarse hull each keeps building and contacts cheap
+      auto r = w.physics.createShape(def);
       if (r.ok()) return r.value();
     }
   }
-  auto r = w.physics.createShape(physics::ShapeDef::convexHull(points));
+  physics::ShapeDef hullDef = physics::ShapeDef::convexHull(points);
+  hullDef.maxHullVertices = 48;
+  auto r = w.physics.createShape(hullDef);
   if (r.ok()) return r.value();
   if (reason) *reason = r.reason();
   return {};
@@ -568,6 +614,7 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
       if (depth < sp->maxDepth) commands.add<Splitable>(e, pieceSplitable);
     }
     ev.pieces.push_back(e);
+    ev.capLoops.push_back(piece.capLoops);
     ev.piecesMass += mass;
     ++k;
   }

@@ -43,6 +43,7 @@ struct SplitEvent {
   ecs::Entity original;
   std::string originalName;     // its Name at the time of the split, if it had one
   std::vector<ecs::Entity> pieces;
+  std::vector<uint32_t> capLoops;  // per piece: boundary loops capped on it (2 for an annulus)
   geometry::SplitStatus status = geometry::SplitStatus::Ok;
   std::string message;
   double parentMass = 0.0;

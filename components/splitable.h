@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -66,6 +67,10 @@ struct Splitter {
   physics::TriggerId trigger;   // the finite trigger shape (a thin box along the plane)
   glm::vec3 halfExtents{1.f, 0.02f, 1.f};  // of the trigger box, in the splitter frame
   uint32_t cuts = 0;            // how many split requests it has issued
+  // Persistent splitters: state-dump ids of the objects cut in the current pass and of the pieces
+  // those cuts made, while they still touch the trigger. They are not cut again until they have
+  // stopped touching it (a new pass); the split system keeps the list.
+  std::vector<uint64_t> passing;
 };
 
 }  // namespace cleave::components

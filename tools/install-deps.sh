@@ -11,7 +11,7 @@ PACKAGES=(
   nlohmann-json3-dev libimgui-dev
   libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0 libgbm1 libglapi-mesa
   libosmesa6-dev python3-glad
-  libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels
+  libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels libcgal-demo
   xvfb xauth xdotool x11-apps
 )
 

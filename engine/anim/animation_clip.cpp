@@ -18,7 +18,8 @@ size_t valuesPerKey(const Channel& channel) {
 }
 
 bool wellFormed(const Channel& channel) {
-  return !channel.times.empty() && channel.values.size() == channel.times.size() * valuesPerKey(channel);
+  return !channel.times.empty() &&
+         channel.values.size() == channel.times.size() * valuesPerKey(channel);
 }
 
 glm::quat toQuat(const glm::vec4& v) { return glm::quat(v.w, v.x, v.y, v.z); }
@@ -36,12 +37,14 @@ glm::vec4 evaluate(const Channel& channel, float t, bool rotation) {
   auto value = [&](size_t key) { return channel.values[key * stride + centre]; };
   if (t <= times.front()) return value(0);
   if (t >= times.back()) return value(times.size() - 1);
-  const size_t k1 = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+  const size_t k1 =
+      static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
   const size_t k0 = k1 - 1;
   const float interval = times[k1] - times[k0];
   const float s = interval > 0.f ? (t - times[k0]) / interval : 0.f;
   switch (channel.interpolation) {
-    case Interpolation::Step: return value(k0);
+    case Interpolation::Step:
+      return value(k0);
     case Interpolation::Linear: {
       if (!rotation) return glm::mix(value(k0), value(k1), s);
       const glm::quat a = toQuat(value(k0));
@@ -55,8 +58,8 @@ glm::vec4 evaluate(const Channel& channel, float t, bool rotation) {
       const glm::vec4 b0 = channel.values[k0 * 3 + 2] * interval;
       const glm::vec4 a1 = channel.values[k1 * 3 + 0] * interval;
       const float s2 = s * s, s3 = s2 * s;
-      return (2.f * s3 - 3.f * s2 + 1.f) * v0 + (s3 - 2.f * s2 + s) * b0 + (-2.f * s3 + 3.f * s2) * v1 +
-             (s3 - s2) * a1;
+      return (2.f * s3 - 3.f * s2 + 1.f) * v0 + (s3 - 2.f * s2 + s) * b0 +
+             (-2.f * s3 + 3.f * s2) * v1 + (s3 - s2) * a1;
     }
   }
   return value(k0);
@@ -78,20 +81,23 @@ bool validateClip(const AnimationClip& clip, size_t jointCount, std::string* rea
       if (reason) *reason = "clip '" + clip.name + "' channel " + std::to_string(c) + ": " + why;
       return false;
     };
-    if (channel.joint >= jointCount) return fail("joint " + std::to_string(channel.joint) + " is not in the skeleton");
+    if (channel.joint >= jointCount)
+      return fail("joint " + std::to_string(channel.joint) + " is not in the skeleton");
     if (channel.times.empty()) return fail("no keys");
     if (!wellFormed(channel)) {
-      return fail(std::to_string(channel.values.size()) + " values for " + std::to_string(channel.times.size()) +
-                  " keys");
+      return fail(std::to_string(channel.values.size()) + " values for " +
+                  std::to_string(channel.times.size()) + " keys");
     }
     for (size_t k = 0; k < channel.times.size(); ++k) {
-      if (!std::isfinite(channel.times[k])) return fail("key " + std::to_string(k) + " has a non-finite time");
+      if (!std::isfinite(channel.times[k]))
+        return fail("key " + std::to_string(k) + " has a non-finite time");
       if (k > 0 && !(channel.times[k] > channel.times[k - 1])) {
         return fail("key times are not strictly increasing at key " + std::to_string(k));
       }
     }
     for (const glm::vec4& v : channel.values) {
-      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) || !std::isfinite(v.w)) {
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z) ||
+          !std::isfinite(v.w)) {
         return fail("a value is not finite");
       }
     }
@@ -107,16 +113,23 @@ float clipTime(const AnimationClip& clip, float time, bool loop) {
   return t >= clip.duration ? 0.f : t;
 }
 
-void sampleClip(const Skeleton& skeleton, const AnimationClip& clip, float time, bool loop, Pose& out) {
+void sampleClip(const Skeleton& skeleton, const AnimationClip& clip, float time, bool loop,
+                Pose& out) {
   restPose(skeleton, out);
   const float t = clipTime(clip, time, loop);
   for (const Channel& channel : clip.channels) {
     if (channel.joint >= out.size() || !wellFormed(channel)) continue;
     Transform& target = out[channel.joint];
     switch (channel.path) {
-      case ChannelPath::Translation: target.translation = glm::vec3(evaluate(channel, t, false)); break;
-      case ChannelPath::Scale: target.scale = glm::vec3(evaluate(channel, t, false)); break;
-      case ChannelPath::Rotation: target.rotation = normalizedOrIdentity(toQuat(evaluate(channel, t, true))); break;
+      case ChannelPath::Translation:
+        target.translation = glm::vec3(evaluate(channel, t, false));
+        break;
+      case ChannelPath::Scale:
+        target.scale = glm::vec3(evaluate(channel, t, false));
+        break;
+      case ChannelPath::Rotation:
+        target.rotation = normalizedOrIdentity(toQuat(evaluate(channel, t, true)));
+        break;
     }
   }
 }
@@ -175,13 +188,12 @@ void Animator::evaluate(Pose& out) {
 }
 
 void Animator::evaluateJointMatrices(std::vector<glm::mat4>& out) {
-  Pose pose;
-  evaluate(pose);
+  evaluate(pose_);
   if (skeleton_ == nullptr) {
     out.clear();
     return;
   }
-  poseToJointMatrices(*skeleton_, pose, out);
+  poseToJointMatrices(*skeleton_, pose_, out);
 }
 
 }  // namespace cleave::anim

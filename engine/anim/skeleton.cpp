@@ -4,7 +4,6 @@
 #include "engine/anim/skeleton.h"
 
 #include <cassert>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace cleave::anim {
@@ -30,7 +29,8 @@ bool validateSkeleton(const Skeleton& skeleton, std::string* reason) {
   for (size_t j = 0; j < n; ++j) {
     const int32_t parent = skeleton.joints[j].parent;
     if (parent < -1 || parent >= static_cast<int32_t>(n) || parent == static_cast<int32_t>(j)) {
-      if (reason) *reason = "joint " + std::to_string(j) + " has an invalid parent " + std::to_string(parent);
+      if (reason)
+        *reason = "joint " + std::to_string(j) + " has an invalid parent " + std::to_string(parent);
       return false;
     }
   }
@@ -43,7 +43,9 @@ bool validateSkeleton(const Skeleton& skeleton, std::string* reason) {
       ++steps;
     }
     if (at >= 0) {
-      if (reason) *reason = "joint " + std::to_string(j) + " ('" + skeleton.joints[j].name + "') is in a parent cycle";
+      if (reason)
+        *reason = "joint " + std::to_string(j) + " ('" + skeleton.joints[j].name +
+                  "') is in a parent cycle";
       return false;
     }
   }
@@ -74,7 +76,8 @@ void localToGlobal(const Skeleton& skeleton, const Pose& local, std::vector<glm:
   assert(local.size() == n);
   global.resize(n);
   bool ordered = true;
-  for (size_t j = 0; j < n && ordered; ++j) ordered = skeleton.joints[j].parent < static_cast<int32_t>(j);
+  for (size_t j = 0; j < n && ordered; ++j)
+    ordered = skeleton.joints[j].parent < static_cast<int32_t>(j);
   auto compute = [&](size_t j) {
     const Joint& joint = skeleton.joints[j];
     const glm::mat4 own = joint.offset * local[j].matrix();
@@ -101,7 +104,8 @@ void localToGlobal(const Skeleton& skeleton, const Pose& local, std::vector<glm:
   }
 }
 
-void jointMatrices(const Skeleton& skeleton, std::span<const glm::mat4> global, std::vector<glm::mat4>& out) {
+void jointMatrices(const Skeleton& skeleton, std::span<const glm::mat4> global,
+                   std::vector<glm::mat4>& out) {
   assert(global.size() == skeleton.joints.size());
   out.resize(global.size());
   for (size_t j = 0; j < global.size(); ++j) out[j] = global[j] * skeleton.joints[j].inverseBind;
@@ -115,7 +119,8 @@ void poseToJointMatrices(const Skeleton& skeleton, const Pose& local, std::vecto
 void setBindPose(Skeleton& skeleton, const Pose& local) {
   std::vector<glm::mat4> global;
   localToGlobal(skeleton, local, global);
-  for (size_t j = 0; j < global.size(); ++j) skeleton.joints[j].inverseBind = glm::inverse(global[j]);
+  for (size_t j = 0; j < global.size(); ++j)
+    skeleton.joints[j].inverseBind = glm::inverse(global[j]);
 }
 
 }  // namespace cleave::anim

@@ -2,10 +2,11 @@
 // to global transforms; global transforms to the joint matrices that skin a mesh.
 //
 // Spaces. A joint's local transform is relative to its parent joint (or, for a root joint, to the
-// model origin), after the joint's fixed `offset` (the transforms of non-joint nodes that sit between
-// two joints in a file; identity for skeletons built in code). Globals are in model space. The joint
-// matrix of joint j is global[j] * inverseBind[j]: it maps a bind-space vertex to model space, so a
-// skinned vertex is model * sum_k w_k * jointMatrix[j_k] * p (see geometry::MeshContainer).
+// model origin), after the joint's fixed `offset` (the transforms of non-joint nodes that sit
+// between two joints in a file; identity for skeletons built in code). Globals are in model space.
+// The joint matrix of joint j is global[j] * inverseBind[j]: it maps a bind-space vertex to model
+// space, so a skinned vertex is model * sum_k w_k * jointMatrix[j_k] * p (see
+// geometry::MeshContainer).
 //
 // Units: metres and radians; quaternions are unit length (w, x, y, z as in GLM).
 // Ownership: everything is plain values. No function allocates unless an output vector must grow.
@@ -14,12 +15,11 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
-#include <glm/gtc/quaternion.hpp>
 
 namespace cleave::anim {
 
@@ -34,10 +34,10 @@ struct Transform {
 
 struct Joint {
   std::string name;
-  int32_t parent = -1;             // index of the parent joint, -1 for a root
-  Transform rest;                  // local transform in the rest (bind) pose
-  glm::mat4 offset{1.f};           // fixed transform applied before `rest`/the animated local one
-  glm::mat4 inverseBind{1.f};      // model space -> joint space in the bind pose
+  int32_t parent = -1;         // index of the parent joint, -1 for a root
+  Transform rest;              // local transform in the rest (bind) pose
+  glm::mat4 offset{1.f};       // fixed transform applied before `rest`/the animated local one
+  glm::mat4 inverseBind{1.f};  // model space -> joint space in the bind pose
 };
 
 struct Skeleton {
@@ -66,7 +66,8 @@ void blendPoses(const Pose& a, const Pose& b, float t, Pose& out);
 void localToGlobal(const Skeleton& skeleton, const Pose& local, std::vector<glm::mat4>& global);
 
 // Joint matrices: global[j] * inverseBind[j].
-void jointMatrices(const Skeleton& skeleton, std::span<const glm::mat4> global, std::vector<glm::mat4>& out);
+void jointMatrices(const Skeleton& skeleton, std::span<const glm::mat4> global,
+                   std::vector<glm::mat4>& out);
 
 // Convenience: local pose -> joint matrices in one call.
 void poseToJointMatrices(const Skeleton& skeleton, const Pose& local, std::vector<glm::mat4>& out);

@@ -3,12 +3,12 @@
 // users' code in any other way than as a header of the assets layer; it needs <tiny_gltf.h>.
 #pragma once
 
+#include <tiny_gltf.h>
+
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
-#include <tiny_gltf.h>
 
 namespace cleave::assets::detail {
 
@@ -22,7 +22,8 @@ struct AccessorView {
   bool normalized = false;
 };
 
-// Fills `view` for accessor `index`; false with a reason (naming the accessor) when it cannot be read.
+// Fills `view` for accessor `index`; false with a reason (naming the accessor) when it cannot be
+// read.
 bool viewAccessor(const tinygltf::Model& model, int index, AccessorView& view, std::string& reason);
 // Component c of element i as a double (normalized integers mapped to [0, 1] or [-1, 1]).
 double component(const AccessorView& view, size_t i, int c);
@@ -34,10 +35,12 @@ std::string oneLine(const std::string& text);
 bool geometryNeutral(const std::string& extension);
 
 // tinygltf callbacks: skip image decoding; refuse external files (glTF read from memory).
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*);
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+               const unsigned char*, int, void*);
 bool noFileExists(const std::string&, void*);
 std::string sameFilePath(const std::string& path, void*);
 bool noReadWholeFile(std::vector<unsigned char>*, std::string* err, const std::string& path, void*);
-bool noWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*);
+bool noWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                      void*);
 
 }  // namespace cleave::assets::detail

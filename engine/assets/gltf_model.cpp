@@ -2,17 +2,18 @@
 // skins and animations (see model.h). tinygltf parses the JSON and the GLB container; everything it
 // hands over (indices of nodes, meshes, accessors, materials, textures, images, skins) is checked
 // here before use, because a file can claim anything.
+#include <stb_image.h>
+#include <tiny_gltf.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <optional>
-
-#include <glm/gtc/quaternion.hpp>
-#include <stb_image.h>
-#include <tiny_gltf.h>
+#include <string_view>
 
 #include "engine/assets/gltf_access.h"
 #include "engine/assets/model.h"
@@ -36,7 +37,8 @@ using detail::viewAccessor;
 bool decodeImage(tinygltf::Image* image, const int index, std::string*, std::string* warn, int, int,
                  const unsigned char* bytes, int size, void*) {
   int w = 0, h = 0, channels = 0;
-  unsigned char* pixels = size > 0 ? stbi_load_from_memory(bytes, size, &w, &h, &channels, 4) : nullptr;
+  unsigned char* pixels =
+      size > 0 ? stbi_load_from_memory(bytes, size, &w, &h, &channels, 4) : nullptr;
   if (pixels == nullptr || w <= 0 || h <= 0) {
     if (warn) {
       *warn += "image " + std::to_string(index) + " could not be decoded (" +
@@ -57,7 +59,9 @@ bool decodeImage(tinygltf::Image* image, const int index, std::string*, std::str
   return true;
 }
 
-bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite3(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 class Loader {
  public:
@@ -87,10 +91,12 @@ class Loader {
       const tinygltf::Node& node = gltf_.nodes[n];
       if (node.mesh < 0) continue;
       if (static_cast<size_t>(node.mesh) >= gltf_.meshes.size()) {
-        return fail("node " + std::to_string(n) + " refers to missing mesh " + std::to_string(node.mesh));
+        return fail("node " + std::to_string(n) + " refers to missing mesh " +
+                    std::to_string(node.mesh));
       }
       if (node.skin >= 0 && static_cast<size_t>(node.skin) >= gltf_.skins.size()) {
-        return fail("node " + std::to_string(n) + " refers to missing skin " + std::to_string(node.skin));
+        return fail("node " + std::to_string(n) + " refers to missing skin " +
+                    std::to_string(node.skin));
       }
       ModelMesh out;
       out.skin = node.skin;
@@ -125,10 +131,12 @@ class Loader {
     for (size_t i = 0; i < n; ++i) {
       for (int child : gltf_.nodes[i].children) {
         if (child < 0 || static_cast<size_t>(child) >= n) {
-          return fail("node " + std::to_string(i) + " has a missing child " + std::to_string(child));
+          return fail("node " + std::to_string(i) + " has a missing child " +
+                      std::to_string(child));
         }
         if (parent_[static_cast<size_t>(child)] >= 0 || static_cast<size_t>(child) == i) {
-          return fail("node " + std::to_string(child) + " has two parents or is its own child (a node cycle)");
+          return fail("node " + std::to_string(child) +
+                      " has two parents or is its own child (a node cycle)");
         }
         parent_[static_cast<size_t>(child)] = static_cast<int>(i);
       }
@@ -146,18 +154,23 @@ class Loader {
     global_.assign(n, glm::dmat4(1.0));
     std::vector<uint8_t> visited(n, 0);
     std::vector<std::pair<int, glm::dmat4>> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0)});
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it)
+      stack.push_back({*it, glm::dmat4(1.0)});
     while (!stack.empty()) {
       const auto [node, parentMatrix] = stack.back();
       stack.pop_back();
-      if (node < 0 || static_cast<size_t>(node) >= n) return fail("the scene names missing node " + std::to_string(node));
+      if (node < 0 || static_cast<size_t>(node) >= n)
+        return fail("the scene names missing node " + std::to_string(node));
       const size_t i = static_cast<size_t>(node);
-      if (visited[i]) return fail("node " + std::to_string(node) + " is reached twice from the scene (a node cycle)");
+      if (visited[i])
+        return fail("node " + std::to_string(node) +
+                    " is reached twice from the scene (a node cycle)");
       visited[i] = 1;
       global_[i] = parentMatrix * detail::localMatrix(gltf_.nodes[i]);
       order_.push_back(i);
       const auto& children = gltf_.nodes[i].children;
-      for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, global_[i]});
+      for (auto it = children.rbegin(); it != children.rend(); ++it)
+        stack.push_back({*it, global_[i]});
     }
     // Nodes outside the scene (joints may be) get their transform through their parent chain.
     for (size_t i = 0; i < n; ++i) {
@@ -176,7 +189,8 @@ class Loader {
       const tinygltf::Image& image = gltf_.images[i];
       ModelImage out;
       out.name = !image.name.empty() ? image.name : image.uri;
-      const size_t expected = size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) * 4;
+      const size_t expected =
+          size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) * 4;
       if (image.width > 0 && image.height > 0 && image.component == 4 && image.bits == 8 &&
           image.image.size() == expected) {
         out.width = image.width;
@@ -193,7 +207,8 @@ class Loader {
   int32_t imageOfTexture(int texture, size_t material) {
     if (texture < 0) return -1;
     if (static_cast<size_t>(texture) >= gltf_.textures.size()) {
-      warn("material " + std::to_string(material) + " names missing texture " + std::to_string(texture));
+      warn("material " + std::to_string(material) + " names missing texture " +
+           std::to_string(texture));
       return -1;
     }
     const int source = gltf_.textures[static_cast<size_t>(texture)].source;
@@ -211,9 +226,11 @@ class Loader {
       out.name = material.name.empty() ? "material_" + std::to_string(i) : material.name;
       const std::vector<double>& factor = material.pbrMetallicRoughness.baseColorFactor;
       if (factor.size() == 4) {
-        out.baseColorFactor = glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
+        out.baseColorFactor =
+            glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
         for (int c = 0; c < 4; ++c) {
-          if (!std::isfinite(out.baseColorFactor[c])) return fail("material " + std::to_string(i) + " has a non-finite base colour");
+          if (!std::isfinite(out.baseColorFactor[c]))
+            return fail("material " + std::to_string(i) + " has a non-finite base colour");
         }
       }
       out.baseColorImage = imageOfTexture(material.pbrMetallicRoughness.baseColorTexture.index, i);
@@ -225,7 +242,8 @@ class Loader {
   }
 
   // One skeleton per skin. A joint's parent is its nearest ancestor node that is a joint of the
-  // same skin; non-joint nodes between them (or above a root joint) become the joint's fixed offset.
+  // same skin; non-joint nodes between them (or above a root joint) become the joint's fixed
+  // offset.
   bool readSkins(Model& model) {
     for (size_t s = 0; s < gltf_.skins.size(); ++s) {
       const tinygltf::Skin& skin = gltf_.skins[s];
@@ -246,7 +264,8 @@ class Loader {
       if (skin.inverseBindMatrices >= 0) {
         AccessorView view;
         std::string reason;
-        if (!viewAccessor(gltf_, skin.inverseBindMatrices, view, reason)) return fail(what + ": " + reason);
+        if (!viewAccessor(gltf_, skin.inverseBindMatrices, view, reason))
+          return fail(what + ": " + reason);
         if (view.components != 16 || view.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
             view.count < skin.joints.size()) {
           return fail(what + ": inverse bind matrices must be float MAT4, one per joint");
@@ -254,7 +273,8 @@ class Loader {
         for (size_t j = 0; j < skin.joints.size(); ++j) {
           for (int c = 0; c < 16; ++c) {
             const double v = component(view, j, c);
-            if (!std::isfinite(v)) return fail(what + ": inverse bind matrix " + std::to_string(j) + " is not finite");
+            if (!std::isfinite(v))
+              return fail(what + ": inverse bind matrix " + std::to_string(j) + " is not finite");
             inverseBind[j][c / 4][c % 4] = static_cast<float>(v);
           }
         }
@@ -272,11 +292,15 @@ class Loader {
         if (n.matrix.size() == 16) {
           offset = detail::localMatrix(n);  // matrix nodes are not animated (glTF rule)
         } else {
-          if (n.translation.size() == 3) joint.rest.translation = glm::vec3(n.translation[0], n.translation[1], n.translation[2]);
+          if (n.translation.size() == 3)
+            joint.rest.translation =
+                glm::vec3(n.translation[0], n.translation[1], n.translation[2]);
           if (n.rotation.size() == 4) {
-            glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2]));
+            glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                        float(n.rotation[2]));
             const float len = glm::length(q);
-            if (!(len > 0.f) || !std::isfinite(len)) return fail("node " + std::to_string(node) + " has an invalid rotation");
+            if (!(len > 0.f) || !std::isfinite(len))
+              return fail("node " + std::to_string(node) + " has an invalid rotation");
             joint.rest.rotation = q / len;
           }
           if (n.scale.size() == 3) joint.rest.scale = glm::vec3(n.scale[0], n.scale[1], n.scale[2]);
@@ -291,7 +315,8 @@ class Loader {
         joint.offset = glm::mat4(between * offset);
         for (int c = 0; c < 4; ++c) {
           for (int r = 0; r < 4; ++r) {
-            if (!std::isfinite(joint.offset[c][r])) return fail(what + ": joint " + std::to_string(j) + " has a non-finite transform");
+            if (!std::isfinite(joint.offset[c][r]))
+              return fail(what + ": joint " + std::to_string(j) + " has a non-finite transform");
           }
         }
       }
@@ -317,13 +342,19 @@ class Loader {
       for (size_t s = 0; s < animation.samplers.size(); ++s) {
         const tinygltf::AnimationSampler& in = animation.samplers[s];
         Sampler& out = samplers[s];
-        if (in.interpolation == "STEP") out.interpolation = anim::Interpolation::Step;
-        else if (in.interpolation == "CUBICSPLINE") out.interpolation = anim::Interpolation::CubicSpline;
-        else if (in.interpolation.empty() || in.interpolation == "LINEAR") out.interpolation = anim::Interpolation::Linear;
-        else return fail(what + " sampler " + std::to_string(s) + ": unknown interpolation " + in.interpolation);
+        if (in.interpolation == "STEP")
+          out.interpolation = anim::Interpolation::Step;
+        else if (in.interpolation == "CUBICSPLINE")
+          out.interpolation = anim::Interpolation::CubicSpline;
+        else if (in.interpolation.empty() || in.interpolation == "LINEAR")
+          out.interpolation = anim::Interpolation::Linear;
+        else
+          return fail(what + " sampler " + std::to_string(s) + ": unknown interpolation " +
+                      in.interpolation);
         AccessorView input, output;
         std::string reason;
-        if (!viewAccessor(gltf_, in.input, input, reason) || !viewAccessor(gltf_, in.output, output, reason)) {
+        if (!viewAccessor(gltf_, in.input, input, reason) ||
+            !viewAccessor(gltf_, in.output, output, reason)) {
           return fail(what + " sampler " + std::to_string(s) + ": " + reason);
         }
         if (input.components != 1 || input.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
@@ -333,14 +364,16 @@ class Loader {
         for (size_t k = 0; k < input.count; ++k) {
           const float t = static_cast<float>(component(input, k, 0));
           if (!std::isfinite(t) || (!out.times.empty() && !(t > out.times.back()))) {
-            return fail(what + " sampler " + std::to_string(s) + ": key times must be finite and increasing");
+            return fail(what + " sampler " + std::to_string(s) +
+                        ": key times must be finite and increasing");
           }
           out.times.push_back(t);
         }
         if (output.components <= 4) {
           for (size_t k = 0; k < output.count; ++k) {
             glm::vec4 v(0.f);
-            for (int c = 0; c < output.components; ++c) v[c] = static_cast<float>(component(output, k, c));
+            for (int c = 0; c < output.components; ++c)
+              v[c] = static_cast<float>(component(output, k, c));
             out.values.push_back(v);
           }
         }
@@ -352,7 +385,8 @@ class Loader {
         for (size_t c = 0; c < animation.channels.size(); ++c) {
           const tinygltf::AnimationChannel& channel = animation.channels[c];
           if (channel.sampler < 0 || static_cast<size_t>(channel.sampler) >= samplers.size()) {
-            return fail(what + " channel " + std::to_string(c) + " names missing sampler " + std::to_string(channel.sampler));
+            return fail(what + " channel " + std::to_string(c) + " names missing sampler " +
+                        std::to_string(channel.sampler));
           }
           if (channel.target_node < 0) continue;
           const auto it = std::find(skin.joints.begin(), skin.joints.end(), channel.target_node);
@@ -360,20 +394,26 @@ class Loader {
           anim::Channel out;
           out.joint = static_cast<uint32_t>(it - skin.joints.begin());
           int components = 0;
-          if (channel.target_path == "translation") out.path = anim::ChannelPath::Translation, components = 3;
-          else if (channel.target_path == "rotation") out.path = anim::ChannelPath::Rotation, components = 4;
-          else if (channel.target_path == "scale") out.path = anim::ChannelPath::Scale, components = 3;
-          else continue;  // morph-target weights
+          if (channel.target_path == "translation")
+            out.path = anim::ChannelPath::Translation, components = 3;
+          else if (channel.target_path == "rotation")
+            out.path = anim::ChannelPath::Rotation, components = 4;
+          else if (channel.target_path == "scale")
+            out.path = anim::ChannelPath::Scale, components = 3;
+          else
+            continue;  // morph-target weights
           const Sampler& sampler = samplers[static_cast<size_t>(channel.sampler)];
           out.interpolation = sampler.interpolation;
           out.times = sampler.times;
           out.values = sampler.values;
           const size_t perKey = out.interpolation == anim::Interpolation::CubicSpline ? 3 : 1;
-          if (sampler.components != components || out.values.size() != out.times.size() * perKey || out.times.empty()) {
-            return fail(what + " channel " + std::to_string(c) + ": the sampler output does not match its " +
-                        channel.target_path + " keys");
+          if (sampler.components != components || out.values.size() != out.times.size() * perKey ||
+              out.times.empty()) {
+            return fail(what + " channel " + std::to_string(c) +
+                        ": the sampler output does not match its " + channel.target_path + " keys");
           }
-          if (out.path == anim::ChannelPath::Rotation && out.interpolation != anim::Interpolation::CubicSpline) {
+          if (out.path == anim::ChannelPath::Rotation &&
+              out.interpolation != anim::Interpolation::CubicSpline) {
             for (glm::vec4& q : out.values) {
               const float len = glm::length(q);
               if (len > 0.f && std::isfinite(len)) q /= len;
@@ -406,14 +446,17 @@ class Loader {
     return true;
   }
 
-  bool readPrimitive(size_t meshIndex, size_t primitiveIndex, const glm::dmat4& transform, ModelMesh& out) {
+  bool readPrimitive(size_t meshIndex, size_t primitiveIndex, const glm::dmat4& transform,
+                     ModelMesh& out) {
     const tinygltf::Primitive& primitive = gltf_.meshes[meshIndex].primitives[primitiveIndex];
-    const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex) + ": ";
+    const std::string where =
+        "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex) + ": ";
     if (primitive.extensions.count("KHR_draco_mesh_compression") != 0) {
       return fail(where + "uses KHR_draco_mesh_compression, which is not supported");
     }
     const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
       warn(where + "mode " + std::to_string(mode) + " (points or lines) skipped");
       return true;
     }
@@ -422,15 +465,16 @@ class Loader {
       const auto it = primitive.attributes.find(key);
       if (it == primitive.attributes.end()) return true;
       std::string reason;
-      if (!viewAccessor(gltf_, it->second, view, reason)) return fail(where + std::string(key) + ": " + reason);
+      if (!viewAccessor(gltf_, it->second, view, reason))
+        return fail(where + std::string(key) + ": " + reason);
       present = true;
       return true;
     };
     AccessorView positions, normals, uvs, joints, weights;
     bool hasPosition, hasNormal, hasUv, hasJoints, hasWeights;
-    if (!attribute("POSITION", positions, hasPosition) || !attribute("NORMAL", normals, hasNormal) ||
-        !attribute("TEXCOORD_0", uvs, hasUv) || !attribute("JOINTS_0", joints, hasJoints) ||
-        !attribute("WEIGHTS_0", weights, hasWeights)) {
+    if (!attribute("POSITION", positions, hasPosition) ||
+        !attribute("NORMAL", normals, hasNormal) || !attribute("TEXCOORD_0", uvs, hasUv) ||
+        !attribute("JOINTS_0", joints, hasJoints) || !attribute("WEIGHTS_0", weights, hasWeights)) {
       return false;
     }
     if (!hasPosition) return fail(where + "has no POSITION attribute");
@@ -438,29 +482,35 @@ class Loader {
     if (positions.components != 3 || positions.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
       return fail(where + "POSITION must be a float VEC3");
     }
-    if (hasNormal && (normals.components != 3 || normals.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || normals.count != n)) {
+    if (hasNormal &&
+        (normals.components != 3 || normals.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
+         normals.count != n)) {
       return fail(where + "NORMAL must be a float VEC3 with one entry per vertex");
     }
     if (hasUv) {
-      const bool typeOk = uvs.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                          (uvs.normalized && (uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                              uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+      const bool typeOk =
+          uvs.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+          (uvs.normalized && (uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                              uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
       if (uvs.components != 2 || !typeOk || uvs.count != n) {
         return fail(where + "TEXCOORD_0 must be a VEC2 (float or normalized unsigned) per vertex");
       }
     }
     const bool skinned = out.skin >= 0;
-    const size_t jointCount = skinned ? gltf_.skins[static_cast<size_t>(out.skin)].joints.size() : 0;
-    if (skinned && hasJoints != hasWeights) return fail(where + "JOINTS_0 and WEIGHTS_0 must come together");
+    const size_t jointCount =
+        skinned ? gltf_.skins[static_cast<size_t>(out.skin)].joints.size() : 0;
+    if (skinned && hasJoints != hasWeights)
+      return fail(where + "JOINTS_0 and WEIGHTS_0 must come together");
     if (skinned && hasJoints) {
       if (joints.components != 4 || joints.count != n ||
           (joints.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
            joints.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)) {
         return fail(where + "JOINTS_0 must be an unsigned byte or short VEC4 per vertex");
       }
-      const bool weightTypeOk = weights.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                                (weights.normalized && (weights.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                                        weights.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+      const bool weightTypeOk =
+          weights.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+          (weights.normalized && (weights.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                  weights.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
       if (weights.components != 4 || weights.count != n || !weightTypeOk) {
         return fail(where + "WEIGHTS_0 must be a float or normalized unsigned VEC4 per vertex");
       }
@@ -473,18 +523,21 @@ class Loader {
     if (primitive.indices >= 0) {
       AccessorView indexView;
       std::string reason;
-      if (!viewAccessor(gltf_, primitive.indices, indexView, reason)) return fail(where + "indices: " + reason);
-      if (indexView.components != 1 || (indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-                                        indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                                        indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
+      if (!viewAccessor(gltf_, primitive.indices, indexView, reason))
+        return fail(where + "indices: " + reason);
+      if (indexView.components != 1 ||
+          (indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+           indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+           indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
         return fail(where + "indices must be unsigned byte, short or int scalars");
       }
       corners.resize(indexView.count);
       for (size_t i = 0; i < indexView.count; ++i) {
         const double value = component(indexView, i, 0);
         if (value >= static_cast<double>(n)) {
-          return fail(where + "index " + std::to_string(static_cast<uint64_t>(value)) + " at position " +
-                      std::to_string(i) + " is out of range (" + std::to_string(n) + " vertices)");
+          return fail(where + "index " + std::to_string(static_cast<uint64_t>(value)) +
+                      " at position " + std::to_string(i) + " is out of range (" +
+                      std::to_string(n) + " vertices)");
         }
         corners[i] = static_cast<uint32_t>(value);
       }
@@ -495,13 +548,16 @@ class Loader {
     }
     std::vector<uint32_t> triangles;
     if (mode == TINYGLTF_MODE_TRIANGLES) {
-      if (corners.size() % 3 != 0) warn(where + "index count not a multiple of 3; the last partial triangle is ignored");
-      triangles.assign(corners.begin(), corners.begin() + static_cast<std::ptrdiff_t>(corners.size() / 3 * 3));
+      if (corners.size() % 3 != 0)
+        warn(where + "index count not a multiple of 3; the last partial triangle is ignored");
+      triangles.assign(corners.begin(),
+                       corners.begin() + static_cast<std::ptrdiff_t>(corners.size() / 3 * 3));
     } else {
       for (size_t i = 0; i + 2 < corners.size(); ++i) {
         if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
           const bool odd = (i % 2) == 1;
-          triangles.insert(triangles.end(), {corners[i], corners[odd ? i + 2 : i + 1], corners[odd ? i + 1 : i + 2]});
+          triangles.insert(triangles.end(), {corners[i], corners[odd ? i + 2 : i + 1],
+                                             corners[odd ? i + 1 : i + 2]});
         } else {
           triangles.insert(triangles.end(), {corners[i + 1], corners[i + 2], corners[0]});
         }
@@ -509,7 +565,8 @@ class Loader {
     }
     if (triangles.empty()) return true;
     const uint64_t elements = uint64_t{n} + triangles.size();
-    if (elements > budget_) return fail("the scene instantiates more geometry than the file size allows");
+    if (elements > budget_)
+      return fail("the scene instantiates more geometry than the file size allows");
     budget_ -= elements;
 
     geometry::MeshData& m = out.mesh;
@@ -519,7 +576,8 @@ class Loader {
     const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
     const bool mirrored = glm::determinant(linear) < 0.0;
     for (size_t i = 0; i < n; ++i) {
-      const glm::dvec3 local(component(positions, i, 0), component(positions, i, 1), component(positions, i, 2));
+      const glm::dvec3 local(component(positions, i, 0), component(positions, i, 1),
+                             component(positions, i, 2));
       const glm::dvec3 p = glm::dvec3(transform * glm::dvec4(local, 1.0));
       if (!finite3(local) || !finite3(p)) {
         return fail(where + "vertex " + std::to_string(i) + " has a non-finite position");
@@ -527,12 +585,15 @@ class Loader {
       m.positions.emplace_back(p);
       glm::vec3 normal(0.f);
       if (hasNormal) {
-        const glm::dvec3 t = normalMatrix * glm::dvec3(component(normals, i, 0), component(normals, i, 1), component(normals, i, 2));
+        const glm::dvec3 t =
+            normalMatrix * glm::dvec3(component(normals, i, 0), component(normals, i, 1),
+                                      component(normals, i, 2));
         const double len = glm::length(t);
         if (len > 0.0 && std::isfinite(len)) normal = glm::vec3(t / len);
       }
       m.normals.push_back(normal);
-      m.uv0.push_back(hasUv ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1)) : glm::vec2(0.f));
+      m.uv0.push_back(hasUv ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1))
+                            : glm::vec2(0.f));
       if (skinned) {
         glm::u16vec4 j(0);
         glm::vec4 w(1.f, 0.f, 0.f, 0.f);
@@ -543,8 +604,9 @@ class Loader {
             if (!std::isfinite(raw[k]) || raw[k] < 0.0) raw[k] = 0.0;
             const double joint = component(joints, i, k);
             if (raw[k] > 0.0 && joint >= static_cast<double>(jointCount)) {
-              return fail(where + "vertex " + std::to_string(i) + " uses joint " + std::to_string(uint64_t(joint)) +
-                          " of a skin with " + std::to_string(jointCount) + " joints");
+              return fail(where + "vertex " + std::to_string(i) + " uses joint " +
+                          std::to_string(uint64_t(joint)) + " of a skin with " +
+                          std::to_string(jointCount) + " joints");
             }
             j[k] = raw[k] > 0.0 ? static_cast<uint16_t>(joint) : 0;
             total += raw[k];
@@ -571,7 +633,8 @@ class Loader {
       materialId = static_cast<uint32_t>(gltf_.materials.size());
       usesDefaultMaterial_ = true;
     }
-    m.submeshes.push_back(geometry::SubMesh{static_cast<uint32_t>(m.indices.size()), 0, materialId});
+    m.submeshes.push_back(
+        geometry::SubMesh{static_cast<uint32_t>(m.indices.size()), 0, materialId});
     const size_t firstIndex = m.indices.size();
     for (size_t t = 0; t < triangles.size(); t += 3) {
       const uint32_t a = static_cast<uint32_t>(base) + triangles[t];
@@ -583,18 +646,21 @@ class Loader {
 
     // Missing (or degenerate) normals: area-weighted smooth normals of this primitive's triangles.
     bool needNormals = !hasNormal;
-    for (size_t i = base; i < m.positions.size() && !needNormals; ++i) needNormals = m.normals[i] == glm::vec3(0.f);
+    for (size_t i = base; i < m.positions.size() && !needNormals; ++i)
+      needNormals = m.normals[i] == glm::vec3(0.f);
     if (needNormals) {
       std::vector<glm::dvec3> sum(n, glm::dvec3(0.0));
       for (size_t t = firstIndex; t < m.indices.size(); t += 3) {
-        const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]), c(m.positions[m.indices[t + 2]]);
+        const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
+            c(m.positions[m.indices[t + 2]]);
         const glm::dvec3 face = glm::cross(b - a, c - a);
         for (int k = 0; k < 3; ++k) sum[m.indices[t + k] - base] += face;
       }
       for (size_t i = 0; i < n; ++i) {
         if (hasNormal && m.normals[base + i] != glm::vec3(0.f)) continue;
         const double len = glm::length(sum[i]);
-        m.normals[base + i] = len > 0.0 && std::isfinite(len) ? glm::vec3(sum[i] / len) : glm::vec3(0.f, 1.f, 0.f);
+        m.normals[base + i] =
+            len > 0.0 && std::isfinite(len) ? glm::vec3(sum[i] / len) : glm::vec3(0.f, 1.f, 0.f);
       }
     }
     return true;
@@ -611,22 +677,58 @@ class Loader {
   bool anyUv_ = false;
 };
 
-ModelLoadResult failed(const std::string& name, const std::string& reason, std::vector<std::string> warnings = {}) {
+ModelLoadResult failed(const std::string& name, const std::string& reason,
+                       std::vector<std::string> warnings = {}) {
   ModelLoadResult result;
   result.error = name + ": " + reason;
   result.warnings = std::move(warnings);
   return result;
 }
 
-ModelLoadResult readModel(std::span<const uint8_t> bytes, const std::string& name, const std::optional<std::string>& baseDir) {
+// The names in the JSON's "extensionsRequired" array, found by a plain text scan. This runs before
+// tinygltf because a file with, say, Draco-compressed primitives is usually rejected by tinygltf
+// for a consequence (accessors without buffer views) rather than for the cause.
+std::vector<std::string> requiredExtensions(std::string_view json) {
+  std::vector<std::string> names;
+  const size_t key = json.find("\"extensionsRequired\"");
+  if (key == std::string_view::npos) return names;
+  const size_t open = json.find('[', key);
+  const size_t close = open == std::string_view::npos ? open : json.find(']', open);
+  if (close == std::string_view::npos) return names;
+  size_t at = open;
+  while (true) {
+    const size_t begin = json.find('"', at + 1);
+    if (begin == std::string_view::npos || begin > close) break;
+    const size_t end = json.find('"', begin + 1);
+    if (end == std::string_view::npos || end > close) break;
+    names.emplace_back(json.substr(begin + 1, end - begin - 1));
+    at = end;
+  }
+  return names;
+}
+
+ModelLoadResult readModel(std::span<const uint8_t> bytes, const std::string& name,
+                          const std::optional<std::string>& baseDir) {
   if (bytes.size() > UINT32_MAX) return failed(name, "file too large for glTF");
   if (bytes.empty()) return failed(name, "the file is empty");
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  std::string_view json(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  if (binary) {
+    uint32_t length = 0;
+    if (bytes.size() >= 20) std::memcpy(&length, bytes.data() + 12, 4);
+    json = bytes.size() >= 20 ? json.substr(20, std::min<size_t>(length, bytes.size() - 20))
+                              : std::string_view();
+  }
+  for (const std::string& extension : requiredExtensions(json)) {
+    if (!detail::geometryNeutral(extension)) {
+      return failed(name, "requires the glTF extension " + extension + ", which is not supported");
+    }
+  }
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(decodeImage, nullptr);
   if (!baseDir) {
-    tinygltf::FsCallbacks callbacks{detail::noFileExists, detail::sameFilePath, detail::noReadWholeFile,
-                                    detail::noWriteWholeFile, nullptr};
+    tinygltf::FsCallbacks callbacks{detail::noFileExists, detail::sameFilePath,
+                                    detail::noReadWholeFile, detail::noWriteWholeFile, nullptr};
     loader.SetFsCallbacks(callbacks);
   }
   tinygltf::Model gltf;
@@ -635,9 +737,11 @@ ModelLoadResult readModel(std::span<const uint8_t> bytes, const std::string& nam
   try {
     const std::string dir = baseDir.value_or("");
     if (binary) {
-      loaded = loader.LoadBinaryFromMemory(&gltf, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), dir);
+      loaded = loader.LoadBinaryFromMemory(&gltf, &err, &warn, bytes.data(),
+                                           static_cast<unsigned int>(bytes.size()), dir);
     } else {
-      loaded = loader.LoadASCIIFromString(&gltf, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+      loaded = loader.LoadASCIIFromString(&gltf, &err, &warn,
+                                          reinterpret_cast<const char*>(bytes.data()),
                                           static_cast<unsigned int>(bytes.size()), dir);
     }
   } catch (const std::exception& e) {
@@ -668,7 +772,8 @@ ModelLoadResult readModel(std::span<const uint8_t> bytes, const std::string& nam
 
 ModelLoadResult loadModel(const std::string& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return failed(path, "is a directory, not a glTF file");
+  if (std::filesystem::is_directory(path, ec))
+    return failed(path, "is a directory, not a glTF file");
   std::ifstream file(path, std::ios::binary);
   if (!file) return failed(path, "cannot open the file");
   file.seekg(0, std::ios::end);
@@ -677,7 +782,8 @@ ModelLoadResult loadModel(const std::string& path) {
   if (static_cast<uint64_t>(size) > UINT32_MAX) return failed(path, "file too large for glTF");
   std::vector<uint8_t> bytes(static_cast<size_t>(size));
   file.seekg(0);
-  if (size > 0 && !file.read(reinterpret_cast<char*>(bytes.data()), size)) return failed(path, "cannot read the file");
+  if (size > 0 && !file.read(reinterpret_cast<char*>(bytes.data()), size))
+    return failed(path, "cannot read the file");
   std::string baseDir = std::filesystem::path(path).parent_path().string();
   if (baseDir.empty()) baseDir = ".";
   return readModel(bytes, path, baseDir);

@@ -9,25 +9,25 @@
 // (materialId = index into Model::materials); points and lines are skipped with a warning.
 // Attributes: POSITION (float), NORMAL (computed, area-weighted smooth, when missing), TEXCOORD_0
 // (float or normalised integers), JOINTS_0 (unsigned byte or short) and WEIGHTS_0 (float or
-// normalised unsigned byte or short; renormalised to sum 1). No indices means a plain triangle list.
-// Animations: translation, rotation and scale channels, step, linear and cubic spline. Each glTF
-// animation becomes one clip per skin whose joints it moves (morph-target weights are skipped).
+// normalised unsigned byte or short; renormalised to sum 1). No indices means a plain triangle
+// list. Animations: translation, rotation and scale channels, step, linear and cubic spline. Each
+// glTF animation becomes one clip per skin whose joints it moves (morph-target weights are
+// skipped).
 //
 // Units: those of the file (the engine reads them as metres). Winding: counter-clockwise seen from
 // outside; a mirroring node transform of a static mesh flips the triangles back.
 //
-// Failure: no function throws and no input crashes; on failure `ok` is false, the model is empty and
-// `error` is one line "<file>: <reason>": an index out of range, a non-finite position, a missing
-// buffer, a node cycle, no scene, a required extension that is not supported (named, for example
-// KHR_draco_mesh_compression), joints outside their skin, a file without a triangle.
+// Failure: no function throws and no input crashes; on failure `ok` is false, the model is empty
+// and `error` is one line "<file>: <reason>": an index out of range, a non-finite position, a
+// missing buffer, a node cycle, no scene, a required extension that is not supported (named, for
+// example KHR_draco_mesh_compression), joints outside their skin, a file without a triangle.
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "engine/anim/animation_clip.h"
 #include "engine/anim/skeleton.h"
@@ -53,15 +53,16 @@ struct ModelMaterial {
 };
 
 struct ModelMesh {
-  std::string name;           // the node's name, else the mesh's
-  geometry::MeshData mesh;    // static: scene space; skinned: bind space with joints and weights
-  int32_t skin = -1;          // index into Model::skins for a skinned mesh, -1 for a static one
+  std::string name;         // the node's name, else the mesh's
+  geometry::MeshData mesh;  // static: scene space; skinned: bind space with joints and weights
+  int32_t skin = -1;        // index into Model::skins for a skinned mesh, -1 for a static one
 };
 
 struct ModelSkin {
   std::string name;
-  anim::Skeleton skeleton;                // joint j is the skin's j-th joint (JOINTS_0 values index it)
-  std::vector<anim::AnimationClip> clips; // the file's animations that move this skin, in file order
+  anim::Skeleton skeleton;  // joint j is the skin's j-th joint (JOINTS_0 values index it)
+  std::vector<anim::AnimationClip>
+      clips;  // the file's animations that move this skin, in file order
 };
 
 struct Model {

@@ -132,9 +132,6 @@ Moments integrate(std::span<const glm::dvec3> p, std::span<const uint32_t> indic
   return m;
 }
 
-  return 0.5 * (lo + hi);
-}
-
 glm::dvec3 vertexCentroid(std::span<const glm::dvec3> p, std::span<const uint32_t> indices) {
   glm::dvec3 sum(0.0);
   for (uint32_t index : indices) sum += p[index];

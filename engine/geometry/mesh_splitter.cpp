@@ -109,14 +109,17 @@ void mergeSkin(const glm::u16vec4& ja, const glm::vec4& wa, const glm::u16vec4& 
 void collectUsedJoints(const MeshData& piece, std::vector<uint16_t>& used) {
   used.clear();
   if (piece.joints.empty()) return;
-  uint64_t bits[1024] = {};  // 65536 joint ids
   uint32_t highest = 0;
+  for (const glm::u16vec4& j : piece.joints) {
+    highest = std::max({highest, uint32_t(j.x), uint32_t(j.y), uint32_t(j.z), uint32_t(j.w)});
+  }
+  uint64_t bits[1024];  // 65536 joint ids; only the words up to the highest id are used
+  std::fill(bits, bits + (highest >> 6) + 1, uint64_t(0));
   for (size_t v = 0; v < piece.joints.size(); ++v) {
     for (int k = 0; k < 4; ++k) {
       if (!(piece.weights[v][k] > 0.f)) continue;
       const uint32_t j = piece.joints[v][k];
       bits[j >> 6] |= uint64_t(1) << (j & 63);
-      highest = std::max(highest, j);
     }
   }
   for (uint32_t word = 0; word <= (highest >> 6); ++word) {

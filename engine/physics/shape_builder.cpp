@@ -121,8 +121,17 @@ Hull buildHull(std::span<const glm::vec3> points, uint32_t maxVertices, const st
       return hull;
     }
   }
+  // A dense point cloud (a finely tessellated piece) ends up reduced to maxVertices extreme
+  // vertices anyway: pick those first, so the exact hull and the width test run on few points.
+  std::vector<btVector3> input;
+  input.reserve(points.size());
+  for (const glm::vec3& p : points) input.emplace_back(p.x, p.y, p.z);
+  if (input.size() > size_t(maxVertices) * 2) {
+    std::vector<btVector3> reduced = reduceBySupport(input, maxVertices * 2);
+    if (reduced.size() >= 4) input = std::move(reduced);
+  }
   btConvexHullComputer exact;
-  exact.compute(&points[0].x, int(sizeof(glm::vec3)), int(points.size()), 0.0f, 0.0f);
+  exact.compute(input[0].m_floats, int(sizeof(btVector3)), int(input.size()), 0.0f, 0.0f);
   const double width = exact.vertices.size() >= 4 ? minFaceWidth(exact) : 0.0;
   if (width < kMinHullWidth) {
     hull.status = PhysicsStatus::DegenerateShape;

@@ -70,6 +70,7 @@ struct GpuSubMesh {
 
 struct GpuMesh {
   GLuint vao = 0, vbo = 0, ibo = 0;
+  GLuint skinVbo = 0;  // joints (4 x uint16) and weights (4 x float) per vertex; 0 without a skin
   std::vector<GpuSubMesh> submeshes;
   uint32_t generation = 0;
   bool alive = false;
@@ -87,6 +88,8 @@ struct DrawItem {
   glm::mat4 model;
   uint32_t firstMaterial;  // into Impl::materials
   uint32_t materialCount;
+  uint32_t firstJoint = 0;  // into Impl::jointMatrices
+  uint32_t jointCount = 0;  // 0: drawn unskinned
 };
 
 struct ColoredVertex {
@@ -108,6 +111,7 @@ struct Renderer::Impl {
   std::vector<uint32_t> freeTextures;
   std::vector<DrawItem> draws;
   std::vector<Material> materials;
+  std::vector<glm::mat4> jointMatrices;
   std::vector<ColoredVertex> worldLines;
   std::vector<ColoredVertex> overlayLines;
   std::vector<ColoredVertex> overlayTriangles;
@@ -164,6 +168,15 @@ struct Renderer::Impl {
     return snap * vp;
   }
 
+  // Skinning uniforms of the bound program for one draw.
+  void setSkin(const DrawItem& d, GLint skinnedLocation, GLint jointsLocation) const {
+    glUniform1i(skinnedLocation, d.jointCount > 0 ? 1 : 0);
+    if (d.jointCount > 0) {
+      glUniformMatrix4fv(jointsLocation, GLsizei(d.jointCount), GL_FALSE,
+                         glm::value_ptr(jointMatrices[d.firstJoint]));
+    }
+  }
+
   void uploadColored(const std::vector<ColoredVertex>& vertices) {
     glBindVertexArray(lineVao);
     glBindBuffer(GL_ARRAY_BUFFER, lineVbo);
@@ -181,6 +194,7 @@ Renderer::~Renderer() {
     glDeleteVertexArrays(1, &m.vao);
     glDeleteBuffers(1, &m.vbo);
     glDeleteBuffers(1, &m.ibo);
+    if (m.skinVbo) glDeleteBuffers(1, &m.skinVbo);
   }
   for (auto& t : impl_->textures)
     if (t.alive) glDeleteTextures(1, &t.id);
@@ -329,6 +343,28 @@ MeshHandle Renderer::uploadMesh(const geometry::MeshData& mesh, std::string* err
   glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(6 * sizeof(float)));
   glEnableVertexAttribArray(3);
   glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(8 * sizeof(float)));
+  g.skinVbo = 0;
+  if (mesh.joints.size() == n && mesh.weights.size() == n) {
+    // Skin: 4 unsigned shorts of joints, then 4 floats of weights, per vertex (24 bytes).
+    struct SkinVertex {
+      glm::u16vec4 joints;
+      glm::vec4 weights;
+    };
+    static_assert(sizeof(SkinVertex) == 24);
+    std::vector<SkinVertex> skin(n);
+    for (size_t i = 0; i < n; ++i) {
+      skin[i].joints = glm::min(mesh.joints[i], glm::u16vec4(uint16_t(kMaxSkinJoints - 1)));
+      skin[i].weights = mesh.weights[i];
+    }
+    glGenBuffers(1, &g.skinVbo);
+    glBindBuffer(GL_ARRAY_BUFFER, g.skinVbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(skin.size() * sizeof(SkinVertex)), skin.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(4);
+    glVertexAttribIPointer(4, 4, GL_UNSIGNED_SHORT, sizeof(SkinVertex), nullptr);
+    glEnableVertexAttribArray(5);
+    glVertexAttribPointer(5, 4, GL_FLOAT, GL_FALSE, sizeof(SkinVertex),
+                          reinterpret_cast<void*>(offsetof(SkinVertex, weights)));
+  }
   glBindVertexArray(0);
   return {index, g.generation};
 }
@@ -339,7 +375,8 @@ void Renderer::destroyMesh(MeshHandle handle) {
   glDeleteVertexArrays(1, &m->vao);
   glDeleteBuffers(1, &m->vbo);
   glDeleteBuffers(1, &m->ibo);
-  m->vao = m->vbo = m->ibo = 0;
+  if (m->skinVbo) glDeleteBuffers(1, &m->skinVbo);
+  m->vao = m->vbo = m->ibo = m->skinVbo = 0;
   m->alive = false;
   m->submeshes.clear();
   impl_->freeMeshes.push_back(handle.index);
@@ -398,6 +435,7 @@ void Renderer::beginFrame(int width, int height, const Camera& camera, const Lig
   r.lighting = lighting;
   r.draws.clear();
   r.materials.clear();
+  r.jointMatrices.clear();
   r.worldLines.clear();
   r.overlayLines.clear();
   r.overlayTriangles.clear();
@@ -409,6 +447,19 @@ void Renderer::submit(MeshHandle mesh, const glm::mat4& model, std::span<const M
   const uint32_t first = uint32_t(r.materials.size());
   r.materials.insert(r.materials.end(), materials.begin(), materials.end());
   r.draws.push_back({mesh.index, model, first, uint32_t(materials.size())});
+}
+
+void Renderer::submitSkinned(MeshHandle mesh, const glm::mat4& model, std::span<const glm::mat4> jointMatrices,
+                             std::span<const Material> materials) {
+  Impl& r = *impl_;
+  const GpuMesh* m = r.mesh(mesh);
+  if (!m || materials.empty()) return;
+  submit(mesh, model, materials);
+  if (!m->skinVbo || jointMatrices.empty()) return;
+  DrawItem& draw = r.draws.back();
+  draw.firstJoint = uint32_t(r.jointMatrices.size());
+  draw.jointCount = uint32_t(std::min<size_t>(jointMatrices.size(), kMaxSkinJoints));
+  r.jointMatrices.insert(r.jointMatrices.end(), jointMatrices.begin(), jointMatrices.begin() + draw.jointCount);
 }
 
 void Renderer::submitLines(std::span<const glm::vec3> points, const glm::vec4& color) {
@@ -466,10 +517,13 @@ FrameStats Renderer::endFrame() {
     glPolygonOffset(1.5f, 2.f);
     glUseProgram(r.shadowProgram);
     const GLint loc = glGetUniformLocation(r.shadowProgram, "uLightMvp");
+    const GLint shadowSkinned = glGetUniformLocation(r.shadowProgram, "uSkinned");
+    const GLint shadowJoints = glGetUniformLocation(r.shadowProgram, "uJoints");
     for (const DrawItem& d : r.draws) {
       const GpuMesh& m = r.meshes[d.mesh];
       // The floor (checker material) receives but does not need to cast.
       if (r.materials[d.firstMaterial].shading == Shading::Checker) continue;
+      r.setSkin(d, shadowSkinned, shadowJoints);
       glUniformMatrix4fv(loc, 1, GL_FALSE, glm::value_ptr(lightVp * d.model));
       glBindVertexArray(m.vao);
       for (const auto& s : m.submeshes)
@@ -516,9 +570,11 @@ FrameStats Renderer::endFrame() {
   const GLint locModel = u("uModel"), locNormal = u("uNormalMatrix"), locShading = u("uShading"),
               locBase = u("uBaseColor"), locHasAlbedo = u("uHasAlbedo"), locSpec = u("uSpecular"),
               locShine = u("uShininess"), locRefl = u("uReflectivity"),
-              locCheckerScale = u("uCheckerScale"), locCheckerColor = u("uCheckerColor");
+              locCheckerScale = u("uCheckerScale"), locCheckerColor = u("uCheckerColor"),
+              locSkinned = u("uSkinned"), locJoints = u("uJoints");
   for (const DrawItem& d : r.draws) {
     const GpuMesh& m = r.meshes[d.mesh];
+    r.setSkin(d, locSkinned, locJoints);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
     glUniformMatrix4fv(locModel, 1, GL_FALSE, glm::value_ptr(d.model));
     glUniformMatrix3fv(locNormal, 1, GL_FALSE, glm::value_ptr(normalMatrix));

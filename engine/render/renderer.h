@@ -20,6 +20,10 @@
 
 namespace cleave::render {
 
+// Joint matrices a skinned draw can use (the size of the shaders' uniform array). Joint ids at or
+// above it are clamped to the last one at upload; skeletons that large need splitting into parts.
+inline constexpr uint32_t kMaxSkinJoints = 128;
+
 struct MeshHandle {
   uint32_t index = 0;
   uint32_t generation = 0;  // 0 = invalid
@@ -87,7 +91,8 @@ class Renderer {
   bool init(std::string* error);
 
   // Uploads positions, normals (computed flat if absent), uv0 (zero if absent) and tangents, with the
-  // submesh runs. Returns an invalid handle (and a reason) for empty or malformed meshes.
+  // submesh runs, and the skin (joints and weights) when the mesh has one, for submitSkinned.
+  // Returns an invalid handle (and a reason) for empty or malformed meshes.
   MeshHandle uploadMesh(const geometry::MeshData& mesh, std::string* error = nullptr);
   void destroyMesh(MeshHandle mesh);
   uint32_t liveMeshCount() const;
@@ -101,6 +106,14 @@ class Renderer {
   void beginFrame(int width, int height, const Camera& camera, const Lighting& lighting);
   // Queues a mesh. `materials` is indexed by the submesh material id (clamped to the last entry).
   void submit(MeshHandle mesh, const glm::mat4& model, std::span<const Material> materials);
+  // Queues a skinned mesh, posed on the GPU: world = model * sum_k w_k * jointMatrices[j_k] * p (the
+  // blend divided by the weight sum), with each joint matrix = joint global * inverse bind (see
+  // anim::poseToJointMatrices); normals use the blend's 3x3 part. The same pose on the CPU is
+  // geometry::MeshContainer::setSkinningPose(jointMatrices, model). jointMatrices must cover every
+  // joint id the mesh uses (at most kMaxSkinJoints are read). A mesh uploaded without a skin, or an
+  // empty jointMatrices, draws as submit() would.
+  void submitSkinned(MeshHandle mesh, const glm::mat4& model, std::span<const glm::mat4> jointMatrices,
+                     std::span<const Material> materials);
   // Queues a line list in world space (debug drawing, the drag-cut line), drawn unlit on top.
   void submitLines(std::span<const glm::vec3> points, const glm::vec4& color);
   // Queues a 2D line list in pixel coordinates (origin top-left), for the HUD.

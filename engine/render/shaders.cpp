@@ -1,5 +1,11 @@
 #include "engine/render/shaders.h"
 
+#include "engine/render/renderer.h"
+
+// The joint array size of the skinning shaders, spelled out for the GLSL source.
+#define CLEAVE_MAX_SKIN_JOINTS_STRING "128"
+static_assert(cleave::render::kMaxSkinJoints == 128, "update CLEAVE_MAX_SKIN_JOINTS_STRING");
+
 namespace cleave::render::shaders {
 
 // The sky is a function, not a texture: the sky pass draws it and metal materials reflect it.
@@ -20,11 +26,28 @@ namespace cleave::render::shaders {
   "  return pow(c, vec3(1.0 / 2.2));\n"                                                 \
   "}\n"
 
-const char* const kMeshVertex = R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec3 aNormal;
-layout(location = 2) in vec2 aUv;
-layout(location = 3) in vec4 aTangent;
+// Linear blend skinning, shared by the lit and the shadow pass. Static meshes draw with uSkinned
+// false (their joint attributes are disabled and never read). The blend is divided by the weight
+// sum, as MeshContainer::setSkinningPose does, so GPU and CPU poses match.
+#define CLEAVE_SKINNING                                                                  \
+  "layout(location = 4) in uvec4 aJoints;\n"                                             \
+  "layout(location = 5) in vec4 aWeights;\n"                                             \
+  "uniform bool uSkinned;\n"                                                             \
+  "uniform mat4 uJoints[" CLEAVE_MAX_SKIN_JOINTS_STRING "];\n"                            \
+  "mat4 skinMatrix() {\n"                                                                \
+  "  if (!uSkinned) return mat4(1.0);\n"                                                 \
+  "  float total = aWeights.x + aWeights.y + aWeights.z + aWeights.w;\n"                 \
+  "  if (total <= 0.0) return mat4(1.0);\n"                                              \
+  "  mat4 m = aWeights.x * uJoints[aJoints.x] + aWeights.y * uJoints[aJoints.y] +\n"      \
+  "           aWeights.z * uJoints[aJoints.z] + aWeights.w * uJoints[aJoints.w];\n"      \
+  "  return m / total;\n"                                                                \
+  "}\n"
+
+const char* const kMeshVertex = "#version 330 core\n"
+    "layout(location = 0) in vec3 aPosition;\n"
+    "layout(location = 1) in vec3 aNormal;\n"
+    "layout(location = 2) in vec2 aUv;\n"
+    "layout(location = 3) in vec4 aTangent;\n" CLEAVE_SKINNING R"(
 uniform mat4 uModel;
 uniform mat3 uNormalMatrix;
 uniform mat4 uViewProj;
@@ -34,9 +57,10 @@ out vec3 vNormal;
 out vec2 vUv;
 out vec4 vLightPos;
 void main() {
-  vec4 world = uModel * vec4(aPosition, 1.0);
+  mat4 skin = skinMatrix();
+  vec4 world = uModel * (skin * vec4(aPosition, 1.0));
   vWorldPos = world.xyz;
-  vNormal = normalize(uNormalMatrix * aNormal);
+  vNormal = normalize(uNormalMatrix * (mat3(skin) * aNormal));
   vUv = aUv;
   vLightPos = uLightViewProj * world;
   gl_Position = uViewProj * world;
@@ -117,10 +141,10 @@ void main() {
 }
 )";
 
-const char* const kShadowVertex = R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
+const char* const kShadowVertex = "#version 330 core\n"
+    "layout(location = 0) in vec3 aPosition;\n" CLEAVE_SKINNING R"(
 uniform mat4 uLightMvp;
-void main() { gl_Position = uLightMvp * vec4(aPosition, 1.0); }
+void main() { gl_Position = uLightMvp * (skinMatrix() * vec4(aPosition, 1.0)); }
 )";
 
 const char* const kShadowFragment = R"(#version 330 core

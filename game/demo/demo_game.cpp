@@ -226,6 +226,52 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
   return e;
 }
 
+void DemoGame::benchmarkSplits(int repeats) {
+  ecs::World& world = app_->world();
+  components::SplitWorld sw = splitWorld();
+  const char* names[] = {"", "1 wooden cube", "2 metal sphere", "3 marble cylinder", "4 melon",
+                         "5 multi-part figure", "6 skinned placeholder", "7 torus"};
+  std::printf("| object | triangles | pieces | total ms | geometry ms | collider ms | upload ms |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  for (int kind = 1; kind <= 7; ++kind) {
+    std::vector<double> total, geometryMs, collider, upload;
+    size_t triangles = 0, pieces = 0;
+    for (int i = 0; i < repeats; ++i) {
+      const glm::vec3 at(100.f + 5.f * float(kind), 2.f, 100.f);
+      const ecs::Entity e = spawn(ObjectKind(kind), at, glm::quat(1.f, 0.f, 0.f, 0.f));
+      if (const auto* mr = world.tryGet<components::MeshRenderer>(e))
+        triangles = mr->source->indices.size() / 3;
+      const auto* t = world.tryGet<ecs::Transform>(e);
+      const glm::dvec3 centre = t ? glm::dvec3(t->position) : glm::dvec3(at);
+      components::SplitRequest request;
+      request.target = e;
+      request.planeNormal = glm::normalize(glm::dvec3(0.3, 1.0, 0.2));
+      request.planeOffset = glm::dot(request.planeNormal, centre);
+      const components::SplitEvent ev = splits_->splitNow(sw, e, request, 0);
+      total.push_back(ev.milliseconds);
+      geometryMs.push_back(ev.geometryMilliseconds);
+      collider.push_back(ev.colliderMilliseconds);
+      upload.push_back(ev.uploadMilliseconds);
+      pieces = ev.pieces.size();
+      for (ecs::Entity piece : ev.pieces) {
+        components::releaseEntityResources(sw, piece);
+        world.destroy(piece);
+      }
+      if (world.alive(e)) {
+        components::releaseEntityResources(sw, e);
+        world.destroy(e);
+      }
+    }
+    std::printf("| %s | %zu | %zu | %.2f | %.2f | %.2f | %.2f |\n", names[kind], triangles, pieces,
+                median(total), median(geometryMs), median(collider), median(upload));
+  }
+  std::fflush(stdout);
+}
+
 bool DemoGame::setup(app::App& app, std::string* error) {
   app_ = &app;
   physics_ = std::make_unique<physics::PhysicsWorld>();

@@ -38,6 +38,11 @@ class DemoGame {
   ecs::Entity spawn(ObjectKind kind, const glm::vec3& position, const glm::quat& rotation);
 
   components::SplitSystem& splits() { return *splits_; }
+
+  // Benchmark: spawns each object type `repeats` times away from the scene, cuts it through its
+  // centre by a tilted plane with splitNow (pieces created: mesh, upload, collider, body), and
+  // prints a Markdown table of median milliseconds per type (total, geometry, collider, upload).
+  void benchmarkSplits(int repeats);
   physics::PhysicsWorld& physics() { return *physics_; }
 
  private:

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/anim/animation_clip.h"
@@ -39,8 +38,8 @@ Skeleton twoBoneArm() {
   return s;
 }
 
-Channel channel(uint32_t joint, ChannelPath path, Interpolation interpolation, std::vector<float> times,
-                std::vector<glm::vec4> values) {
+Channel channel(uint32_t joint, ChannelPath path, Interpolation interpolation,
+                std::vector<float> times, std::vector<glm::vec4> values) {
   Channel c;
   c.joint = joint;
   c.path = path;
@@ -143,7 +142,8 @@ TEST(AnimationClip, LinearLerpsTranslationAndSlerpsRotation) {
   Pose pose;
   sampleClip(s, clip, 0.5f, false, pose);
   EXPECT_NEAR(pose[1].translation.x, 1.f, 1e-6f);
-  // A quarter of the way: 22.5 degrees (slerp is uniform in angle, lerp of components would not be).
+  // A quarter of the way: 22.5 degrees (slerp is uniform in angle, lerp of components would not
+  // be).
   EXPECT_NEAR(glm::angle(pose[0].rotation), kPi / 8, 1e-5f);
   EXPECT_NEAR(glm::length(pose[0].rotation), 1.f, 1e-6f);
 }
@@ -165,10 +165,15 @@ TEST(AnimationClip, LinearRotationTakesTheShortestPath) {
 TEST(AnimationClip, CubicSplineFollowsTheHermiteFormula) {
   const Skeleton s = twoBoneArm();
   AnimationClip clip;
-  // Keys at 0 and 2: values 0 and 1, out-tangent of key 0 = 1, in-tangent of key 1 = 0.5 (per second).
+  // Keys at 0 and 2: values 0 and 1, out-tangent of key 0 = 1, in-tangent of key 1 = 0.5 (per
+  // second).
   clip.channels.push_back(channel(1, ChannelPath::Scale, Interpolation::CubicSpline, {0.f, 2.f},
-                                  {{9, 9, 9, 0}, {0, 0, 0, 0}, {1, 1, 1, 0},
-                                   {0.5f, 0.5f, 0.5f, 0}, {1, 1, 1, 0}, {9, 9, 9, 0}}));
+                                  {{9, 9, 9, 0},
+                                   {0, 0, 0, 0},
+                                   {1, 1, 1, 0},
+                                   {0.5f, 0.5f, 0.5f, 0},
+                                   {1, 1, 1, 0},
+                                   {9, 9, 9, 0}}));
   clip.updateDuration();
   Pose pose;
   sampleClip(s, clip, 0.5f, false, pose);
@@ -221,8 +226,10 @@ TEST(AnimationClip, ValidateNamesTheBrokenChannel) {
 TEST(Animator, CrossfadeBlendsFromTheOldClipToTheNew) {
   const Skeleton s = twoBoneArm();
   AnimationClip left, right;
-  left.channels.push_back(channel(1, ChannelPath::Translation, Interpolation::Step, {0.f}, {{-1, 0, 0, 0}}));
-  right.channels.push_back(channel(1, ChannelPath::Translation, Interpolation::Step, {0.f}, {{1, 0, 0, 0}}));
+  left.channels.push_back(
+      channel(1, ChannelPath::Translation, Interpolation::Step, {0.f}, {{-1, 0, 0, 0}}));
+  right.channels.push_back(
+      channel(1, ChannelPath::Translation, Interpolation::Step, {0.f}, {{1, 0, 0, 0}}));
   left.duration = right.duration = 1.f;
   Animator animator(&s);
   animator.play(&left);
@@ -244,8 +251,9 @@ TEST(Animator, CrossfadeBlendsFromTheOldClipToTheNew) {
 TEST(Animator, SamplingIsDeterministic) {
   const Skeleton s = twoBoneArm();
   AnimationClip clip;
-  clip.channels.push_back(channel(0, ChannelPath::Rotation, Interpolation::Linear, {0.f, 0.7f, 1.3f},
-                                  {quatValue(0.f, {0, 1, 0}), quatValue(1.f, {0, 1, 0}), quatValue(2.f, {1, 0, 0})}));
+  clip.channels.push_back(
+      channel(0, ChannelPath::Rotation, Interpolation::Linear, {0.f, 0.7f, 1.3f},
+              {quatValue(0.f, {0, 1, 0}), quatValue(1.f, {0, 1, 0}), quatValue(2.f, {1, 0, 0})}));
   clip.updateDuration();
   std::vector<glm::mat4> a, b;
   Animator first(&s), second(&s);

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/geometry/mesh_splitter.h"
@@ -75,7 +74,9 @@ void expectValidSkin(const MeshData& mesh) {
     EXPECT_NEAR(w.x + w.y + w.z + w.w, 1.f, 1e-5f) << "vertex " << v;
     for (int k = 0; k < 4; ++k) {
       EXPECT_GE(w[k], 0.f);
-      if (w[k] == 0.f) EXPECT_EQ(mesh.joints[v][k], 0) << "an empty slot names no joint";
+      if (w[k] == 0.f) {
+        EXPECT_EQ(mesh.joints[v][k], 0) << "an empty slot names no joint";
+      }
     }
     for (int k = 0; k < 3; ++k) EXPECT_GE(w[k], w[k + 1]) << "weights sorted, largest first";
   }
@@ -99,7 +100,8 @@ TEST(SkinnedSplit, PiecesKeepOnlyTheJointsTheyUse) {
   MeshContainer plain;
   ASSERT_EQ(plain.setMesh(primitives::box(glm::vec3(1.f))), SplitStatus::Ok);
   SplitResult boxResult;
-  ASSERT_EQ(makeConcaveSplitter()->split(plain, Plane{{0, 1, 0}, 0.0}, SplitOptions{}, boxResult), SplitStatus::Ok);
+  ASSERT_EQ(makeConcaveSplitter()->split(plain, Plane{{0, 1, 0}, 0.0}, SplitOptions{}, boxResult),
+            SplitStatus::Ok);
   EXPECT_TRUE(boxResult.pieces[0].joints.empty());
 }
 
@@ -119,9 +121,11 @@ TEST(SkinnedSplit, WeightsStayNormalisedAndCapVerticesFollowTheCutEdges) {
         ++capVertices;
         bool matched = false;
         for (size_t u = 0; u < piece.mesh.positions.size() && !matched; ++u) {
-          if (u == v || glm::distance(piece.mesh.positions[u], piece.mesh.positions[v]) > 1e-6f) continue;
+          if (u == v || glm::distance(piece.mesh.positions[u], piece.mesh.positions[v]) > 1e-6f)
+            continue;
           if (piece.mesh.normals[u] == piece.mesh.normals[v]) continue;  // another cap vertex
-          matched = piece.mesh.joints[u] == piece.mesh.joints[v] && piece.mesh.weights[u] == piece.mesh.weights[v];
+          matched = piece.mesh.joints[u] == piece.mesh.joints[v] &&
+                    piece.mesh.weights[u] == piece.mesh.weights[v];
         }
         EXPECT_TRUE(matched) << "cap vertex " << v;
       }

@@ -658,5 +658,27 @@ TEST(ConcaveSplitter, WarmSplitOfASameSizeMeshDoesNotAllocate) {
   }
 }
 
+// Another mesh of the same size (the same sphere, twice as large, in its own container) through a
+// splitter and result warmed up on the first: still no allocation in split().
+TEST(ConcaveSplitter, SplitOfAnotherSameSizeMeshDoesNotAllocate) {
+  MeshContainer first, second;
+  ASSERT_EQ(first.setMesh(primitives::uvSphere(1.f, 40, 21)), SplitStatus::Ok);
+  ASSERT_EQ(second.setMesh(primitives::uvSphere(2.f, 40, 21)), SplitStatus::Ok);
+  auto splitter = makeConcaveSplitter();
+  SplitResult result;
+  SplitOptions options;
+  const Plane plane = planeOf({0.3, 1, 0.2}, 0.11);
+  const Plane doubled{plane.normal, 2.0 * plane.offset};
+  for (int warm = 0; warm < 2; ++warm) ASSERT_EQ(splitter->split(first, plane, options, result), SplitStatus::Ok);
+  const size_t firstTriangles = result.pieces[0].mesh.indices.size() + result.pieces[1].mesh.indices.size();
+  gAllocations = 0;
+  gCountAllocations = true;
+  const SplitStatus status = splitter->split(second, doubled, options, result);
+  gCountAllocations = false;
+  ASSERT_EQ(status, SplitStatus::Ok);
+  EXPECT_EQ(result.pieces[0].mesh.indices.size() + result.pieces[1].mesh.indices.size(), firstTriangles);
+  EXPECT_EQ(gAllocations.load(), 0u) << "heap allocations splitting a same-size mesh";
+}
+
 }  // namespace
 }  // namespace cleave::geometry

@@ -3,9 +3,13 @@
 // alone. Counters: triangles of the input, pieces and cap triangles of the last run.
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <memory>
 #include <string>
 
+#include "engine/anim/animation_clip.h"
+#include "engine/assets/model.h"
+#include "engine/assets/procedural_character.h"
 #include "engine/geometry/mesh_splitter.h"
 #include "engine/geometry/primitives.h"
 
@@ -95,6 +99,102 @@ void BM_ConcaveSplitComb32TeethAlongExtrusion(benchmark::State& state) {
   runSplit(state, prim::combPrism(32), plane, Kind::Concave);
 }
 BENCHMARK(BM_ConcaveSplitComb32TeethAlongExtrusion)->Unit(benchmark::kMicrosecond);
+
+// The generated 4k-triangle skinned character: each iteration poses it (walk clip sampled at an
+// advancing time, joint matrices, MeshContainer::setSkinningPose) and cuts it across the waist
+// with caps, the path from a split request to the pieces of a skinned mesh. "poseOnly" times the
+// posing alone so the cut's share can be read off.
+void runSkinnedCharacter(benchmark::State& state, bool split) {
+  const assets::ProceduralCharacter character = assets::makeProceduralCharacter();
+  MeshContainer container;
+  std::string why;
+  if (container.setMesh(character.mesh, &why) != SplitStatus::Ok) {
+    state.SkipWithError(("setMesh failed: " + why).c_str());
+    return;
+  }
+  std::unique_ptr<IMeshSplitter> splitter = makeConcaveSplitter();
+  SplitOptions options;
+  SplitResult result;
+  anim::Pose pose;
+  std::vector<glm::mat4> joints;
+  Plane plane;
+  plane.normal = glm::normalize(glm::dvec3(0.2, 1.0, 0.1));
+  plane.offset = 1.05;
+  float time = 0.f;
+  auto poseAndCut = [&]() {
+    anim::sampleClip(character.skeleton, character.walk, time, true, pose);
+    anim::poseToJointMatrices(character.skeleton, pose, joints);
+    time += 1.f / 60.f;
+    container.setSkinningPose(joints, glm::mat4(1.f));
+    return split ? splitter->split(container, plane, options, result) : SplitStatus::Ok;
+  };
+  if (poseAndCut() != SplitStatus::Ok) {  // warm-up
+    state.SkipWithError(("split failed: " + result.message).c_str());
+    return;
+  }
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(poseAndCut());
+    benchmark::ClobberMemory();
+  }
+  state.counters["triangles"] = double(character.mesh.triangleCount());
+  state.counters["pieces"] = double(result.pieces.size());
+}
+
+void BM_SkinnedCharacterPoseAndSplit(benchmark::State& state) { runSkinnedCharacter(state, true); }
+BENCHMARK(BM_SkinnedCharacterPoseAndSplit)->Unit(benchmark::kMicrosecond);
+
+void BM_SkinnedCharacterPoseOnly(benchmark::State& state) { runSkinnedCharacter(state, false); }
+BENCHMARK(BM_SkinnedCharacterPoseOnly)->Unit(benchmark::kMicrosecond);
+
+// robot.glb from the models folder (CLEAVE_MODELS_DIR, else ../shared/models beside the sources;
+// skipped when absent): its skinned meshes merged into one, posed at 0.5 s of its first clip and cut
+// hollow (the parts are open and intersect) through the middle of the pose.
+void BM_SkinnedRobotPoseAndSplit(benchmark::State& state) {
+  const char* env = std::getenv("CLEAVE_MODELS_DIR");
+  const std::string folder = env ? env : std::string(CLEAVE_SOURCE_DIR) + "/../shared/models";
+  const assets::ModelLoadResult loaded = assets::loadModel(folder + "/robot.glb");
+  if (!loaded.ok || loaded.model.skins.empty()) {
+    state.SkipWithError(("robot.glb not available: " + loaded.error).c_str());
+    return;
+  }
+  const assets::ModelSkin& skin = loaded.model.skins[0];
+  MeshData mesh;
+  for (const assets::ModelMesh& part : loaded.model.meshes) {
+    if (part.skin == 0) mesh = mesh.positions.empty() ? part.mesh : primitives::merge(mesh, part.mesh);
+  }
+  MeshContainer container;
+  std::string why;
+  if (container.setMesh(mesh, &why) != SplitStatus::Ok) {
+    state.SkipWithError(("setMesh failed: " + why).c_str());
+    return;
+  }
+  anim::Pose pose;
+  std::vector<glm::mat4> joints;
+  if (skin.clips.empty()) anim::restPose(skin.skeleton, pose);
+  else anim::sampleClip(skin.skeleton, skin.clips[0], 0.5f, true, pose);
+  anim::poseToJointMatrices(skin.skeleton, pose, joints);
+  container.setSkinningPose(joints, glm::mat4(1.f));
+  glm::dvec3 lo(1e30), hi(-1e30);
+  for (const glm::dvec3& p : container.cutPositions()) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  Plane plane;
+  plane.normal = glm::normalize(glm::dvec3(0.2, 1.0, 0.1));
+  plane.offset = glm::dot(plane.normal, 0.5 * (lo + hi));
+  std::unique_ptr<IMeshSplitter> splitter = makeConcaveSplitter();
+  SplitOptions options;
+  options.cap = false;
+  SplitResult result;
+  for (auto _ : state) {
+    container.setSkinningPose(joints, glm::mat4(1.f));
+    benchmark::DoNotOptimize(splitter->split(container, plane, options, result));
+    benchmark::ClobberMemory();
+  }
+  state.counters["triangles"] = double(mesh.triangleCount());
+  state.counters["pieces"] = double(result.pieces.size());
+}
+BENCHMARK(BM_SkinnedRobotPoseAndSplit)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace cleave::geometry

@@ -1,14 +1,17 @@
 // Standalone runner for a fuzz driver when libFuzzer is not used: a seeded mutation loop over the
 // driver's built-in seeds, so CI can run a short deterministic smoke.
 //
-//   cleave-fuzz-<name> [--iterations N] [--seed S] [--write-seeds DIR] [FILE...]
+//   cleave-fuzz-<name> [--iterations N] [--seconds T] [--seed S] [--write-seeds DIR] [FILE...]
 //
+// --seconds T runs for T seconds of wall time (the long run; --iterations then only caps it, and is
+// unlimited unless given).
 // FILEs are run once each (to replay a crash input found by libFuzzer). --write-seeds writes the
 // seeds as files into DIR (a starting corpus for libFuzzer) and exits. Mutations: bit flips,
 // random and boundary bytes, inserted, erased, duplicated and truncated ranges, splices of two
 // inputs. Mutated inputs that pass are kept in a small pool and mutated further.
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -124,7 +127,8 @@ bool parseCount(std::string_view text, uint64_t& value) {
 }
 
 int usage(const char* program) {
-  std::fprintf(stderr, "usage: %s [--iterations N] [--seed S] [--write-seeds DIR] [FILE...]\n", program);
+  std::fprintf(stderr, "usage: %s [--iterations N] [--seconds T] [--seed S] [--write-seeds DIR] [FILE...]\n",
+               program);
   return 2;
 }
 
@@ -132,13 +136,18 @@ int usage(const char* program) {
 
 int main(int argc, char** argv) {
   uint64_t iterations = 10000;
+  uint64_t seconds = 0;
+  bool iterationsGiven = false;
   uint64_t seed = 1;
   std::string seedDir;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
     if ((arg == "--iterations" || arg == "--seed") && i + 1 < argc) {
+      iterationsGiven = iterationsGiven || arg == "--iterations";
       if (!parseCount(argv[++i], arg == "--seed" ? seed : iterations)) return usage(argv[0]);
+    } else if (arg == "--seconds" && i + 1 < argc) {
+      if (!parseCount(argv[++i], seconds)) return usage(argv[0]);
     } else if (arg == "--write-seeds" && i + 1 < argc) {
       seedDir = argv[++i];
     } else if (arg == "--help" || arg == "-h" || arg.starts_with("-")) {
@@ -183,7 +192,11 @@ int main(int argc, char** argv) {
   std::signal(SIGABRT, onAbort);
   for (const Bytes& s : seeds) runOne(s);
   uint64_t acceptedCount = 0;
-  for (uint64_t i = 0; i < iterations; ++i) {
+  if (seconds > 0 && !iterationsGiven) iterations = UINT64_MAX;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+  uint64_t i = 0;
+  for (; i < iterations; ++i) {
+    if (seconds > 0 && i % 256 == 0 && std::chrono::steady_clock::now() >= deadline) break;
     Bytes input = pool[static_cast<size_t>(rng() % pool.size())];
     mutate(input, pool, rng);
     const bool accepted = runOne(input);
@@ -195,7 +208,7 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("%llu mutated inputs from %zu seeds (seed %llu), %llu accepted: no invariant broken\n",
-              static_cast<unsigned long long>(iterations), seeds.size(),
+              static_cast<unsigned long long>(i), seeds.size(),
               static_cast<unsigned long long>(seed), static_cast<unsigned long long>(acceptedCount));
   return 0;
 }

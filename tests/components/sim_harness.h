@@ -1,0 +1,139 @@
+// A headless simulation for the component tests: a World, a PhysicsWorld and a SplitSystem without
+// renderer, stepped tick by tick in the App's phase order (engine/app/phase.h):
+// Gameplay (scene splitters) -> Triggers (gather the last step's touches) -> Split (activations,
+// budgeted splits) -> PhysicsStep -> PhysicsSync (transforms, debris).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <gtest/gtest.h>
+
+#include "components/scene_components.h"
+#include "components/scene_loader.h"
+#include "components/split_system.h"
+#include "engine/ecs/hierarchy.h"
+#include "engine/ecs/world.h"
+#include "engine/physics/physics_world.h"
+
+namespace cleave::components::testing {
+
+inline constexpr double kDt = 1.0 / 60.0;
+
+inline std::string scenePath(const std::string& name) {
+  return std::string(CLEAVE_SOURCE_DIR) + "/assets/scenes/" + name;
+}
+
+struct Sim {
+  ecs::World world;
+  physics::PhysicsWorld physics;
+  SplitSystem splits;
+  SceneRunner runner;
+  SceneLoadResult scene;
+  uint64_t tick = 0;
+  glm::dvec3 camera{0.0, 2.0, 6.0};
+
+  SplitWorld sw() { return SplitWorld{world, physics, nullptr}; }
+
+  bool load(const std::string& path, MaterialResolver materials = {}) {
+    SceneContext ctx{world, physics, nullptr, &splits, std::move(materials)};
+    scene = loadScene(path, ctx);
+    runner = SceneRunner(scene.splitters);
+    camera = glm::dvec3(scene.cameraPosition);
+    return scene.ok;
+  }
+
+  // One tick. `afterSplit` runs between the Split and the PhysicsStep phases (the state right after
+  // the pieces appeared); `afterStep` after the physics step, before the sync.
+  void step(const std::function<void()>& afterSplit = {}, const std::function<void()>& afterStep = {}) {
+    SplitWorld w = sw();
+    runner.update(w, tick, kDt);
+    splits.gatherTriggerRequests(w, tick);
+    splits.activatePending(w);
+    splits.runSplits(w, tick, camera);
+    if (afterSplit) afterSplit();
+    physics.step(kDt);
+    if (afterStep) afterStep();
+    syncTransformsFromBodies(w);
+    updateDebris(w, float(kDt));
+    ++tick;
+  }
+
+  // Runs until `tick` == until (exclusive), collecting every split event.
+  std::vector<SplitEvent> runUntil(uint64_t until) {
+    std::vector<SplitEvent> events;
+    while (tick < until) {
+      step();
+      for (const SplitEvent& ev : splits.lastEvents()) events.push_back(ev);
+    }
+    return events;
+  }
+
+  // Entities with a dynamic body.
+  std::vector<ecs::Entity> dynamicBodies() {
+    std::vector<ecs::Entity> out;
+    for (ecs::Entity e : world.entities()) {
+      const auto* rb = world.tryGet<RigidBody>(e);
+      if (!rb) continue;
+      const auto m = physics.bodyMass(rb->body);
+      if (m && *m > 0.f) out.push_back(e);
+    }
+    return out;
+  }
+};
+
+// Total mass, linear momentum, centre of mass and angular momentum about it, in double precision
+// from the bodies the solver integrates: L = sum R diag(I) R^T w + m (x - c) x v.
+struct Momenta {
+  double mass = 0.0;
+  glm::dvec3 linear{0.0};
+  glm::dvec3 centre{0.0};
+  glm::dvec3 angular{0.0};
+  size_t bodies = 0;
+};
+
+inline Momenta momentaOf(Sim& sim) {
+  Momenta m;
+  struct B {
+    double mass;
+    glm::dvec3 x, v, w, inertia;
+    glm::dquat q;
+  };
+  std::vector<B> bodies;
+  for (ecs::Entity e : sim.dynamicBodies()) {
+    const auto& rb = sim.world.get<RigidBody>(e);
+    const auto state = sim.physics.bodyState(rb.body);
+    const auto inertia = sim.physics.bodyLocalInertia(rb.body);
+    if (!state || !inertia) continue;
+    bodies.push_back(B{double(state->mass), glm::dvec3(state->transform.position), glm::dvec3(state->linearVelocity),
+                       glm::dvec3(state->angularVelocity), glm::dvec3(*inertia),
+                       glm::dquat(state->transform.rotation)});
+  }
+  for (const B& b : bodies) {
+    m.mass += b.mass;
+    m.linear += b.mass * b.v;
+    m.centre += b.mass * b.x;
+  }
+  if (m.mass > 0.0) m.centre /= m.mass;
+  for (const B& b : bodies) {
+    const glm::dmat3 r = glm::mat3_cast(b.q);
+    glm::dmat3 diag(0.0);
+    diag[0][0] = b.inertia.x;
+    diag[1][1] = b.inertia.y;
+    diag[2][2] = b.inertia.z;
+    const glm::dmat3 world = r * diag * glm::transpose(r);
+    m.angular += world * b.w + b.mass * glm::cross(b.x - m.centre, b.v);
+  }
+  m.bodies = bodies.size();
+  return m;
+}
+
+inline double relativeError(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
+inline double relativeError(const glm::dvec3& a, const glm::dvec3& b) {
+  return glm::length(a - b) / std::max(glm::length(b), 1e-300);
+}
+
+}  // namespace cleave::components::testing
