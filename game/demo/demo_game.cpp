@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "components/scene_components.h"
+#include "components/scene_loader.h"
 #include "components/splitable.h"
 #include "engine/assets/procedural_textures.h"
 #include "engine/ecs/hierarchy.h"
@@ -272,6 +273,46 @@ void DemoGame::benchmarkSplits(int repeats) {
   std::fflush(stdout);
 }
 
+bool DemoGame::loadSceneFile(const std::string& path, std::string* error) {
+  components::SplitWorld sw = splitWorld();
+  components::SceneContext context{app_->world(), *physics_, &app_->renderer(), splits_.get(), {}};
+  // Material names of the scene file map to the demo's looks; caps get the inside look.
+  context.materials = [this](const std::string& name, bool cap) {
+    static const char* aliases[7][2] = {{"wood", "wooden"},  {"metal", "steel"},
+                                        {"marble", "stone"}, {"melon", "watermelon"},
+                                        {"normals", "debug"}, {"checker", "checker3d"},
+                                        {"environment", "env"}};
+    for (size_t k = 0; k < 7; ++k) {
+      if (name == lookNames_[k] || name == aliases[k][0] || name == aliases[k][1])
+        return cap ? capLooks_[k] : looks_[k];
+    }
+    render::Material plain;
+    plain.baseColor = glm::vec4(0.75f, 0.72f, 0.68f, 1.f);
+    plain.specular = 0.3f;
+    return plain;
+  };
+  components::SceneLoadResult scene = components::loadScene(path, context);
+  if (!scene.ok) {
+    if (error) *error = scene.error;
+    return false;
+  }
+  for (const components::SceneEntity& e : scene.entities) {
+    for (size_t k = 0; k < 7; ++k) {
+      if (e.material == lookNames_[k] && app_->world().alive(e.entity))
+        app_->world().add<components::MaterialChoice>(e.entity, components::MaterialChoice{int(k)});
+    }
+  }
+  sceneRunner_ = std::make_unique<components::SceneRunner>(scene.splitters);
+  cameraPosition_ = scene.cameraPosition;
+  const glm::vec3 look = scene.cameraTarget - scene.cameraPosition;
+  if (glm::length(look) > 1e-4f) {
+    const glm::vec3 d = glm::normalize(look);
+    yaw_ = std::atan2(-d.x, -d.z);
+    pitch_ = std::asin(std::clamp(d.y, -1.f, 1.f));
+  }
+  return true;
+}
+
 bool DemoGame::setup(app::App& app, std::string* error) {
   app_ = &app;
   physics_ = std::make_unique<physics::PhysicsWorld>();
@@ -282,17 +323,20 @@ bool DemoGame::setup(app::App& app, std::string* error) {
   if (const char* dir = std::getenv("CLEAVE_SPLIT_FAILURE_DIR"); dir && *dir)
     splits_->setFailureDumpDirectory(dir);
   createMaterials();
-  createFloor();
-
-  // The thesis's line-up: one of each object, plus a second row to have something to push into.
-  const glm::quat upright(1.f, 0.f, 0.f, 0.f);
-  spawn(ObjectKind::WoodenCube, {-3.f, 0.5f, 0.f}, upright);
-  spawn(ObjectKind::MetalSphere, {-1.5f, 0.5f, 0.f}, upright);
-  spawn(ObjectKind::MarbleCylinder, {0.f, 0.6f, 0.f}, upright);
-  spawn(ObjectKind::MelonEllipsoid, {1.5f, 0.35f, 0.f}, upright);
-  spawn(ObjectKind::Torus, {3.f, 0.2f, 0.f}, upright);
-  spawn(ObjectKind::MultiPart, {-1.f, 1.05f, -2.5f}, upright);
-  spawn(ObjectKind::Skinned, {1.2f, 0.6f, -2.5f}, upright);
+  if (!app.options().scenePath.empty()) {
+    if (!loadSceneFile(app.options().scenePath, error)) return false;
+  } else {
+    createFloor();
+    // The thesis's line-up: one of each object, plus a second row to have something to push into.
+    const glm::quat upright(1.f, 0.f, 0.f, 0.f);
+    spawn(ObjectKind::WoodenCube, {-3.f, 0.5f, 0.f}, upright);
+    spawn(ObjectKind::MetalSphere, {-1.5f, 0.5f, 0.f}, upright);
+    spawn(ObjectKind::MarbleCylinder, {0.f, 0.6f, 0.f}, upright);
+    spawn(ObjectKind::MelonEllipsoid, {1.5f, 0.35f, 0.f}, upright);
+    spawn(ObjectKind::Torus, {3.f, 0.2f, 0.f}, upright);
+    spawn(ObjectKind::MultiPart, {-1.f, 1.05f, -2.5f}, upright);
+    spawn(ObjectKind::Skinned, {1.2f, 0.6f, -2.5f}, upright);
+  }
 
   app.addSystem(app::Phase::Gameplay, "demo.gameplay", [this](app::TickContext& c) { gameplay(c); });
   app.addSystem(app::Phase::Triggers, "split.gather", [this](app::TickContext& c) {
@@ -447,6 +491,10 @@ void DemoGame::dragCut(app::TickContext& c, glm::vec2 from, glm::vec2 to) {
 }
 
 void DemoGame::gameplay(app::TickContext& c) {
+  if (sceneRunner_) {
+    components::SplitWorld sw = splitWorld();
+    sceneRunner_->update(sw, c.tick, c.dt);
+  }
   const input::InputState& in = c.input;
   using input::Key;
   // Split mode: hold Space; the camera stops turning and the cursor shows.

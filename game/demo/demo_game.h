@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "components/scene_loader.h"
 #include "components/split_system.h"
 #include "engine/app/app.h"
 #include "engine/physics/physics_world.h"
@@ -48,6 +49,8 @@ class DemoGame {
  private:
   void createMaterials();
   void createFloor();
+  // --scene FILE: the objects, splitters, budget and camera of a JSON scene (docs/scene-format.md).
+  bool loadSceneFile(const std::string& path, std::string* error);
   void gameplay(app::TickContext& c);
   void render(app::TickContext& c);
   void drawHud(app::TickContext& c);
@@ -60,6 +63,7 @@ class DemoGame {
   app::App* app_ = nullptr;
   std::unique_ptr<physics::PhysicsWorld> physics_;
   std::unique_ptr<components::SplitSystem> splits_;
+  std::unique_ptr<components::SceneRunner> sceneRunner_;
 
   // Camera (fly camera: yaw around +Y, pitch up).
   glm::vec3 cameraPosition_{0.f, 2.2f, 7.5f};
