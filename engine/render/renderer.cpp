@@ -663,6 +663,9 @@ bool writePng(const std::string& path, int width, int height, std::span<const ui
                         std::to_string(height);
     return false;
   }
+  // Level 4 instead of stb's 8: files about 10% larger, written several times faster (screenshots
+  // of long headless runs).
+  stbi_write_png_compression_level = 4;
   if (!stbi_write_png(path.c_str(), width, height, 4, rgba.data(), width * 4)) {
     if (error) *error = path + ": could not write the PNG file";
     return false;
