@@ -124,6 +124,7 @@ struct Renderer::Impl {
     GpuMesh& m = meshes[h.index];
     return (m.alive && m.generation == h.generation) ? &m : nullptr;
   }
+  const GpuMesh* mesh(MeshHandle h) const { return const_cast<Impl*>(this)->mesh(h); }
   GLuint texture(TextureHandle h) const {
     if (h.generation == 0 || h.index >= textures.size()) return 0;
     const GpuTexture& t = textures[h.index];
@@ -387,6 +388,16 @@ uint32_t Renderer::liveMeshCount() const {
   for (const auto& m : impl_->meshes) count += m.alive ? 1 : 0;
   return count;
 }
+
+uint32_t Renderer::liveTextureCount() const {
+  uint32_t count = 0;
+  for (const auto& t : impl_->textures) count += t.alive ? 1 : 0;
+  return count;
+}
+
+bool Renderer::isValid(MeshHandle mesh) const { return impl_->mesh(mesh) != nullptr; }
+
+bool Renderer::isValid(TextureHandle texture) const { return impl_->texture(texture) != 0; }
 
 TextureHandle Renderer::createTexture(int width, int height, std::span<const uint8_t> rgba,
                                       std::string* error) {

@@ -96,6 +96,10 @@ class Renderer {
   MeshHandle uploadMesh(const geometry::MeshData& mesh, std::string* error = nullptr);
   void destroyMesh(MeshHandle mesh);
   uint32_t liveMeshCount() const;
+  uint32_t liveTextureCount() const;
+  // False for a null, destroyed or stale handle (slots are reused with a new generation).
+  bool isValid(MeshHandle mesh) const;
+  bool isValid(TextureHandle texture) const;
 
   // RGBA8 pixels, rows top to bottom, width*height*4 bytes. Mipmapped, repeating.
   TextureHandle createTexture(int width, int height, std::span<const uint8_t> rgba,
