@@ -1,4 +1,5 @@
 #include "components/split_system.h"
+#include "components/skinned.h"
 
 #include <algorithm>
 #include <chrono>
@@ -218,6 +219,7 @@ void SplitSystem::registerHandler(const std::string& name, SplitHandler handler)
 void SplitSystem::request(const SplitRequest& request) { budget_.enqueue(request); }
 
 void releaseEntityResources(SplitWorld& w, ecs::Entity e) {
+  if (auto* ragdoll = w.world.tryGet<Ragdoll>(e)) releaseRagdoll(w.physics, *ragdoll);
   if (auto* rb = w.world.tryGet<RigidBody>(e)) {
     w.physics.destroyBody(rb->body);
     w.physics.destroyShape(rb->shape);
@@ -474,7 +476,15 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   std::string message;
   if (s.container.setMesh(*mr->source, &message) != geometry::SplitStatus::Ok)
     return fail(geometry::SplitStatus::InvalidInput, message);
-  s.container.setTransform(glm::mat4(model));
+  // A skinned target is cut in its current pose: the cut space is the skinned mesh in the world.
+  const auto* skin = w.world.tryGet<SkinnedMesh>(target);
+  if (skin && (skin->jointMatrices.empty() || mr->source->joints.empty())) skin = nullptr;
+  if (skin) {
+    if (s.container.setSkinningPose(skin->jointMatrices, glm::mat4(model), &message) != geometry::SplitStatus::Ok)
+      return fail(geometry::SplitStatus::InvalidInput, message);
+  } else {
+    s.container.setTransform(glm::mat4(model));
+  }
   geometry::SplitOptions options;
   options.cap = sp->cap;
   options.capMaterialId = sp->capMaterialId;
@@ -523,11 +533,16 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   materials[sp->capMaterialId] = sp->capMaterial;
 
   ecs::CommandBuffer& commands = commandsFor(s.commands, s.commandsWorld, w.world);
+  // Skinned targets share the parent's mass by posed volume whatever the mass mode: skinning does not
+  // keep volume exactly, so density x posed volume would make the mass drift with the pose.
+  const bool shareParentMass = sp->massMode == MassMode::KeepParentMass || (skin && parentMass > 0.0);
+  std::vector<glm::dmat4> globals;  // ragdolls: world transforms of the joints in the cut pose
+  if (skin && sp->skinnedPieces == SkinnedPieceMode::Ragdoll)
+    posedJointGlobals(skin->asset->skeleton, skin->jointMatrices, model, globals);
   uint32_t k = 0;
   for (auto& piece : s.result.pieces) {
     const double volume = std::max(piece.mass.volume, 0.0);
-    const double mass = sp->massMode == MassMode::Density ? sp->density * volume
-                                                          : parentMass * volume / totalVolume;
+    const double mass = shareParentMass ? parentMass * volume / totalVolume : sp->density * volume;
     const bool small = volume < sp->minPieceVolume;
     if (small && sp->smallPieces == SmallPieceMode::Remove) continue;
     const BodyFrame frame = bodyFrameFor(piece.mass, std::max(mass, 1e-9), model);
@@ -535,7 +550,33 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
                                 n * (double(piece.side) * sp->splitImpulse);
 
     const ecs::Entity e = commands.create();
-    auto mesh = std::make_shared<geometry::MeshData>(std::move(piece.mesh));
+    // Skinned pieces: the posed mesh (mesh space) gives the collider; Bake pieces and small ones are
+    // drawn from it too, the others keep their skin and a copy of the animator.
+    SkinnedPieceMode skinMode = sp->skinnedPieces;
+    geometry::MeshData posed;
+    if (skin) {
+      bakeSkin(piece.mesh, skin->jointMatrices, posed);
+      if (small) skinMode = SkinnedPieceMode::Bake;
+    }
+    const bool keepSkin = skin && skinMode != SkinnedPieceMode::Bake;
+    Ragdoll ragdoll;
+    bool isRagdoll = false;
+    if (keepSkin && skinMode == SkinnedPieceMode::Ragdoll) {
+      std::vector<glm::vec3> worldPositions;
+      worldPositions.reserve(posed.positions.size());
+      for (const glm::vec3& p : posed.positions)
+        worldPositions.push_back(glm::vec3(model * glm::dvec4(glm::dvec3(p), 1.0)));
+      std::string reason;
+      const double colliderStart = nowMs();
+      isRagdoll = buildRagdoll(w, piece.mesh, worldPositions, piece.joints, skin->asset->skeleton, globals,
+                               std::max(mass, 1e-6), v, omega, parentCom, toUser(e), toUser(e) | (1ull << 63),
+                               ragdoll, &reason);
+      ev.colliderMilliseconds += nowMs() - colliderStart;
+      if (!isRagdoll) skinMode = SkinnedPieceMode::KeepAnimating;  // too few vertices for any bone
+    }
+    auto mesh = std::make_shared<geometry::MeshData>(keepSkin ? std::move(piece.mesh)
+                                                              : skin ? std::move(posed) : std::move(piece.mesh));
+    const geometry::MeshData& colliderMesh = keepSkin ? posed : *mesh;
     MeshRenderer renderer;
     renderer.source = mesh;
     renderer.materials = materials;
@@ -553,15 +594,32 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
     bool debris = small;
     physics::ShapeId shape;
     physics::BodyId body;
-    if (!debris) {
+    if (isRagdoll) {
+      // The entity frame is the anchor bone's body frame; joint matrices are relative to it.
+      const RagdollBone& anchor = ragdoll.bones[ragdoll.anchor];
+      const physics::BodyTransform at = *w.physics.bodyTransform(anchor.body);
+      transform.position = at.position;
+      transform.rotation = at.rotation;
+      renderer.meshOffset = glm::mat4(1.f);
+      shape = anchor.shape;
+      body = anchor.body;
+      const glm::dmat4 toAnchor =
+          glm::inverse(glm::translate(glm::dmat4(1.0), glm::dvec3(at.position)) * glm::mat4_cast(glm::dquat(at.rotation))) *
+          model;
+      SkinnedMesh pieceSkin = *skin;
+      for (glm::mat4& m : pieceSkin.jointMatrices) m = glm::mat4(toAnchor * glm::dmat4(m));
+      commands.add<SkinnedMesh>(e, std::move(pieceSkin));
+      commands.add<Ragdoll>(e, std::move(ragdoll));
+    }
+    if (!debris && !isRagdoll) {
       std::string reason;
       const double colliderStart = nowMs();
-      shape = makeCollider(w, *s.concave, *mesh, frame.meshOffset, sp->collider,
+      shape = makeCollider(w, *s.concave, colliderMesh, frame.meshOffset, sp->collider,
                            sp->convexHint, &reason);
       ev.colliderMilliseconds += nowMs() - colliderStart;
       if (shape.isNull()) debris = true;  // a flat sliver: no hull can hold it
     }
-    if (!debris) {
+    if (!debris && !isRagdoll) {
       physics::BodyDef def;
       def.shape = shape;
       def.mass = float(std::max(mass, 1e-6));
@@ -604,6 +662,8 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
     so.generation = depth;
     commands.add<SplitOrigin>(e, so);
     if (choice) commands.add<MaterialChoice>(e, *choice);
+    // KeepAnimating: the copy of the animator keeps playing in the body's frame.
+    if (keepSkin && !isRagdoll) commands.add<SkinnedMesh>(e, *skin);
     if (debris) {
       Debris d;
       d.velocity = glm::vec3(velocity);
@@ -645,6 +705,11 @@ void submitMeshes(SplitWorld& w) {
   if (!w.renderer) return;
   for (auto [e, mr, wt] : w.world.view<MeshRenderer, ecs::WorldTransform>()) {
     if (!mr.visible || !mr.gpu.valid() || mr.materials.empty()) continue;
+    // Skinned meshes draw in their current pose (GPU skinning).
+    if (const auto* skin = w.world.tryGet<SkinnedMesh>(e); skin && !skin->jointMatrices.empty()) {
+      w.renderer->submitSkinned(mr.gpu, wt.matrix * mr.meshOffset, skin->jointMatrices, mr.materials);
+      continue;
+    }
     w.renderer->submit(mr.gpu, wt.matrix * mr.meshOffset, mr.materials);
   }
 }

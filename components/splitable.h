@@ -34,6 +34,21 @@ enum class ColliderMode : uint8_t {
   ConcaveMesh, // GImpact triangle mesh (exact, slowest)
 };
 
+// What the pieces of a skinned (animated) mesh become. Every mode cuts in the current pose and
+// shares the parent's mass by posed volume.
+enum class SkinnedPieceMode : uint8_t {
+  // Each piece stays a skinned mesh with a copy of the animator (same clip, time and crossfade), so
+  // it keeps playing in sync with an uncut character. Its body is a dynamic rigid body whose
+  // collider and mass properties are those of the pose at the cut; it moves on with the velocity the
+  // character had at that point (no ragdoll), and the animation plays in the body's frame.
+  KeepAnimating,
+  // Capsules per bone the piece keeps, joined by cone-twist and hinge joints, started from the
+  // pose and the character's velocity; the piece's skin follows the bodies.
+  Ragdoll,
+  // The piece is baked into the pose (CPU skinning) and becomes an ordinary static-mesh piece.
+  Bake,
+};
+
 struct Splitable {
   bool convexHint = false;                  // the mesh is convex: use the convex splitter (fan caps)
   bool cap = true;                          // false: hollow pieces (open or thin objects)
@@ -52,6 +67,7 @@ struct Splitable {
   ColliderMode collider = ColliderMode::Auto;
   uint32_t maxDepth = 12;                   // pieces this many cuts deep are no longer splitable
   std::string handler;                      // a custom split handler registered under this name
+  SkinnedPieceMode skinnedPieces = SkinnedPieceMode::Ragdoll;  // skinned meshes only
 };
 
 enum class SplitterLifetime : uint8_t {

@@ -35,6 +35,13 @@ struct BodyDef {
   bool startAwake = true;       // false: the body starts asleep until touched or activated
   bool allowSleep = true;       // false: the body never goes to sleep
   uint64_t userData = 0;        // opaque to physics (e.g. the entity id)
+  // Bodies that share a non-zero group never collide with each other (the bones of one ragdoll,
+  // whose capsules overlap at the joints); they still collide with every other body.
+  uint64_t collisionGroup = 0;
+  // A kinematic body (mass must be 0) is moved by setBodyTransform only: it pushes dynamic bodies,
+  // is pushed by nothing, never sleeps, and reports the velocity implied by its last move (the
+  // displacement between two steps over dt). Triggers see it like a dynamic body.
+  bool kinematic = false;
 };
 
 // A sensor volume: it pushes nothing and reports the bodies whose shapes really touch it (narrow

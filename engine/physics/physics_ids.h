@@ -1,4 +1,4 @@
-// Generational handles for physics objects (bodies, shapes, triggers).
+// Generational handles for physics objects (bodies, shapes, triggers, joints).
 //
 // A handle is an index into a slot table plus the generation the slot had when the object was
 // created. Destroying an object bumps the slot's generation, so a handle kept after destroy is
@@ -25,9 +25,11 @@ struct Handle {
 struct BodyTag;
 struct ShapeTag;
 struct TriggerTag;
+struct JointTag;
 
 using BodyId = Handle<BodyTag>;        // a rigid body (static or dynamic)
 using ShapeId = Handle<ShapeTag>;      // a collision shape, shareable between bodies and triggers
 using TriggerId = Handle<TriggerTag>;  // a sensor volume that reports touching bodies
+using JointId = Handle<JointTag>;      // a constraint between two bodies (cone-twist or hinge)
 
 }  // namespace cleave::physics

@@ -1,4 +1,5 @@
 #include "engine/physics/physics_result.h"
+#include "engine/physics/joint_def.h"
 
 #include "engine/physics/physics_events.h"
 
@@ -22,6 +23,14 @@ const char* toString(TriggerEventKind kind) {
     case TriggerEventKind::End: return "end";
   }
   return "unknown trigger event";
+}
+
+const char* toString(JointType type) {
+  switch (type) {
+    case JointType::ConeTwist: return "cone-twist";
+    case JointType::Hinge: return "hinge";
+  }
+  return "unknown joint type";
 }
 
 }  // namespace cleave::physics

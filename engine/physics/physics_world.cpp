@@ -36,6 +36,7 @@ constexpr int kKindTrigger = 2;
 // Contact points farther apart than this (metres) are speculative and do not count as touching.
 constexpr btScalar kTouchDistance = 0.001f;
 constexpr double kMaxStep = 1.0;
+constexpr int kJointSolverIterations = 40;
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool finite(const glm::quat& q) {
@@ -60,6 +61,17 @@ struct BodyRecord {
   uint32_t shapeIndex = 0;
   float mass = 0.0f;
   uint64_t userData = 0;
+  uint64_t collisionGroup = 0;
+  bool kinematic = false;
+};
+
+struct JointRecord {
+  std::unique_ptr<btTypedConstraint> constraint;
+  JointType type = JointType::ConeTwist;
+  BodyId bodyA;
+  BodyId bodyB;
+  btTransform frameA;
+  btTransform frameB;
 };
 
 struct TriggerRecord {
@@ -84,6 +96,25 @@ void hashVector(uint64_t& hash, const btVector3& v) {
 
 }  // namespace
 
+// Broadphase filter: Bullet's group/mask test, plus "bodies of the same non-zero collision group
+// never pair" (ragdoll bones). The group is looked up through the body's slot index.
+struct GroupFilter : btOverlapFilterCallback {
+  const detail::SlotPool<BodyRecord>* bodies = nullptr;
+  bool needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const override {
+    const bool masks = (p0->m_collisionFilterGroup & p1->m_collisionFilterMask) != 0 &&
+                       (p1->m_collisionFilterGroup & p0->m_collisionFilterMask) != 0;
+    if (!masks) return false;
+    const auto* a = static_cast<const btCollisionObject*>(p0->m_clientObject);
+    const auto* b = static_cast<const btCollisionObject*>(p1->m_clientObject);
+    if (a == nullptr || b == nullptr || a->getUserIndex2() != kKindBody || b->getUserIndex2() != kKindBody)
+      return true;
+    const BodyRecord* ra = const_cast<detail::SlotPool<BodyRecord>*>(bodies)->atIndex(uint32_t(a->getUserIndex()));
+    const BodyRecord* rb = const_cast<detail::SlotPool<BodyRecord>*>(bodies)->atIndex(uint32_t(b->getUserIndex()));
+    if (ra == nullptr || rb == nullptr) return true;
+    return ra->collisionGroup == 0 || ra->collisionGroup != rb->collisionGroup;
+  }
+};
+
 struct PhysicsWorld::Impl {
   // Declaration order is construction order; ~Impl empties the world before members go.
   btDefaultCollisionConfiguration config;
@@ -96,6 +127,8 @@ struct PhysicsWorld::Impl {
   detail::SlotPool<ShapeRecord> shapes;
   detail::SlotPool<BodyRecord> bodies;
   detail::SlotPool<TriggerRecord> triggers;
+  detail::SlotPool<JointRecord> joints;  // declared after bodies: freed before them
+  GroupFilter groupFilter;
 
   std::vector<TriggerEvent> triggerEvents;
   std::vector<ContactEvent> contactEvents;
@@ -105,6 +138,8 @@ struct PhysicsWorld::Impl {
   explicit Impl(const WorldDef& def) {
     btGImpactCollisionAlgorithm::registerAlgorithm(&dispatcher);
     broadphase.getOverlappingPairCache()->setInternalGhostPairCallback(&ghostPairCallback);
+    groupFilter.bodies = &bodies;
+    broadphase.getOverlappingPairCache()->setOverlapFilterCallback(&groupFilter);
     const glm::vec3 gravity = finite(def.gravity) ? def.gravity : WorldDef{}.gravity;
     world.setGravity(toBt(gravity));
     world.getSolverInfo().m_numIterations =
@@ -112,6 +147,7 @@ struct PhysicsWorld::Impl {
   }
 
   ~Impl() {
+    joints.forEach([&](uint32_t, uint32_t, JointRecord& r) { world.removeConstraint(r.constraint.get()); });
     bodies.forEach([&](uint32_t, uint32_t, BodyRecord& r) { world.removeRigidBody(r.body.get()); });
     triggers.forEach([&](uint32_t, uint32_t, TriggerRecord& r) {
       if (!r.spent) world.removeCollisionObject(r.ghost.get());
@@ -123,6 +159,13 @@ struct PhysicsWorld::Impl {
     return record && !record->handleReleased ? record : nullptr;
   }
   BodyRecord* body(BodyId id) { return bodies.get(id.index, id.generation); }
+  JointRecord* joint(JointId id) { return joints.get(id.index, id.generation); }
+  void removeJoint(uint32_t index) {
+    JointRecord* record = joints.atIndex(index);
+    if (record == nullptr) return;
+    world.removeConstraint(record->constraint.get());
+    joints.erase(index);
+  }
   TriggerRecord* trigger(TriggerId id) { return triggers.get(id.index, id.generation); }
 
   void releaseShapeUser(uint32_t index) {
@@ -340,6 +383,10 @@ Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
                       "createBody: mass must be finite and >= 0 (0 = static)");
   }
   const bool dynamic = def.mass > 0.0f;
+  if (def.kinematic && dynamic) {
+    return R::failure(PhysicsStatus::InvalidArgument,
+                      "createBody: a kinematic body must have mass 0 (it is moved, not pushed)");
+  }
   if (dynamic && shape->built.type == ShapeType::StaticMesh) {
     return R::failure(PhysicsStatus::UnsupportedCombination,
                       "createBody: a static mesh shape cannot have mass; use a concave mesh "
@@ -398,10 +445,22 @@ Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
   record.shapeIndex = def.shape.index;
   record.mass = def.mass;
   record.userData = def.userData;
+  record.collisionGroup = def.collisionGroup;
+  record.kinematic = def.kinematic;
   const auto key = w.bodies.insert(std::move(record));
   raw->setUserIndex(int(key.index));
   raw->setUserIndex2(kKindBody);
-  w.world.addRigidBody(raw);
+  if (def.kinematic) {
+    raw->setCollisionFlags(raw->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    raw->setActivationState(DISABLE_DEACTIVATION);
+    // Not in the static group, so triggers (which skip static bodies) see it; it pairs with
+    // dynamic bodies and triggers only.
+    w.world.addRigidBody(raw, btBroadphaseProxy::KinematicFilter,
+                         btBroadphaseProxy::AllFilter & ~btBroadphaseProxy::StaticFilter &
+                             ~btBroadphaseProxy::KinematicFilter);
+  } else {
+    w.world.addRigidBody(raw);
+  }
   if (dynamic && !def.allowSleep) {
     raw->setActivationState(DISABLE_DEACTIVATION);
   } else if (dynamic && !def.startAwake) {
@@ -415,6 +474,12 @@ bool PhysicsWorld::destroyBody(BodyId body) {
   Impl& w = *impl_;
   BodyRecord* record = w.body(body);
   if (record == nullptr) return false;
+  // Its joints go first: a constraint must never outlive one of its bodies.
+  std::vector<uint32_t> attached;
+  w.joints.forEach([&](uint32_t index, uint32_t, const JointRecord& j) {
+    if (j.bodyA == body || j.bodyB == body) attached.push_back(index);
+  });
+  for (uint32_t index : attached) w.removeJoint(index);
   w.world.removeRigidBody(record->body.get());
   const uint32_t shapeIndex = record->shapeIndex;
   w.bodies.erase(body.index);
@@ -484,6 +549,11 @@ bool PhysicsWorld::isAwake(BodyId body) const {
   return record != nullptr && record->mass > 0.0f && record->body->isActive();
 }
 
+bool PhysicsWorld::isKinematic(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  return record != nullptr && record->kinematic;
+}
+
 bool PhysicsWorld::setBodyTransform(BodyId body, const BodyTransform& transform) {
   BodyRecord* record = impl_->body(body);
   const std::optional<glm::quat> rotation = normalisedRotation(transform.rotation);
@@ -521,6 +591,124 @@ bool PhysicsWorld::activate(BodyId body) {
   if (record == nullptr || record->mass <= 0.0f) return false;
   record->body->activate(true);
   return true;
+}
+
+// ---- joints ----
+
+Result<JointId> PhysicsWorld::createJoint(const JointDef& def) {
+  using R = Result<JointId>;
+  Impl& w = *impl_;
+  BodyRecord* a = w.body(def.bodyA);
+  BodyRecord* b = w.body(def.bodyB);
+  if (a == nullptr || b == nullptr) {
+    return R::failure(PhysicsStatus::StaleHandle, "createJoint: a body handle is null or destroyed");
+  }
+  if (def.bodyA == def.bodyB) {
+    return R::failure(PhysicsStatus::InvalidArgument, "createJoint: bodyA and bodyB are the same body");
+  }
+  if (a->mass <= 0.0f && b->mass <= 0.0f) {
+    return R::failure(PhysicsStatus::InvalidArgument,
+                      "createJoint: at least one body must be dynamic (both are static or kinematic)");
+  }
+  const std::optional<glm::quat> rotationA = normalisedRotation(def.frameA.rotation);
+  const std::optional<glm::quat> rotationB = normalisedRotation(def.frameB.rotation);
+  if (!finite(def.frameA.position) || !finite(def.frameB.position) || !rotationA || !rotationB) {
+    return R::failure(PhysicsStatus::InvalidArgument,
+                      "createJoint: frame positions must be finite and rotations finite, non-zero "
+                      "quaternions");
+  }
+  const float pi = 3.14159265f;
+  auto inRange = [](float x, float lo, float hi) { return std::isfinite(x) && x >= lo && x <= hi; };
+  const btTransform frameA = detail::toBt(def.frameA.position, *rotationA);
+  const btTransform frameB = detail::toBt(def.frameB.position, *rotationB);
+  std::unique_ptr<btTypedConstraint> constraint;
+  if (def.type == JointType::ConeTwist) {
+    if (!inRange(def.swingSpan1, 0.0f, pi) || !inRange(def.swingSpan2, 0.0f, pi) ||
+        !inRange(def.twistSpan, 0.0f, pi)) {
+      return R::failure(PhysicsStatus::InvalidArgument,
+                        "createJoint: cone-twist spans must be finite and in [0, pi]");
+    }
+    auto cone = std::make_unique<btConeTwistConstraint>(*a->body, *b->body, frameA, frameB);
+    cone->setLimit(def.swingSpan1, def.swingSpan2, def.twistSpan);
+    constraint = std::move(cone);
+  } else {
+    if (!inRange(def.lowerLimit, -pi, pi) || !inRange(def.upperLimit, -pi, pi) ||
+        def.lowerLimit > def.upperLimit) {
+      return R::failure(PhysicsStatus::InvalidArgument,
+                        "createJoint: hinge limits must be finite, in [-pi, pi], lower <= upper");
+    }
+    auto hinge = std::make_unique<btHingeConstraint>(*a->body, *b->body, frameA, frameB);
+    // Bullet measures the hinge angle the other way round (left-handed about z): mirror the range.
+    hinge->setLimit(-def.upperLimit, -def.lowerLimit);
+    constraint = std::move(hinge);
+  }
+  btTypedConstraint* raw = constraint.get();
+  // Chains of joints (a ragdoll) drift apart with the world's few iterations: joints get more.
+  raw->setOverrideNumSolverIterations(kJointSolverIterations);
+  JointRecord record;
+  record.constraint = std::move(constraint);
+  record.type = def.type;
+  record.bodyA = def.bodyA;
+  record.bodyB = def.bodyB;
+  record.frameA = frameA;
+  record.frameB = frameB;
+  const auto key = w.joints.insert(std::move(record));
+  w.world.addConstraint(raw, !def.collideConnected);
+  if (a->mass > 0.0f) a->body->activate(true);
+  if (b->mass > 0.0f) b->body->activate(true);
+  return R::success(JointId{key.index, key.generation});
+}
+
+bool PhysicsWorld::destroyJoint(JointId joint) {
+  if (impl_->joint(joint) == nullptr) return false;
+  impl_->removeJoint(joint.index);
+  return true;
+}
+
+bool PhysicsWorld::isValid(JointId joint) const { return impl_->joint(joint) != nullptr; }
+
+uint32_t PhysicsWorld::jointCount() const { return impl_->joints.size(); }
+
+std::optional<JointState> PhysicsWorld::jointState(JointId joint) const {
+  const JointRecord* record = impl_->joint(joint);
+  if (record == nullptr) return std::nullopt;
+  const BodyRecord* a = impl_->body(record->bodyA);
+  const BodyRecord* b = impl_->body(record->bodyB);
+  if (a == nullptr || b == nullptr) return std::nullopt;
+  const btTransform fa = a->body->getWorldTransform() * record->frameA;
+  const btTransform fb = b->body->getWorldTransform() * record->frameB;
+  JointState state;
+  state.pivotA = toGlm(fa.getOrigin());
+  state.pivotB = toGlm(fb.getOrigin());
+  state.separation = glm::length(state.pivotA - state.pivotB);
+  if (record->type == JointType::Hinge) {
+    // Right-handed rotation of B's frame about the common z axis, seen from A's frame.
+    const glm::quat relative = glm::inverse(toGlm(fa.getRotation())) * toGlm(fb.getRotation());
+    glm::quat twist(relative.w, 0.0f, 0.0f, relative.z);
+    const float length = glm::length(twist);
+    if (length > 1e-6f) {
+      twist /= length;
+      if (twist.w < 0.0f) twist = -twist;
+      state.hingeAngle = 2.0f * std::atan2(twist.z, twist.w);
+    }
+  } else {
+    // Swing: the angle between the two twist (x) axes; twist: the rotation about B's x axis left
+    // after removing the swing (swing-twist decomposition of the relative rotation).
+    const glm::quat qa = toGlm(fa.getRotation());
+    const glm::quat qb = toGlm(fb.getRotation());
+    const glm::vec3 xa = qa * glm::vec3(1, 0, 0);
+    const glm::vec3 xb = qb * glm::vec3(1, 0, 0);
+    state.swingAngle = std::acos(std::clamp(glm::dot(xa, xb), -1.0f, 1.0f));
+    const glm::quat relative = glm::inverse(qa) * qb;  // B's frame seen from A's frame
+    glm::quat twist(relative.w, relative.x, 0.0f, 0.0f);
+    const float length = glm::length(twist);
+    if (length > 1e-6f) {
+      twist /= length;
+      if (twist.w < 0.0f) twist = -twist;
+      state.twistAngle = 2.0f * std::atan2(twist.x, twist.w);
+    }
+  }
+  return state;
 }
 
 // ---- triggers ----

@@ -27,6 +27,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "engine/physics/body_def.h"
+#include "engine/physics/joint_def.h"
 #include "engine/physics/physics_events.h"
 #include "engine/physics/physics_ids.h"
 #include "engine/physics/physics_result.h"
@@ -81,7 +82,8 @@ class PhysicsWorld {
   // Errors: StaleHandle (shape), InvalidArgument (non-finite or out-of-range values, inertia with
   // mass 0), UnsupportedCombination (StaticMesh with mass > 0).
   Result<BodyId> createBody(const BodyDef& def);
-  // Removes the body from the world, with its contacts. Returns false for a stale handle.
+  // Removes the body from the world, with its contacts and every joint attached to it. Returns
+  // false for a stale handle.
   bool destroyBody(BodyId body);
   bool isValid(BodyId body) const;
   uint32_t bodyCount() const;
@@ -97,7 +99,11 @@ class PhysicsWorld {
   // False for static bodies, sleeping bodies and stale handles.
   bool isAwake(BodyId body) const;
 
-  // Teleports the body (centre of mass) and wakes it. False for a stale handle or a non-finite
+  // True for a body created with BodyDef::kinematic.
+  bool isKinematic(BodyId body) const;
+
+  // Teleports the body (centre of mass) and wakes it. For a kinematic body this is how it moves: the
+  // next step derives its velocity from the move. False for a stale handle or a non-finite
   // transform; a zero quaternion is refused, others are normalised.
   bool setBodyTransform(BodyId body, const BodyTransform& transform);
   // Sets both velocities and wakes the body. False for stale handles, static bodies or non-finite
@@ -108,6 +114,18 @@ class PhysicsWorld {
   bool applyImpulse(BodyId body, glm::vec3 impulse, glm::vec3 worldPoint);
   // Wakes a sleeping body. False for stale handles and static bodies.
   bool activate(BodyId body);
+
+  // ---- joints (constraints between two bodies, see joint_def.h) ----
+  // Errors: StaleHandle (a body), InvalidArgument (same body twice, both bodies static or
+  // kinematic, non-finite frames, a zero quaternion, spans or limits out of range).
+  Result<JointId> createJoint(const JointDef& def);
+  // Removes the constraint. False for a stale handle (also after one of its bodies was destroyed,
+  // which destroys the joint with it).
+  bool destroyJoint(JointId joint);
+  bool isValid(JointId joint) const;
+  uint32_t jointCount() const;
+  // The joint's frames in the world now; nullopt for a stale handle.
+  std::optional<JointState> jointState(JointId joint) const;
 
   // ---- triggers ----
   // Errors: StaleHandle (shape), InvalidArgument, UnsupportedCombination (mesh shapes).

@@ -12,6 +12,7 @@
 #include "components/scene_components.h"
 #include "components/scene_loader.h"
 #include "components/splitable.h"
+#include "engine/assets/procedural_character.h"
 #include "engine/assets/procedural_textures.h"
 #include "engine/ecs/hierarchy.h"
 #include "engine/geometry/primitives.h"
@@ -26,6 +27,30 @@ constexpr float kPushImpulse = 6.f;        // N s per kg of the pushed body (a v
 constexpr float kCutReach = 60.f;          // metres a drag cut reaches from the camera
 
 uint64_t entityId(ecs::Entity e) { return (uint64_t(e.generation) << 32) | e.index; }
+
+// Object 6 walks a small circle: kWalkSeconds of walking, then kIdleSeconds standing, crossfading
+// between the clips. Its body is kinematic and set on the circle every tick.
+constexpr float kWalkRadius = 0.6f;        // metres
+constexpr float kWalkAngularSpeed = 1.1f;  // rad/s: about 0.66 m/s along the circle
+constexpr float kWalkSeconds = 6.f;
+constexpr float kIdleSeconds = 2.f;
+constexpr float kCrossfadeSeconds = 0.35f;
+
+// The walking state of a generated character in the demo.
+struct Walker {
+  glm::vec3 centre{0.f};      // of the circle, on the floor
+  float angle = 0.f;          // radians around the circle
+  float seconds = 0.f;        // into the current walk/idle phase
+  bool walking = true;
+  glm::mat4 bodyFromRoot{1.f};  // the body frame relative to the character's feet frame
+};
+
+glm::mat4 walkerRoot(const Walker& w) {
+  const glm::vec3 at = w.centre + kWalkRadius * glm::vec3(std::sin(w.angle), 0.f, std::cos(w.angle));
+  // Facing the direction of travel: +z turned onto the circle's tangent.
+  return glm::translate(glm::mat4(1.f), at) *
+         glm::mat4_cast(glm::angleAxis(w.angle + glm::half_pi<float>(), glm::vec3(0, 1, 0)));
+}
 
 }  // namespace
 
@@ -101,6 +126,29 @@ void DemoGame::createMaterials() {
   capLooks_[0].baseColor = glm::vec4(1.1f, 1.05f, 0.95f, 1.f);
   capLooks_[1].reflectivity = 0.2f;
   capLooks_[1].baseColor = glm::vec4(0.8f, 0.8f, 0.85f, 1.f);
+
+  // The generated character: its colours by material id, skin soft and slightly glossy, and the
+  // cut caps (material 1) red flesh.
+  const assets::ProceduralCharacter made = assets::makeProceduralCharacter();
+  auto asset = std::make_shared<components::SkinnedAsset>();
+  asset->skeleton = made.skeleton;
+  asset->clips = {made.idle, made.walk};
+  characterAsset_ = asset;
+  characterMesh_ = std::make_shared<geometry::MeshData>(made.mesh);
+  characterMaterials_.clear();
+  for (size_t id = 0; id < made.materialColors.size(); ++id) {
+    render::Material look;
+    look.baseColor = made.materialColors[id];
+    look.specular = id == 0 ? 0.35f : 0.12f;
+    look.shininess = id == 0 ? 28.f : 12.f;
+    characterMaterials_.push_back(look);
+  }
+  render::Material flesh;
+  flesh.baseColor = glm::vec4(0.72f, 0.1f, 0.09f, 1.f);
+  flesh.specular = 0.6f;
+  flesh.shininess = 48.f;
+  if (characterMaterials_.size() < 2) characterMaterials_.resize(2);
+  characterMaterials_[1] = flesh;
 
   floorMaterial_.shading = render::Shading::Checker;
   floorMaterial_.baseColor = glm::vec4(0.62f, 0.62f, 0.6f, 1.f);
@@ -190,11 +238,7 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
       break;
     }
     case ObjectKind::Skinned:
-      mesh = geometry::primitives::capsule(0.3f, 0.6f, 24, 12);
-      splitable.density = 1000.0;
-      look = 4;
-      name = "skinned placeholder";
-      break;
+      return spawnCharacter(position, rotation);
     case ObjectKind::Torus:
       mesh = geometry::primitives::torus(0.5f, 0.2f, 48, 24);
       splitable.density = 1200.0;
@@ -227,11 +271,72 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
   return e;
 }
 
+ecs::Entity DemoGame::spawnCharacter(const glm::vec3& position, const glm::quat& rotation) {
+  ecs::World& world = app_->world();
+  const ecs::Entity e = world.create();
+  world.add<ecs::Name>(e, ecs::Name{"skinned character"});
+  // The feet stand on the floor (y = 0) below `position`, facing along the circle.
+  Walker walker;
+  walker.centre = glm::vec3(position.x, 0.f, position.z) - kWalkRadius * glm::vec3(0.f, 0.f, 1.f);
+  (void)rotation;
+  const glm::mat4 root = walkerRoot(walker);
+  ecs::Transform t;
+  t.position = glm::vec3(root[3]);
+  t.rotation = glm::quat_cast(glm::mat3(root));
+  world.add<ecs::Transform>(e, t);
+  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
+  components::MeshRenderer mr;
+  mr.source = characterMesh_;
+  mr.gpu = app_->renderer().uploadMesh(*characterMesh_);
+  mr.materials = characterMaterials_;
+  world.add<components::MeshRenderer>(e, std::move(mr));
+  world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(characterAsset_, "walk"));
+  components::Splitable splitable;
+  splitable.density = 1000.0;  // the body's mass; pieces share it by posed volume
+  splitable.capMaterialId = 1;
+  splitable.capMaterial = characterMaterials_[1];
+  splitable.skinnedPieces = components::SkinnedPieceMode::Ragdoll;
+  world.add<components::Splitable>(e, splitable);
+  components::SplitWorld sw = splitWorld();
+  std::string error;
+  if (!components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true, &error)) {
+    std::fprintf(stderr, "demo: the character has no body: %s\n", error.c_str());
+  } else {
+    const auto& body = world.get<components::RigidBody>(e);
+    const auto bt = physics_->bodyTransform(body.body);
+    const glm::mat4 bodyWorld = glm::translate(glm::mat4(1.f), bt->position) * glm::mat4_cast(bt->rotation);
+    walker.bodyFromRoot = glm::inverse(root) * bodyWorld;
+  }
+  world.add<Walker>(e, walker);
+  return e;
+}
+
+void DemoGame::walkCharacters(double dt) {
+  ecs::World& world = app_->world();
+  for (auto [e, walker, skin] : world.view<Walker, components::SkinnedMesh>()) {
+    walker.seconds += float(dt);
+    const float phase = walker.walking ? kWalkSeconds : kIdleSeconds;
+    if (walker.seconds >= phase) {
+      walker.seconds -= phase;
+      walker.walking = !walker.walking;
+      skin.animator.play(characterAsset_->clip(walker.walking ? "walk" : "idle"), kCrossfadeSeconds);
+    }
+    // Speed follows the clip blend, so the feet do not slide while the fade runs.
+    const float weight = skin.animator.blendWeight();
+    const float speed = walker.walking ? weight : 1.f - weight;
+    walker.angle += kWalkAngularSpeed * speed * float(dt);
+    if (const auto* rb = world.tryGet<components::RigidBody>(e)) {
+      const glm::mat4 body = walkerRoot(walker) * walker.bodyFromRoot;
+      physics_->setBodyTransform(rb->body, physics::BodyTransform{glm::vec3(body[3]), glm::quat_cast(glm::mat3(body))});
+    }
+  }
+}
+
 void DemoGame::benchmarkSplits(int repeats) {
   ecs::World& world = app_->world();
   components::SplitWorld sw = splitWorld();
   const char* names[] = {"", "1 wooden cube", "2 metal sphere", "3 marble cylinder", "4 melon",
-                         "5 multi-part figure", "6 skinned placeholder", "7 torus"};
+                         "5 multi-part figure", "6 skinned character", "7 torus"};
   std::printf("| object | triangles | pieces | total ms | geometry ms | collider ms | upload ms |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
   auto median = [](std::vector<double> v) {
@@ -274,7 +379,6 @@ void DemoGame::benchmarkSplits(int repeats) {
 }
 
 bool DemoGame::loadSceneFile(const std::string& path, std::string* error) {
-  components::SplitWorld sw = splitWorld();
   components::SceneContext context{app_->world(), *physics_, &app_->renderer(), splits_.get(), {}};
   // Material names of the scene file map to the demo's looks; caps get the inside look.
   context.materials = [this](const std::string& name, bool cap) {
@@ -376,6 +480,10 @@ bool DemoGame::setup(app::App& app, std::string* error) {
     components::SplitWorld sw = splitWorld();
     components::syncTransformsFromBodies(sw);
     components::updateDebris(sw, float(c.dt));
+  });
+  app.addSystem(app::Phase::Animation, "animation", [this](app::TickContext& c) {
+    components::SplitWorld sw = splitWorld();
+    components::updateAnimations(sw, float(c.dt));
   });
   app.addSystem(app::Phase::Render, "demo.render", [this](app::TickContext& c) { render(c); });
   app.setStateDumpExtension([this](ecs::Entity e, nlohmann::json& out) { dumpExtension(e, out); });
@@ -491,6 +599,7 @@ void DemoGame::dragCut(app::TickContext& c, glm::vec2 from, glm::vec2 to) {
 }
 
 void DemoGame::gameplay(app::TickContext& c) {
+  walkCharacters(c.dt);
   if (sceneRunner_) {
     components::SplitWorld sw = splitWorld();
     sceneRunner_->update(sw, c.tick, c.dt);
@@ -627,9 +736,6 @@ void DemoGame::drawHud(app::TickContext& c) {
     r.submitOverlayLines(drag, glm::vec4(1.f, 0.9f, 0.2f, 1.f));
   }
   if (splitMode_) r.submitText("SPLIT MODE: drag to cut", {mid.x - 110.f, 20.f}, 2.f, glm::vec4(1, 0.9f, 0.2f, 1));
-  // The skinned character is not in yet: say so next to its placeholder.
-  r.submitText("6: skinned character (placeholder until skinned meshes land)", {16.f, float(c.frameSize.y) - 28.f},
-               1.5f, glm::vec4(1.f, 1.f, 1.f, 0.8f));
   if (showHelp_) {
     r.submitOverlayRect(glm::vec4(mid.x - 230, mid.y - 110, 460, 220), glm::vec4(0, 0, 0, 0.6f));
     const char* help[] = {"WASD move, mouse look",     "hold Space: split mode, drag left button to cut",

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "components/scene_loader.h"
+#include "components/skinned.h"
 #include "components/split_system.h"
 #include "engine/app/app.h"
 #include "engine/physics/physics_world.h"
@@ -49,6 +50,9 @@ class DemoGame {
  private:
   void createMaterials();
   void createFloor();
+  // Object 6: the generated character, walking a small circle, cut into ragdolls by default.
+  ecs::Entity spawnCharacter(const glm::vec3& position, const glm::quat& rotation);
+  void walkCharacters(double dt);
   // --scene FILE: the objects, splitters, budget and camera of a JSON scene (docs/scene-format.md).
   bool loadSceneFile(const std::string& path, std::string* error);
   void gameplay(app::TickContext& c);
@@ -80,6 +84,10 @@ class DemoGame {
   std::array<std::string, 7> lookNames_{};
   std::array<render::Material, 7> capLooks_{};
   render::Material floorMaterial_;
+  // The generated character (object 6): shared skeleton and clips, mesh, and its materials by id.
+  std::shared_ptr<const components::SkinnedAsset> characterAsset_;
+  std::shared_ptr<const geometry::MeshData> characterMesh_;
+  std::vector<render::Material> characterMaterials_;
   std::vector<render::TextureHandle> textures_;
 
   // Every split of the run, for the state dump (replay tests check mass conservation per cut).

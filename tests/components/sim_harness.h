@@ -1,7 +1,7 @@
 // A headless simulation for the component tests: a World, a PhysicsWorld and a SplitSystem without
 // renderer, stepped tick by tick in the App's phase order (engine/app/phase.h):
 // Gameplay (scene splitters) -> Triggers (gather the last step's touches) -> Split (activations,
-// budgeted splits) -> PhysicsStep -> PhysicsSync (transforms, debris).
+// budgeted splits) -> PhysicsStep -> PhysicsSync (transforms, debris) -> Animation.
 #pragma once
 
 #include <functional>
@@ -14,6 +14,7 @@
 
 #include "components/scene_components.h"
 #include "components/scene_loader.h"
+#include "components/skinned.h"
 #include "components/split_system.h"
 #include "engine/ecs/hierarchy.h"
 #include "engine/ecs/world.h"
@@ -59,6 +60,7 @@ struct Sim {
     if (afterStep) afterStep();
     syncTransformsFromBodies(w);
     updateDebris(w, float(kDt));
+    updateAnimations(w, float(kDt));
     ++tick;
   }
 

@@ -7,7 +7,10 @@
 #include <memory>
 #include <string>
 
+#include "components/skinned.h"
+#include "components/split_system.h"
 #include "engine/anim/animation_clip.h"
+#include "engine/ecs/hierarchy.h"
 #include "engine/assets/model.h"
 #include "engine/assets/procedural_character.h"
 #include "engine/geometry/mesh_splitter.h"
@@ -145,6 +148,73 @@ BENCHMARK(BM_SkinnedCharacterPoseAndSplit)->Unit(benchmark::kMicrosecond);
 
 void BM_SkinnedCharacterPoseOnly(benchmark::State& state) { runSkinnedCharacter(state, false); }
 BENCHMARK(BM_SkinnedCharacterPoseOnly)->Unit(benchmark::kMicrosecond);
+
+// Time from split request to pieces created for the generated character through the split system
+// (renderer null): the walking character on a kinematic body is cut across the chest with
+// SplitSystem::splitNow, which cuts in the pose, builds the pieces of the chosen mode (keep
+// animating: skinned piece + collider; ragdoll: capsules and joints; bake: CPU skinning + collider),
+// creates their bodies and applies the entity changes. Spawning and freeing are not timed.
+// Arg: 0 KeepAnimating, 1 Ragdoll, 2 Bake.
+void BM_SkinnedCharacterSplitSystem(benchmark::State& state) {
+  using namespace cleave::components;
+  const assets::ProceduralCharacter character = assets::makeProceduralCharacter();
+  auto asset = std::make_shared<SkinnedAsset>();
+  asset->skeleton = character.skeleton;
+  asset->clips = {character.idle, character.walk};
+  auto mesh = std::make_shared<const MeshData>(character.mesh);
+  const auto mode = SkinnedPieceMode(state.range(0));
+  ecs::World world;
+  physics::PhysicsWorld physics;
+  SplitSystem splits;
+  SplitWorld w{world, physics, nullptr};
+  size_t pieces = 0;
+  float time = 0.f;
+  for (auto _ : state) {
+    state.PauseTiming();
+    const ecs::Entity e = world.create();
+    world.add<ecs::Transform>(e, ecs::Transform{});
+    world.add<ecs::WorldTransform>(e, ecs::WorldTransform{});
+    MeshRenderer mr;
+    mr.source = mesh;
+    mr.materials.resize(5);
+    world.add<MeshRenderer>(e, std::move(mr));
+    world.add<SkinnedMesh>(e, makeSkinnedMesh(asset, "walk", time));
+    time += 1.f / 60.f;
+    Splitable sp;
+    sp.skinnedPieces = mode;
+    world.add<Splitable>(e, sp);
+    std::string error;
+    if (!makeSkinnedBody(w, e, 1000.0, true, &error)) {
+      state.SkipWithError(error.c_str());
+      return;
+    }
+    SplitRequest request;
+    request.target = e;
+    request.planeNormal = glm::normalize(glm::dvec3(0.2, 1.0, 0.1));
+    request.planeOffset = 1.05;
+    state.ResumeTiming();
+    const SplitEvent ev = splits.splitNow(w, e, request, 0);
+    state.PauseTiming();
+    if (ev.status != SplitStatus::Ok) {
+      state.SkipWithError(("split failed: " + ev.message).c_str());
+      return;
+    }
+    pieces = ev.pieces.size();
+    for (ecs::Entity piece : ev.pieces) {
+      releaseEntityResources(w, piece);
+      world.destroy(piece);
+    }
+    state.ResumeTiming();
+  }
+  state.counters["triangles"] = double(character.mesh.triangleCount());
+  state.counters["pieces"] = double(pieces);
+}
+BENCHMARK(BM_SkinnedCharacterSplitSystem)
+    ->ArgName("mode")  // 0 keep animating, 1 ragdoll, 2 bake
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond);
 
 // robot.glb from the models folder (CLEAVE_MODELS_DIR, else ../shared/models beside the sources;
 // skipped when absent): its skinned meshes merged into one, posed at 0.5 s of its first clip and cut
