@@ -17,6 +17,7 @@
 #include "engine/ecs/hierarchy.h"
 #include "engine/geometry/convex_hull.h"
 #include "engine/geometry/mass_properties.h"
+#include "engine/geometry/primitives.h"
 
 namespace cleave::components {
 
@@ -275,16 +276,122 @@ physics::ShapeId makeCollider(SplitWorld& w, geometry::IMeshSplitter& splitter,
 
 }  // namespace
 
+namespace {
+
+// One Splitable on a parent cuts the meshes of its whole subtree together. The meshes are merged
+// into the parent entity's space with their submesh material ids tagged by part:
+// id = part * kPartStride + original id (part 0 is the parent's own mesh), and the caps get
+// kMergedCapId. After the cut, the tags tell which triangles go back to which part.
+constexpr uint32_t kPartStride = 64;
+constexpr uint32_t kMergedCapId = kPartStride - 1;
+
+struct HierarchyPart {
+  ecs::Entity entity;
+  const MeshRenderer* renderer = nullptr;
+  glm::dmat4 toParent{1.0};  // the part's mesh space -> the parent entity's space
+};
+
+// Collects the parent's own mesh (if any) and the meshes of its descendants. Returns false when the
+// subtree has no descendant with a mesh (the plain single-mesh path applies).
+bool gatherParts(const ecs::World& world, ecs::Entity root, std::vector<HierarchyPart>& parts) {
+  parts.clear();
+  if (const auto* mr = world.tryGet<MeshRenderer>(root); mr && mr->source)
+    parts.push_back({root, mr, glm::dmat4(mr->meshOffset)});
+  size_t own = parts.size();
+  struct Item {
+    ecs::Entity entity;
+    glm::dmat4 toParent;
+    int depth;
+  };
+  std::vector<Item> stack;
+  if (const auto* children = world.tryGet<ecs::Children>(root))
+    for (auto it = children->entities.rbegin(); it != children->entities.rend(); ++it)
+      stack.push_back({*it, glm::dmat4(1.0), 1});
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    if (!world.alive(item.entity) || item.depth > 64) continue;
+    if (ecs::parentOf(world, item.entity) == ecs::kNullEntity) continue;
+    if (world.has<RigidBody>(item.entity)) continue;  // a body of its own: an object of its own
+    const auto* t = world.tryGet<ecs::Transform>(item.entity);
+    const glm::dmat4 toParent = item.toParent * (t ? glm::dmat4(ecs::localMatrix(*t)) : glm::dmat4(1.0));
+    if (const auto* mr = world.tryGet<MeshRenderer>(item.entity); mr && mr->source)
+      parts.push_back({item.entity, mr, toParent * glm::dmat4(mr->meshOffset)});
+    if (const auto* children = world.tryGet<ecs::Children>(item.entity))
+      for (auto it = children->entities.rbegin(); it != children->entities.rend(); ++it)
+        stack.push_back({*it, toParent, item.depth + 1});
+  }
+  return parts.size() > own && parts.size() < kPartStride;
+}
+
+// The merged mesh of the parts in the parent entity's space, material ids tagged by part.
+geometry::MeshData mergeParts(const std::vector<HierarchyPart>& parts) {
+  geometry::MeshData merged;
+  for (size_t k = 0; k < parts.size(); ++k) {
+    geometry::MeshData part = *parts[k].renderer->source;
+    geometry::primitives::transform(part, glm::mat4(parts[k].toParent));
+    if (part.submeshes.empty()) part.submeshes.push_back({0, uint32_t(part.indices.size()), 0});
+    for (geometry::SubMesh& sub : part.submeshes)
+      sub.materialId = uint32_t(k) * kPartStride + std::min(sub.materialId, kMergedCapId - 1);
+    merged = merged.positions.empty() ? std::move(part) : geometry::primitives::merge(merged, part);
+  }
+  return merged;
+}
+
+// The triangles of `piece` whose tag says they belong to part `part` (and the caps, for `withCaps`),
+// with the tags turned back into the part's own material ids (caps: capMaterialId).
+geometry::MeshData extractPart(const geometry::MeshData& piece, uint32_t part, bool withCaps,
+                               uint32_t capMaterialId) {
+  std::vector<uint32_t> triangles;
+  for (const geometry::SubMesh& sub : piece.submeshes) {
+    const bool cap = sub.materialId == kMergedCapId;
+    if (!(cap ? withCaps : sub.materialId / kPartStride == part)) continue;
+    for (uint32_t i = 0; i < sub.indexCount / 3; ++i) triangles.push_back(sub.firstIndex / 3 + i);
+  }
+  geometry::MeshData out;
+  if (triangles.empty()) return out;
+  geometry::MeshContainer container;
+  if (container.setMesh(piece) != geometry::SplitStatus::Ok) return out;
+  container.extractTriangles(triangles, out);
+  for (geometry::SubMesh& sub : out.submeshes)
+    sub.materialId = sub.materialId == kMergedCapId ? capMaterialId : sub.materialId % kPartStride;
+  return out;
+}
+
+// Rigid part of an affine matrix as a Transform (scale from the column lengths; shear is dropped).
+ecs::Transform toTransform(const glm::dmat4& m) {
+  ecs::Transform t;
+  t.position = glm::vec3(m[3]);
+  glm::dvec3 scale(glm::length(glm::dvec3(m[0])), glm::length(glm::dvec3(m[1])), glm::length(glm::dvec3(m[2])));
+  glm::dmat3 r(glm::dvec3(m[0]) / scale.x, glm::dvec3(m[1]) / scale.y, glm::dvec3(m[2]) / scale.z);
+  if (glm::determinant(r) < 0.0) {
+    scale.x = -scale.x;
+    r[0] = -r[0];
+  }
+  t.rotation = glm::normalize(glm::quat(glm::quat_cast(r)));
+  t.scale = glm::vec3(scale);
+  return t;
+}
+
+}  // namespace
+
 bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode collider,
                      std::string* error) {
-  auto* mr = w.world.tryGet<MeshRenderer>(e);
   auto* t = w.world.tryGet<ecs::Transform>(e);
-  if (!mr || !mr->source || !t) {
+  std::vector<HierarchyPart> parts;
+  const bool hierarchy = t && gatherParts(w.world, e, parts);
+  auto* mr = w.world.tryGet<MeshRenderer>(e);
+  if ((!hierarchy && (!mr || !mr->source)) || !t) {
     if (error) *error = "entity has no mesh or transform";
     return false;
   }
-  const glm::dmat4 model = glm::dmat4(ecs::localMatrix(*t)) * glm::dmat4(mr->meshOffset);
-  const geometry::MassProperties props = geometry::computeMassProperties(*mr->source, model);
+  // A parent with meshes below it: one body for the whole subtree, from the merged meshes.
+  geometry::MeshData merged;
+  if (hierarchy) merged = mergeParts(parts);
+  const geometry::MeshData& source = hierarchy ? merged : *mr->source;
+  const glm::dmat4 oldLocal(ecs::localMatrix(*t));
+  const glm::dmat4 model = hierarchy ? oldLocal : oldLocal * glm::dmat4(mr->meshOffset);
+  const geometry::MassProperties props = geometry::computeMassProperties(source, model);
   if (!(props.volume > 0.0)) {
     if (error) *error = "mesh encloses no volume";
     return false;
@@ -293,7 +400,7 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
   const BodyFrame frame = bodyFrameFor(props, mass, model);
   auto splitter = geometry::makeConcaveSplitter();
   std::string reason;
-  const physics::ShapeId shape = makeCollider(w, *splitter, *mr->source, frame.meshOffset, collider,
+  const physics::ShapeId shape = makeCollider(w, *splitter, source, frame.meshOffset, collider,
                                                /*knownConvex=*/false, &reason);
   if (shape.isNull()) {
     if (error) *error = "no collider: " + reason;
@@ -312,7 +419,19 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
     if (error) *error = body.reason();
     return false;
   }
-  mr->meshOffset = glm::mat4(frame.meshOffset);
+  if (hierarchy) {
+    // The entity moves to the body frame; its own mesh and its children keep their world placement.
+    if (mr) mr->meshOffset = glm::mat4(frame.meshOffset * glm::dmat4(mr->meshOffset));
+    if (const auto* children = w.world.tryGet<ecs::Children>(e)) {
+      for (ecs::Entity child : children->entities) {
+        auto* ct = w.world.tryGet<ecs::Transform>(child);
+        if (ct && ecs::parentOf(w.world, child) == e)
+          *ct = toTransform(frame.meshOffset * glm::dmat4(ecs::localMatrix(*ct)));
+      }
+    }
+  } else {
+    mr->meshOffset = glm::mat4(frame.meshOffset);
+  }
   t->position = def.position;
   t->rotation = def.rotation;
   t->scale = glm::vec3(1.f);
@@ -448,8 +567,15 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   const auto* sp = w.world.tryGet<Splitable>(target);
   const auto* rb = w.world.tryGet<RigidBody>(target);
   const auto* t = w.world.tryGet<ecs::Transform>(target);
-  if (!mr || !mr->source || !sp || !t)
+  std::vector<HierarchyPart> parts;
+  const bool hierarchy = t && !w.world.has<SkinnedMesh>(target) && gatherParts(w.world, target, parts);
+  if ((!hierarchy && (!mr || !mr->source)) || !sp || !t)
     return fail(geometry::SplitStatus::InvalidInput, "target has no mesh, Splitable or Transform");
+  // A parent with meshes below it is cut as one merged mesh in its own space (see gatherParts).
+  geometry::MeshData merged;
+  if (hierarchy) merged = mergeParts(parts);
+  const geometry::MeshData& source = hierarchy ? merged : *mr->source;
+  const glm::mat4 sourceOffset = hierarchy ? glm::mat4(1.f) : mr->meshOffset;
 
   // The parent's motion and frame (the body is authoritative when there is one).
   glm::dvec3 parentCom(t->position);
@@ -470,15 +596,15 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   ev.parentMass = parentMass;
   const glm::dmat4 entityToWorld = glm::translate(glm::dmat4(1.0), parentCom) * glm::mat4_cast(parentRot) *
                                    glm::scale(glm::dmat4(1.0), glm::dvec3(t->scale));
-  const glm::dmat4 model = entityToWorld * glm::dmat4(mr->meshOffset);
+  const glm::dmat4 model = entityToWorld * glm::dmat4(sourceOffset);
 
   Scratch& s = *scratch_;
   std::string message;
-  if (s.container.setMesh(*mr->source, &message) != geometry::SplitStatus::Ok)
+  if (s.container.setMesh(source, &message) != geometry::SplitStatus::Ok)
     return fail(geometry::SplitStatus::InvalidInput, message);
   // A skinned target is cut in its current pose: the cut space is the skinned mesh in the world.
   const auto* skin = w.world.tryGet<SkinnedMesh>(target);
-  if (skin && (skin->jointMatrices.empty() || mr->source->joints.empty())) skin = nullptr;
+  if (skin && (hierarchy || skin->jointMatrices.empty() || source.joints.empty())) skin = nullptr;
   if (skin) {
     if (s.container.setSkinningPose(skin->jointMatrices, glm::mat4(model), &message) != geometry::SplitStatus::Ok)
       return fail(geometry::SplitStatus::InvalidInput, message);
@@ -487,12 +613,14 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   }
   geometry::SplitOptions options;
   options.cap = sp->cap;
-  options.capMaterialId = sp->capMaterialId;
+  options.capMaterialId = hierarchy ? kMergedCapId : sp->capMaterialId;
   options.uvMode = sp->capUvMode;
   options.uvPerMetre = sp->capUvPerMetre;
   options.atlasRect = sp->capAtlasRect;
   options.uvPerBorder = sp->capUvPerBorder;
-  options.separateIslands = sp->separateIslands;
+  // The parts of a hierarchy are usually disjoint meshes (a head above a body) that form one
+  // object: each side stays one piece.
+  options.separateIslands = sp->separateIslands && !hierarchy;
   const geometry::Plane plane{request.planeNormal, request.planeOffset};
   geometry::IMeshSplitter& splitter = sp->convexHint ? *s.convex : *s.concave;
   const double geometryStart = nowMs();
@@ -500,7 +628,7 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   ev.geometryMilliseconds = nowMs() - geometryStart;
   if (status != geometry::SplitStatus::Ok) {
     if (status != geometry::SplitStatus::PlaneMissesMesh && !failureDumpDirectory_.empty())
-      writeFailureCase(failureDumpDirectory_, ev.originalName, tick, target, *mr->source, model, plane,
+      writeFailureCase(failureDumpDirectory_, ev.originalName, tick, target, source, model, plane,
                        geometry::toString(status), s.result.message);
     return fail(status, s.result.message);
   }
@@ -526,7 +654,7 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   const auto* name = w.world.tryGet<ecs::Name>(target);
   const auto* choice = w.world.tryGet<MaterialChoice>(target);
 
-  std::vector<render::Material> materials = mr->materials;
+  std::vector<render::Material> materials = mr ? mr->materials : std::vector<render::Material>{};
   if (materials.size() <= sp->capMaterialId) {
     materials.resize(sp->capMaterialId + 1, materials.empty() ? render::Material{} : materials.back());
   }
@@ -574,9 +702,16 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
       ev.colliderMilliseconds += nowMs() - colliderStart;
       if (!isRagdoll) skinMode = SkinnedPieceMode::KeepAnimating;  // too few vertices for any bone
     }
+    // Hierarchy: the piece entity draws the parent's part and the caps; each child part with
+    // triangles on this side becomes a child entity (below). The collider covers them all.
+    geometry::MeshData wholePiece;
+    if (hierarchy) {
+      wholePiece = std::move(piece.mesh);
+      piece.mesh = extractPart(wholePiece, 0, true, sp->capMaterialId);
+    }
     auto mesh = std::make_shared<geometry::MeshData>(keepSkin ? std::move(piece.mesh)
                                                               : skin ? std::move(posed) : std::move(piece.mesh));
-    const geometry::MeshData& colliderMesh = keepSkin ? posed : *mesh;
+    const geometry::MeshData& colliderMesh = hierarchy ? wholePiece : keepSkin ? posed : *mesh;
     MeshRenderer renderer;
     renderer.source = mesh;
     renderer.materials = materials;
@@ -673,6 +808,35 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
       commands.add<RigidBody>(e, RigidBody{body, shape});
       if (depth < sp->maxDepth) commands.add<Splitable>(e, pieceSplitable);
     }
+    if (hierarchy) {
+      std::vector<ecs::Entity> children;
+      for (size_t part = 0; part < parts.size(); ++part) {
+        if (parts[part].entity == target) continue;
+        geometry::MeshData childMesh = extractPart(wholePiece, uint32_t(part), false, sp->capMaterialId);
+        if (childMesh.indices.empty()) continue;
+        const ecs::Entity child = commands.create();
+        auto childSource = std::make_shared<geometry::MeshData>(std::move(childMesh));
+        MeshRenderer childRenderer;
+        childRenderer.source = childSource;
+        childRenderer.materials = parts[part].renderer->materials;
+        childRenderer.meshOffset = glm::mat4(frame.meshOffset);  // merged space -> the piece's frame
+        childRenderer.visible = parts[part].renderer->visible;
+        if (w.renderer) {
+          const double uploadStart = nowMs();
+          childRenderer.gpu = w.renderer->uploadMesh(*childSource);
+          ev.uploadMilliseconds += nowMs() - uploadStart;
+        }
+        const auto* childName = w.world.tryGet<ecs::Name>(parts[part].entity);
+        commands.add<ecs::Transform>(child, ecs::Transform{});
+        commands.add<ecs::WorldTransform>(child, ecs::WorldTransform{ecs::localMatrix(transform)});
+        commands.add<ecs::Name>(child, ecs::Name{(childName ? childName->value : std::string("part")) + "/" +
+                                                 (piece.side > 0 ? "a" : "b") + std::to_string(k)});
+        commands.add<ecs::Parent>(child, ecs::Parent{e});
+        commands.add<MeshRenderer>(child, std::move(childRenderer));
+        children.push_back(child);
+      }
+      commands.add<ecs::Children>(e, ecs::Children{std::move(children)});
+    }
     ev.pieces.push_back(e);
     ev.capLoops.push_back(piece.capLoops);
     ev.piecesMass += mass;
@@ -684,7 +848,14 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
     std::erase(blade->passing, toUser(target));
     for (ecs::Entity piece : ev.pieces) blade->passing.push_back(toUser(piece));
   }
-  commands.destroy(target);
+  if (hierarchy) {
+    // The original subtree goes with its GPU meshes; the pieces carry copies of its parts.
+    for (const HierarchyPart& part : parts)
+      if (part.entity != target) s.doomed.push_back(part.entity);
+    commands.destroyRecursive(target);
+  } else {
+    commands.destroy(target);
+  }
   s.doomed.push_back(target);
   totalPieces_ += ev.pieces.size();
   ev.milliseconds = nowMs() - start;

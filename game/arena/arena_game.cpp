@@ -1,0 +1,1103 @@
+#include "game/arena/arena_game.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
+
+#include "components/scene_components.h"
+#include "components/splitable.h"
+#include "engine/ecs/hierarchy.h"
+#include "engine/geometry/primitives.h"
+
+namespace cleave::arena {
+
+namespace {
+
+namespace prim = geometry::primitives;
+
+constexpr float kPi = 3.14159265358979f;
+constexpr float kArenaRadius = 12.0f;     // m, the inner face of the wall
+constexpr float kPlayerSpeed = 5.0f;      // m/s
+constexpr float kPlayerRadius = 0.35f;    // m
+constexpr float kDiscHeight = 1.0f;       // m above the floor: waist height of the gladiators
+constexpr float kDiscRadius = 0.45f;      // m
+constexpr float kDiscSpeed = 13.f;        // m/s outbound
+constexpr float kDiscReturnSpeed = 15.f;  // m/s homing back
+constexpr int kDiscBounces = 3;
+constexpr float kDiscFlightSeconds = 2.6f;  // it turns back after this even without its bounces
+constexpr int kSwordTicks = 10;
+constexpr int kSpinTicks = 18;
+constexpr uint64_t kSwordCooldown = 20;   // ticks
+constexpr uint64_t kSpinCooldown = 240;   // ticks
+constexpr float kSpinRadius = 2.7f;       // m
+constexpr uint64_t kPieceLifeTicks = 420;   // 7 s before a piece starts to shrink
+constexpr uint64_t kPieceShrinkTicks = 45;
+constexpr size_t kMaxPieces = 260;          // more than this: the oldest go early
+constexpr uint64_t kStartingTicks = 80;     // the Start cube's pieces fall, the camera moves
+constexpr uint64_t kQuitTicks = 50;
+constexpr uint64_t kWaveGapTicks = 120;
+constexpr int kHitFreezeTicks = 60;         // a frozen enemy whose split never comes walks on
+constexpr double kCrumbVolume = 1.5e-3;     // m^3: pieces smaller than this are not cut again
+
+uint64_t toUser(ecs::Entity e) { return (uint64_t(e.generation) << 32) | e.index; }
+ecs::Entity fromUser(uint64_t v) {
+  ecs::Entity e;
+  e.index = uint32_t(v & 0xffffffffu);
+  e.generation = uint32_t(v >> 32);
+  return e;
+}
+
+// The shortest rotation taking +Y to the unit vector `to`.
+glm::quat rotationFromUp(const glm::vec3& to) {
+  const glm::vec3 up(0.f, 1.f, 0.f);
+  const float c = glm::dot(up, to);
+  if (c < -0.99999f) return glm::angleAxis(kPi, glm::vec3(1.f, 0.f, 0.f));
+  const glm::vec3 axis = glm::cross(up, to);
+  const float s = std::sqrt((1.f + c) * 2.f);
+  return glm::normalize(glm::quat(s * 0.5f, axis.x / s, axis.y / s, axis.z / s));
+}
+
+// Compass direction on the floor: angle 0 is north (-z), pi/2 east (+x).
+glm::vec2 compass(float angle) { return glm::vec2(std::sin(angle), -std::cos(angle)); }
+
+glm::vec2 forwardOf(float yaw) { return glm::vec2(std::sin(yaw), std::cos(yaw)); }
+
+const char* tagName(ArenaTag::Kind k) {
+  switch (k) {
+    case ArenaTag::Level: return "level";
+    case ArenaTag::Prop: return "prop";
+    case ArenaTag::MenuCube: return "menu_cube";
+    case ArenaTag::Enemy: return "enemy";
+    case ArenaTag::Piece: return "piece";
+    case ArenaTag::Player: return "player";
+    case ArenaTag::Weapon: return "weapon";
+  }
+  return "?";
+}
+
+}  // namespace
+
+const char* toString(MatchState state) {
+  switch (state) {
+    case MatchState::Menu: return "menu";
+    case MatchState::Starting: return "starting";
+    case MatchState::Playing: return "playing";
+    case MatchState::Defeated: return "defeated";
+    case MatchState::Quitting: return "quitting";
+  }
+  return "?";
+}
+
+ArenaGame::ArenaGame() = default;
+ArenaGame::~ArenaGame() = default;
+
+components::SplitWorld ArenaGame::splitWorld() {
+  return components::SplitWorld{app_->world(), *physics_, &app_->renderer()};
+}
+
+EnemyContext ArenaGame::enemyContext() {
+  return EnemyContext{app_->world(), *physics_, &app_->renderer(), materials_};
+}
+
+float ArenaGame::nextRandom() {
+  // xorshift64*: the same seed gives the same arena on every machine.
+  rng_ ^= rng_ >> 12;
+  rng_ ^= rng_ << 25;
+  rng_ ^= rng_ >> 27;
+  return float((rng_ * 2685821657736338717ull) >> 40) / float(1u << 24);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Building
+
+ecs::Entity ArenaGame::addStatic(const std::string& name, geometry::MeshData mesh,
+                                 std::vector<render::Material> materials, bool collide) {
+  ecs::World& world = app_->world();
+  const ecs::Entity e = world.create();
+  world.add<ecs::Name>(e, ecs::Name{name});
+  world.add<ecs::Transform>(e, ecs::Transform{});
+  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{});
+  world.add<ArenaTag>(e, ArenaTag{ArenaTag::Level});
+  auto source = std::make_shared<geometry::MeshData>(std::move(mesh));
+  if (collide) {
+    auto shape = physics_->createShape(physics::ShapeDef::convexHull(source->positions));
+    if (shape.ok()) {
+      physics::BodyDef def;
+      def.shape = shape.value();
+      def.userData = toUser(e);
+      auto body = physics_->createBody(def);
+      staticShapes_.push_back(shape.value());
+      if (body.ok()) staticBodies_.push_back(body.value());
+    }
+  }
+  components::MeshRenderer mr;
+  mr.source = source;
+  mr.gpu = app_->renderer().uploadMesh(*source);
+  mr.materials = std::move(materials);
+  world.add<components::MeshRenderer>(e, std::move(mr));
+  return e;
+}
+
+void ArenaGame::buildLevel() {
+  // The sand-stone floor: a disc a little wider than the wall ring, flagstones mapped from above.
+  geometry::MeshData floor = prim::cylinder(13.2f, 1.f, 96);
+  prim::transform(floor, glm::translate(glm::mat4(1.f), glm::vec3(0.f, -0.5f, 0.f)));
+  planarUv(floor, 0.4f);
+  addStatic("floor", std::move(floor), {materials_.floor}, false);
+  auto floorShape = physics_->createShape(physics::ShapeDef::box(glm::vec3(14.f, 0.5f, 14.f)));
+  if (floorShape.ok()) {
+    physics::BodyDef def;
+    def.shape = floorShape.value();
+    def.position = glm::vec3(0.f, -0.5f, 0.f);
+    def.friction = 0.8f;
+    auto body = physics_->createBody(def);
+    staticShapes_.push_back(floorShape.value());
+    if (body.ok()) staticBodies_.push_back(body.value());
+  }
+
+  // The wall: a ring of stone blocks with merlons on top, one collider per block, and four gates.
+  constexpr int kBlocks = 32;
+  const float blockRadius = kArenaRadius + 0.45f;
+  const glm::vec3 blockHalf(1.27f, 1.4f, 0.45f);
+  geometry::MeshData wall;
+  bool first = true;
+  auto shape = physics_->createShape(physics::ShapeDef::box(blockHalf));
+  if (shape.ok()) staticShapes_.push_back(shape.value());
+  for (int k = 0; k < kBlocks; ++k) {
+    const float angle = 2.f * kPi * float(k) / float(kBlocks);
+    const glm::vec2 at = compass(angle) * blockRadius;
+    const glm::quat rot = glm::angleAxis(kPi - angle, glm::vec3(0, 1, 0));
+    const glm::mat4 m = glm::translate(glm::mat4(1.f), glm::vec3(at.x, blockHalf.y, at.y)) * glm::mat4_cast(rot);
+    geometry::MeshData block = prim::box(blockHalf);
+    geometry::MeshData merlon = prim::box(glm::vec3(0.42f, 0.28f, 0.38f));
+    prim::transform(merlon, glm::translate(glm::mat4(1.f), glm::vec3(0.f, blockHalf.y + 0.28f, 0.05f)));
+    setMaterial(merlon, 1);
+    block = prim::merge(block, merlon);
+    prim::transform(block, m);
+    wall = first ? std::move(block) : prim::merge(wall, block);
+    first = false;
+    if (shape.ok()) {
+      physics::BodyDef def;
+      def.shape = shape.value();
+      def.position = glm::vec3(at.x, blockHalf.y, at.y);
+      def.rotation = rot;
+      auto body = physics_->createBody(def);
+      if (body.ok()) staticBodies_.push_back(body.value());
+    }
+  }
+  addStatic("wall", std::move(wall), {materials_.wall, materials_.wallTrim}, false);
+  geometry::MeshData gates;
+  first = true;
+  for (int g = 0; g < 4; ++g) {
+    const float angle = float(g) * kPi * 0.5f;
+    const glm::vec2 at = compass(angle) * (kArenaRadius - 0.04f);
+    geometry::MeshData door = prim::box(glm::vec3(0.95f, 1.15f, 0.06f));
+    geometry::MeshData lintel = prim::box(glm::vec3(1.2f, 0.16f, 0.1f));
+    prim::transform(lintel, glm::translate(glm::mat4(1.f), glm::vec3(0.f, 1.3f, 0.f)));
+    setMaterial(lintel, 1);
+    door = prim::merge(door, lintel);
+    prim::transform(door, glm::translate(glm::mat4(1.f), glm::vec3(at.x, 1.15f, at.y)) *
+                              glm::mat4_cast(glm::angleAxis(kPi - angle, glm::vec3(0, 1, 0))));
+    gates = first ? std::move(door) : prim::merge(gates, door);
+    first = false;
+  }
+  addStatic("gates", std::move(gates), {materials_.gate, materials_.wallTrim}, false);
+
+  // Four marble pillars on the diagonals (obstacles for the enemies, bumpers for the disc).
+  for (int p = 0; p < 4; ++p) {
+    const float angle = kPi * 0.25f + float(p) * kPi * 0.5f;
+    const glm::vec2 at = compass(angle) * 7.2f;
+    geometry::MeshData column = prim::cylinder(0.42f, 3.0f, 24);
+    prim::transform(column, glm::translate(glm::mat4(1.f), glm::vec3(0.f, 1.8f, 0.f)));
+    geometry::MeshData base = prim::box(glm::vec3(0.62f, 0.15f, 0.62f));
+    prim::transform(base, glm::translate(glm::mat4(1.f), glm::vec3(0.f, 0.15f, 0.f)));
+    geometry::MeshData capital = prim::box(glm::vec3(0.6f, 0.12f, 0.6f));
+    prim::transform(capital, glm::translate(glm::mat4(1.f), glm::vec3(0.f, 3.42f, 0.f)));
+    geometry::MeshData pillar = prim::merge(prim::merge(base, column), capital);
+    prim::transform(pillar, glm::translate(glm::mat4(1.f), glm::vec3(at.x, 0.f, at.y)));
+    addStatic("pillar", std::move(pillar), {materials_.pillar}, true);
+    pillars_.push_back(Obstacle{at, 0.55f});
+  }
+}
+
+ecs::Entity ArenaGame::spawnDynamic(const std::string& name, geometry::MeshData mesh,
+                                    std::vector<render::Material> materials,
+                                    const components::Splitable& splitable, glm::vec3 position,
+                                    glm::quat rotation, ArenaTag::Kind kind) {
+  ecs::World& world = app_->world();
+  const ecs::Entity e = world.create();
+  world.add<ecs::Name>(e, ecs::Name{name});
+  ecs::Transform t;
+  t.position = position;
+  t.rotation = rotation;
+  world.add<ecs::Transform>(e, t);
+  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
+  world.add<ArenaTag>(e, ArenaTag{kind});
+  auto source = std::make_shared<geometry::MeshData>(std::move(mesh));
+  components::MeshRenderer mr;
+  mr.source = source;
+  mr.gpu = app_->renderer().uploadMesh(*source);
+  mr.materials = std::move(materials);
+  world.add<components::MeshRenderer>(e, std::move(mr));
+  world.add<components::Splitable>(e, splitable);
+  components::SplitWorld sw = splitWorld();
+  std::string error;
+  if (!components::makeDynamicBody(sw, e, splitable.density, splitable.collider, &error)) {
+    std::fprintf(stderr, "arena: %s has no body: %s\n", name.c_str(), error.c_str());
+    removeEntity(e);
+    return {};
+  }
+  return e;
+}
+
+ecs::Entity ArenaGame::spawnProp(PropKind kind, glm::vec3 position, float yaw) {
+  components::Splitable s;
+  const glm::quat rot = glm::angleAxis(yaw, glm::vec3(0, 1, 0));
+  if (kind == PropKind::Crate) {
+    s.convexHint = true;
+    s.density = 450.0;
+    s.capMaterial = materials_.crateCap;
+    s.splitImpulse = 0.5;
+    return spawnDynamic("crate", prim::box(glm::vec3(0.55f)), {materials_.crate, materials_.crateCap}, s,
+                        position + glm::vec3(0.f, 0.55f, 0.f), rot, ArenaTag::Prop);
+  }
+  s.density = 1700.0;
+  s.capMaterial = materials_.urnCap;
+  s.splitImpulse = 0.4;
+  return spawnDynamic("urn", urnMesh(), {materials_.urn, materials_.urnCap}, s, position + glm::vec3(0.f, 0.002f, 0.f),
+                      rot, ArenaTag::Prop);
+}
+
+void ArenaGame::spawnMenuCubes() {
+  components::Splitable s;
+  s.convexHint = true;
+  s.density = 2500.0;
+  s.capMaterial = materials_.metalCap;
+  s.splitImpulse = 1.2;
+  const glm::quat upright(1.f, 0.f, 0.f, 0.f);
+  startCube_ = spawnDynamic("start cube", prim::box(glm::vec3(0.45f)), {materials_.startCube, materials_.metalCap},
+                            s, {-1.1f, 0.451f, 2.0f}, upright, ArenaTag::MenuCube);
+  quitCube_ = spawnDynamic("quit cube", prim::box(glm::vec3(0.45f)), {materials_.quitCube, materials_.metalCap}, s,
+                           {1.1f, 0.451f, 2.0f}, upright, ArenaTag::MenuCube);
+}
+
+void ArenaGame::createPlayer() {
+  characterMesh_ = app_->renderer().uploadMesh(character_.mesh);
+  animator_ = anim::Animator(&character_.skeleton);
+  animator_.play(&character_.idle);
+  bladeMesh_ = app_->renderer().uploadMesh(prim::box(glm::vec3(0.03f, 0.012f, 0.5f)));
+  discMesh_ = app_->renderer().uploadMesh(prim::torus(0.36f, 0.05f, 32, 8));
+
+  ecs::World& world = app_->world();
+  player_ = world.create();
+  world.add<ecs::Name>(player_, ecs::Name{"player"});
+  ecs::Transform t;
+  t.position = glm::vec3(0.f, 0.87f, 0.f);
+  world.add<ecs::Transform>(player_, t);
+  world.add<ecs::WorldTransform>(player_, ecs::WorldTransform{ecs::localMatrix(t)});
+  world.add<ArenaTag>(player_, ArenaTag{ArenaTag::Player});
+  auto shape = physics_->createShape(physics::ShapeDef::capsule(0.3f, 0.55f));
+  if (!shape.ok()) return;
+  physics::BodyDef def;
+  def.shape = shape.value();
+  def.mass = 80.f;
+  def.position = t.position;
+  def.allowSleep = false;
+  def.userData = toUser(player_);
+  auto body = physics_->createBody(def);
+  if (body.ok()) {
+    world.add<components::RigidBody>(player_, components::RigidBody{body.value(), shape.value()});
+  } else {
+    physics_->destroyShape(shape.value());
+  }
+}
+
+bool ArenaGame::setup(app::App& app, std::string* error) {
+  app_ = &app;
+  rng_ = app.options().seed * 0x9e3779b97f4a7c15ull + 0x632be59bd9b4e019ull;
+  physics_ = std::make_unique<physics::PhysicsWorld>();
+  // The budget: 6 ms of split work a tick, charged by estimate so replays stay exact. The estimate
+  // is fitted to the arena's objects (a gladiator of ~820 triangles falling into 9 pieces costs
+  // about 3.4 ms here: the cut, nine hull colliders, nine uploads), so a burst of kills is spread
+  // at two gladiators a tick instead of eight at once.
+  components::SplitBudgetSettings budget;
+  budget.millisecondsPerTick = 6.0;
+  budget.maxSplitsPerTick = 4;
+  budget.maxActivationsPerTick = 24;
+  budget.estimatedMillisecondsPerSplit = 0.5;
+  budget.estimatedMillisecondsPerTriangle = 0.0035;
+  splits_ = std::make_unique<components::SplitSystem>(budget);
+  if (const char* dir = std::getenv("CLEAVE_SPLIT_FAILURE_DIR"); dir && *dir) splits_->setFailureDumpDirectory(dir);
+
+  character_ = assets::makeProceduralCharacter();
+  materials_ = createArenaMaterials(app.renderer(), character_.materialColors);
+  enemyMeshes_ = makeEnemyMeshes();
+  buildLevel();
+  createPlayer();
+  // Props: crates and urns around the sand, one crate on the north gate's path.
+  const struct {
+    PropKind kind;
+    glm::vec2 at;
+    float yaw;
+  } props[] = {
+      {PropKind::Crate, {0.8f, -5.2f}, 0.3f},   {PropKind::Crate, {-7.6f, -3.6f}, 0.8f},
+      {PropKind::Crate, {8.2f, 3.2f}, 0.1f},    {PropKind::Crate, {-3.2f, 8.4f}, 1.1f},
+      {PropKind::Crate, {5.0f, -8.8f}, 0.5f},   {PropKind::Urn, {-1.4f, -7.6f}, 0.f},
+      {PropKind::Urn, {6.4f, -5.2f}, 0.f},      {PropKind::Urn, {-8.6f, 2.2f}, 0.f},
+      {PropKind::Urn, {2.8f, 8.2f}, 0.f},       {PropKind::Urn, {-5.2f, -8.6f}, 0.f},
+  };
+  for (const auto& p : props) spawnProp(p.kind, glm::vec3(p.at.x, 0.f, p.at.y), p.yaw);
+  spawnMenuCubes();
+  ecs::updateWorldTransforms(app.world());
+
+  app.addSystem(app::Phase::Gameplay, "arena.gameplay", [this](app::TickContext& c) { gameplay(c); });
+  app.addSystem(app::Phase::Triggers, "arena.triggers", [this](app::TickContext& c) { triggers(c); });
+  app.addSystem(app::Phase::Split, "arena.split", [this](app::TickContext& c) { split(c); });
+  app.addSystem(app::Phase::PhysicsStep, "physics.step", [this](app::TickContext& c) { physics_->step(c.dt); });
+  app.addSystem(app::Phase::PhysicsSync, "arena.sync", [this](app::TickContext& c) { physicsSync(c); });
+  app.addSystem(app::Phase::Animation, "arena.animation", [this](app::TickContext& c) { animation(c); });
+  app.addSystem(app::Phase::Render, "arena.render", [this](app::TickContext& c) { render(c); });
+  app.setStateDumpExtension([this](ecs::Entity e, nlohmann::json& out) { dumpEntity(e, out); });
+  app.setFrameDumpExtension([this](nlohmann::json& line) { dumpFrame(line); });
+  (void)error;
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Camera and cursor
+
+glm::vec2 ArenaGame::cursorInFrame(const input::InputState& in, glm::ivec2 frame) const {
+  // Mouse coordinates are window pixels. A replay that declares its window size (a Resize event)
+  // plays the same at any frame size; otherwise the window is the frame.
+  const glm::ivec2 window = in.windowSize().x > 0 && in.windowSize().y > 0 ? in.windowSize() : frame;
+  return in.mousePosition() * glm::vec2(frame) / glm::vec2(window);
+}
+
+glm::vec3 ArenaGame::rayDirection(glm::vec2 pixel, glm::ivec2 frame) const {
+  const float aspect = float(frame.x) / float(std::max(frame.y, 1));
+  const float tanHalf = std::tan(0.9f * 0.5f);
+  const float x = (2.f * pixel.x / float(std::max(frame.x, 1)) - 1.f) * tanHalf * aspect;
+  const float y = (1.f - 2.f * pixel.y / float(std::max(frame.y, 1))) * tanHalf;
+  const glm::vec3 forward = glm::normalize(cameraTarget_ - cameraPosition_);
+  const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+  const glm::vec3 up = glm::cross(right, forward);
+  return glm::normalize(forward + right * x + up * y);
+}
+
+bool ArenaGame::cursorOnFloor(const input::InputState& in, glm::ivec2 frame, glm::vec3* point) const {
+  const glm::vec3 dir = rayDirection(cursorInFrame(in, frame), frame);
+  if (dir.y > -1e-3f) return false;
+  const float t = -cameraPosition_.y / dir.y;
+  *point = cameraPosition_ + dir * t;
+  return true;
+}
+
+void ArenaGame::updateCamera(float dt) {
+  if (state_ == MatchState::Menu) {
+    cameraBlend_ = 0.f;
+  } else {
+    cameraBlend_ = std::min(1.f, cameraBlend_ + dt / 1.3f);
+  }
+  const float b = cameraBlend_ * cameraBlend_ * (3.f - 2.f * cameraBlend_);
+  const glm::vec3 player(playerPosition_.x, 0.f, playerPosition_.y);
+  const glm::vec3 menuPosition(0.f, 1.75f, 6.6f), menuTarget(0.f, 0.85f, 1.5f);
+  const glm::vec3 followPosition = player + glm::vec3(0.f, 14.f, 7.f);
+  const glm::vec3 followTarget = player + glm::vec3(0.f, 0.f, -1.f);
+  cameraPosition_ = glm::mix(menuPosition, followPosition, b);
+  cameraTarget_ = glm::mix(menuTarget, followTarget, b);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Gameplay
+
+ecs::Entity ArenaGame::makeSplitter(const std::string& name, const physics::ShapeDef& shapeDef, glm::vec3 position,
+                                    glm::quat rotation, bool persistent) {
+  ecs::World& world = app_->world();
+  auto shape = physics_->createShape(shapeDef);
+  if (!shape.ok()) return {};
+  const ecs::Entity e = world.create();
+  ecs::Transform t;
+  t.position = position;
+  t.rotation = rotation;
+  world.add<ecs::Name>(e, ecs::Name{name});
+  world.add<ecs::Transform>(e, t);
+  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
+  world.add<ArenaTag>(e, ArenaTag{ArenaTag::Weapon});
+  physics::TriggerDef def;
+  def.shape = shape.value();
+  def.position = position;
+  def.rotation = rotation;
+  def.persistent = persistent;
+  def.userData = toUser(e);
+  auto trigger = physics_->createTrigger(def);
+  physics_->destroyShape(shape.value());  // the trigger keeps its own reference
+  components::Splitter splitter;
+  splitter.lifetime = persistent ? components::SplitterLifetime::Persistent : components::SplitterLifetime::OneTick;
+  splitter.playerCaused = true;
+  if (trigger.ok()) splitter.trigger = trigger.value();
+  world.add<components::Splitter>(e, splitter);
+  return e;
+}
+
+void ArenaGame::removeEntity(ecs::Entity e) {
+  ecs::World& world = app_->world();
+  if (!world.alive(e)) return;
+  components::SplitWorld sw = splitWorld();
+  components::releaseEntityResources(sw, e);
+  world.destroy(e);
+}
+
+void ArenaGame::updateMenu(app::TickContext& c) {
+  if (!c.input.pressed(input::MouseButton::Left)) return;
+  const glm::vec3 dir = rayDirection(cursorInFrame(c.input, c.frameSize), c.frameSize);
+  const auto hit = physics_->raycast(cameraPosition_, cameraPosition_ + dir * 40.f);
+  if (!hit) return;
+  const auto user = physics_->bodyUserData(hit->body);
+  if (!user) return;
+  const ecs::Entity target = fromUser(*user);
+  if (!c.world.alive(target) || !c.world.has<components::Splitable>(target)) return;
+  // A vertical plane along the click ray, leaning a little: the cube falls apart diagonally.
+  glm::vec3 normal = glm::normalize(glm::cross(dir, glm::vec3(0, 1, 0)));
+  normal = glm::normalize(glm::angleAxis(0.4f, dir) * normal);
+  makeSplitter("menu cut", physics::ShapeDef::box(glm::vec3(0.9f, 0.01f, 0.9f)), hit->point, rotationFromUp(normal),
+               false);
+}
+
+void ArenaGame::updatePlayer(app::TickContext& c) {
+  const input::InputState& in = c.input;
+  using input::Key;
+  glm::vec2 move(0.f);
+  if (in.held(Key::W)) move.y -= 1.f;
+  if (in.held(Key::S)) move.y += 1.f;
+  if (in.held(Key::A)) move.x -= 1.f;
+  if (in.held(Key::D)) move.x += 1.f;
+  const glm::vec2 before = playerPosition_;
+  if (glm::length(move) > 0.f) playerPosition_ += glm::normalize(move) * kPlayerSpeed * float(c.dt);
+  for (const Obstacle& o : pillars_) {
+    const glm::vec2 d = playerPosition_ - o.centre;
+    const float len = glm::length(d);
+    if (len < o.radius + kPlayerRadius && len > 1e-5f) playerPosition_ = o.centre + d / len * (o.radius + kPlayerRadius);
+  }
+  const float r = glm::length(playerPosition_);
+  if (r > kArenaRadius - kPlayerRadius - 0.1f) playerPosition_ *= (kArenaRadius - kPlayerRadius - 0.1f) / r;
+  playerSpeed_ = glm::length(playerPosition_ - before) / float(c.dt);
+  glm::vec3 aim;
+  if (cursorOnFloor(in, c.frameSize, &aim)) {
+    aimPoint_ = aim;
+    const glm::vec2 d(aim.x - playerPosition_.x, aim.z - playerPosition_.y);
+    if (glm::length(d) > 0.2f) playerYaw_ = std::atan2(d.x, d.y);
+  }
+}
+
+void ArenaGame::throwDisc() {
+  const glm::vec2 dir = forwardOf(playerYaw_);
+  disc_ = Disc{};
+  disc_.active = true;
+  disc_.position = playerPosition_ + dir * 0.7f;
+  disc_.direction = dir;
+  disc_.splitter = makeSplitter("energy disc", physics::ShapeDef::box(glm::vec3(kDiscRadius, 0.03f, kDiscRadius)),
+                                glm::vec3(disc_.position.x, kDiscHeight, disc_.position.y),
+                                glm::quat(1.f, 0.f, 0.f, 0.f), true);
+  ++discThrows_;
+}
+
+void ArenaGame::swingSword(bool spin) {
+  const glm::vec2 f = forwardOf(playerYaw_);
+  swing_ = Swing{};
+  swing_.spin = spin;
+  swing_.duration = swing_.ticksLeft = spin ? kSpinTicks : kSwordTicks;
+  swing_.yaw = playerYaw_;
+  if (spin) {
+    swing_.tilt = 0.1f;
+    std::vector<glm::vec3> points;
+    for (int k = 0; k < 24; ++k) {
+      const float a = 2.f * kPi * float(k) / 24.f;
+      for (float h : {-0.02f, 0.02f}) points.push_back(glm::vec3(std::cos(a) * kSpinRadius, h, std::sin(a) * kSpinRadius));
+    }
+    const glm::quat rot = glm::angleAxis(playerYaw_, glm::vec3(0, 1, 0)) * glm::angleAxis(swing_.tilt, glm::vec3(0, 0, 1));
+    makeSplitter("spin attack", physics::ShapeDef::convexHull(points),
+                 glm::vec3(playerPosition_.x, 1.05f, playerPosition_.y), rot, false);
+    ++spinAttacks_;
+    return;
+  }
+  // Alternate the slash: down to the left, then down to the right.
+  swing_.tilt = (swordSwings_ % 2 == 0) ? 0.32f : -0.32f;
+  const glm::quat rot = glm::angleAxis(playerYaw_, glm::vec3(0, 1, 0)) * glm::angleAxis(swing_.tilt, glm::vec3(0, 0, 1));
+  const glm::vec3 centre = glm::vec3(playerPosition_.x, 1.1f, playerPosition_.y) + glm::vec3(f.x, 0.f, f.y) * 1.25f;
+  makeSplitter("sword swing", physics::ShapeDef::box(glm::vec3(1.9f, 0.02f, 1.0f)), centre, rot, false);
+  ++swordSwings_;
+}
+
+void ArenaGame::updateWeapons(app::TickContext& c) {
+  const input::InputState& in = c.input;
+  if (in.pressed(input::MouseButton::Left) && c.tick >= swordReadyTick_ && swing_.ticksLeft == 0) {
+    swingSword(false);
+    swordReadyTick_ = c.tick + kSwordCooldown;
+  }
+  if (in.pressed(input::MouseButton::Right) && !disc_.active) throwDisc();
+  if (in.pressed(input::Key::Space) && c.tick >= spinReadyTick_ && swing_.ticksLeft == 0) {
+    swingSword(true);
+    spinReadyTick_ = c.tick + kSpinCooldown;
+  }
+}
+
+void ArenaGame::updateDisc(app::TickContext& c) {
+  if (!disc_.active) return;
+  const float dt = float(c.dt);
+  disc_.age += dt;
+  disc_.spin += dt * 18.f;
+  if (!disc_.returning) {
+    disc_.position += disc_.direction * kDiscSpeed * dt;
+    // Bounce off the wall ring and the pillars (reflection about the surface normal).
+    const float r = glm::length(disc_.position);
+    if (r > kArenaRadius - kDiscRadius) {
+      const glm::vec2 n = disc_.position / r;
+      disc_.position = n * (kArenaRadius - kDiscRadius);
+      if (glm::dot(disc_.direction, n) > 0.f) disc_.direction = glm::reflect(disc_.direction, n);
+      ++disc_.bounces;
+    }
+    for (const Obstacle& o : pillars_) {
+      const glm::vec2 d = disc_.position - o.centre;
+      const float len = glm::length(d);
+      if (len < o.radius + kDiscRadius && len > 1e-5f) {
+        const glm::vec2 n = d / len;
+        disc_.position = o.centre + n * (o.radius + kDiscRadius);
+        if (glm::dot(disc_.direction, n) < 0.f) disc_.direction = glm::reflect(disc_.direction, n);
+        ++disc_.bounces;
+      }
+    }
+    if (disc_.bounces >= kDiscBounces || disc_.age > kDiscFlightSeconds) disc_.returning = true;
+  } else {
+    const glm::vec2 d = playerPosition_ - disc_.position;
+    const float len = glm::length(d);
+    if (len < 0.8f) {
+      removeEntity(disc_.splitter);
+      disc_ = Disc{};
+      return;
+    }
+    disc_.direction = d / len;
+    disc_.position += disc_.direction * std::min(kDiscReturnSpeed * dt, len);
+  }
+  const glm::vec3 p(disc_.position.x, kDiscHeight, disc_.position.y);
+  const glm::quat rot = glm::angleAxis(disc_.spin, glm::vec3(0, 1, 0));
+  if (auto* t = c.world.tryGet<ecs::Transform>(disc_.splitter)) {
+    t->position = p;
+    t->rotation = rot;
+    c.world.get<ecs::WorldTransform>(disc_.splitter).matrix = ecs::localMatrix(*t);
+  }
+  if (const auto* s = c.world.tryGet<components::Splitter>(disc_.splitter))
+    physics_->setTriggerTransform(s->trigger, physics::BodyTransform{p, rot});
+}
+
+void ArenaGame::startWave(uint64_t tick) {
+  ++wave_;
+  waveBannerTick_ = tick;
+  // Wave 1 comes through the north gate one by one; later waves through all four gates at once.
+  const int count = 4 * wave_;
+  for (int i = 0; i < count; ++i) {
+    const int gate = wave_ == 1 ? 0 : i % 4;
+    const int slot = wave_ == 1 ? i : i / 4;
+    const float angle = float(gate) * kPi * 0.5f;
+    const glm::vec2 inward = -compass(angle);
+    const glm::vec2 side(-inward.y, inward.x);
+    const float lateral = ((slot % 2) ? 1.f : -1.f) * (0.7f + 0.9f * float(slot / 2)) + (nextRandom() - 0.5f) * 0.3f;
+    PendingSpawn s;
+    s.kind = EnemyKind::Gladiator;
+    s.position = compass(angle) * (kArenaRadius - 1.2f) + side * lateral;
+    s.yaw = std::atan2(inward.x, inward.y);
+    s.tick = tick + 30 + uint64_t(wave_ == 1 ? slot * 30 : slot * 6);
+    pendingSpawns_.push_back(s);
+  }
+}
+
+void ArenaGame::updateWaves(app::TickContext& c) {
+  EnemyContext ec = enemyContext();
+  for (size_t i = 0; i < pendingSpawns_.size();) {
+    if (pendingSpawns_[i].tick > c.tick) {
+      ++i;
+      continue;
+    }
+    const PendingSpawn s = pendingSpawns_[i];
+    pendingSpawns_.erase(pendingSpawns_.begin() + long(i));
+    Enemy e = spawnEnemy(ec, enemyMeshes_, s.kind, s.position, s.yaw);
+    if (e.entity.isNull()) continue;
+    c.world.add<ArenaTag>(e.entity, ArenaTag{ArenaTag::Enemy});
+    enemies_.push_back(e);
+  }
+  if (enemies_.empty() && pendingSpawns_.empty()) {
+    if (nextWaveTick_ == 0) nextWaveTick_ = c.tick + (wave_ == 0 ? 1 : kWaveGapTicks);
+    if (c.tick >= nextWaveTick_) {
+      nextWaveTick_ = 0;
+      startWave(c.tick);
+    }
+  }
+  const float damage = updateEnemies(ec, enemies_, playerPosition_, float(c.dt), pillars_, kArenaRadius);
+  if (damage > 0.f) {
+    health_ = std::max(0, health_ - int(damage));
+    hurtFlash_ = 0.35f;
+    if (health_ == 0) {
+      state_ = MatchState::Defeated;
+      stateTick_ = c.tick;
+    }
+  }
+}
+
+void ArenaGame::resetToMenu() {
+  for (const Enemy& e : enemies_) removeEntity(e.entity);
+  enemies_.clear();
+  pendingSpawns_.clear();
+  if (disc_.active) removeEntity(disc_.splitter);
+  disc_ = Disc{};
+  swing_ = Swing{};
+  health_ = 100;
+  score_ = 0;
+  wave_ = 0;
+  nextWaveTick_ = 0;
+  playerPosition_ = glm::vec2(0.f);
+  playerYaw_ = 0.f;
+  state_ = MatchState::Menu;
+  spawnMenuCubes();
+}
+
+void ArenaGame::gameplay(app::TickContext& c) {
+  const float dt = float(c.dt);
+  hurtFlash_ = std::max(0.f, hurtFlash_ - dt);
+  if (swing_.ticksLeft > 0) --swing_.ticksLeft;
+  switch (state_) {
+    case MatchState::Menu:
+      updateCamera(dt);
+      updateMenu(c);
+      playerSpeed_ = 0.f;
+      break;
+    case MatchState::Starting:
+      updateCamera(dt);
+      if (c.tick >= stateTick_ + kStartingTicks) {
+        state_ = MatchState::Playing;
+        stateTick_ = c.tick;
+        removeEntity(quitCube_);  // the menu is over: the cube that was not chosen goes
+        quitCube_ = {};
+      }
+      break;
+    case MatchState::Playing:
+      updateCamera(dt);
+      updatePlayer(c);
+      updateWeapons(c);
+      updateWaves(c);
+      break;
+    case MatchState::Defeated:
+      updateCamera(dt);
+      playerSpeed_ = 0.f;
+      if (c.tick > stateTick_ + 90 &&
+          (c.input.pressed(input::Key::Enter) || c.input.pressed(input::MouseButton::Left))) {
+        resetToMenu();
+        updateCamera(dt);
+      }
+      break;
+    case MatchState::Quitting:
+      updateCamera(dt);
+      if (c.tick >= stateTick_ + kQuitTicks) c.app.requestQuit();
+      break;
+  }
+  updateDisc(c);
+  // The player's body follows the player (it shoves pieces aside but is never cut).
+  if (const auto* rb = c.world.tryGet<components::RigidBody>(player_)) {
+    physics_->setBodyTransform(rb->body, physics::BodyTransform{glm::vec3(playerPosition_.x, 0.87f, playerPosition_.y),
+                                                                glm::quat(1.f, 0.f, 0.f, 0.f)});
+    physics_->setVelocity(rb->body, glm::vec3(0.f), glm::vec3(0.f));
+  }
+}
+
+void ArenaGame::triggers(app::TickContext& c) {
+  // Who did a blade touch in the last step? Those enemies stop in their tracks until their split
+  // lands (it runs within the budget from the next tick, and the plane should still meet them).
+  uint32_t hitsThisTick = 0;
+  for (const physics::TriggerEvent& ev : physics_->triggerEvents()) {
+    if (ev.kind != physics::TriggerEventKind::Begin) continue;
+    const auto splitterUser = physics_->triggerUserData(ev.trigger);
+    const auto bodyUser = physics_->bodyUserData(ev.body);
+    if (!splitterUser || !bodyUser) continue;
+    if (!c.world.has<components::Splitter>(fromUser(*splitterUser))) continue;
+    const ecs::Entity target = fromUser(*bodyUser);
+    for (Enemy& e : enemies_) {
+      if (e.entity == target && !e.hit) {
+        e.hit = true;
+        e.lunge = 0.f;
+        e.walkPhase = float(c.tick) * 1e-9f;  // the freeze pose
+        e.attackTimer = float(kHitFreezeTicks) * float(c.dt);
+        ++hitsThisTick;
+      }
+    }
+  }
+  maxEnemiesHitInOneTick_ = std::max(maxEnemiesHitInOneTick_, hitsThisTick);
+  components::SplitWorld sw = splitWorld();
+  splits_->gatherTriggerRequests(sw, c.tick);
+}
+
+void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
+  SplitLogEntry entry;
+  entry.tick = tick;
+  entry.original = ev.originalName;
+  entry.status = geometry::toString(ev.status);
+  entry.pieces = ev.pieces.size();
+  entry.parentMass = ev.parentMass;
+  entry.piecesMass = ev.piecesMass;
+  entry.milliseconds = ev.milliseconds;
+  splitLog_.push_back(std::move(entry));
+  ecs::World& world = app_->world();
+  const bool cut = ev.status == geometry::SplitStatus::Ok && !ev.pieces.empty();
+  auto enemy = std::find_if(enemies_.begin(), enemies_.end(), [&](const Enemy& e) { return e.entity == ev.original; });
+  if (!cut) {
+    if (enemy != enemies_.end()) enemy->hit = false;  // the plane missed: it walks on
+    return;
+  }
+  for (ecs::Entity piece : ev.pieces) {
+    if (!world.alive(piece)) continue;
+    world.add<ArenaTag>(piece, ArenaTag{ArenaTag::Piece});
+    Fading f;
+    f.bornTick = tick;
+    if (const auto* mr = world.tryGet<components::MeshRenderer>(piece)) f.baseOffset = mr->meshOffset;
+    world.add<Fading>(piece, f);
+    // Crumbs stay whole: cutting them again adds work and nothing to see.
+    if (const auto* mi = world.tryGet<components::MassInfo>(piece); mi && mi->volume < kCrumbVolume)
+      world.remove<components::Splitable>(piece);
+    ++piecesSpawned_;
+  }
+  if (enemy != enemies_.end()) {
+    // The blow throws the pieces away from the player, tumbling.
+    const glm::vec2 away = enemy->position - playerPosition_;
+    const glm::vec2 dir = glm::length(away) > 1e-3f ? glm::normalize(away) : forwardOf(enemy->yaw + kPi);
+    for (ecs::Entity piece : ev.pieces) {
+      const auto* rb = world.tryGet<components::RigidBody>(piece);
+      const auto* mi = world.tryGet<components::MassInfo>(piece);
+      const auto* t = world.tryGet<ecs::Transform>(piece);
+      if (!rb || !mi || !t) continue;
+      const float lift = t->position.y > 0.9f ? 1.2f : 0.3f;  // upper parts fly, legs buckle
+      const glm::vec3 impulse = glm::vec3(dir.x * 2.2f, lift, dir.y * 2.2f) * float(mi->mass);
+      physics_->applyImpulse(rb->body, impulse, t->position + glm::vec3(0.f, 0.12f, 0.f));
+    }
+    enemies_.erase(enemy);
+    ++score_;
+    ++enemiesKilled_;
+  }
+  if (ev.originalName == "crate" || ev.originalName == "urn") ++propsBroken_;
+  if (ev.original == startCube_ && state_ == MatchState::Menu) {
+    state_ = MatchState::Starting;
+    stateTick_ = tick;
+  } else if (ev.original == quitCube_ && state_ == MatchState::Menu) {
+    state_ = MatchState::Quitting;
+    stateTick_ = tick;
+  }
+}
+
+void ArenaGame::split(app::TickContext& c) {
+  components::SplitWorld sw = splitWorld();
+  splits_->activatePending(sw);
+  splits_->runSplits(sw, c.tick, glm::dvec3(cameraPosition_));
+  const size_t killedBefore = enemiesKilled_;
+  for (const components::SplitEvent& ev : splits_->lastEvents()) onSplit(ev, c.tick);
+  maxKillsInOneTick_ = std::max(maxKillsInOneTick_, uint32_t(enemiesKilled_ - killedBefore));
+  const auto& stats = splits_->budget().stats();
+  deferredTotal_ += stats.deferred;
+  maxQueue_ = std::max(maxQueue_, stats.queueLength);
+  splitsThisTick_ = stats.executed;
+  splitMsThisTick_ = stats.millisecondsUsed;
+  maxSplitMsInATick_ = std::max(maxSplitMsInATick_, stats.millisecondsUsed);
+  splitMsHistory_.push_back(float(stats.millisecondsUsed));
+  if (splitMsHistory_.size() > 120) splitMsHistory_.pop_front();
+}
+
+void ArenaGame::updatePieces(uint64_t tick) {
+  ecs::World& world = app_->world();
+  struct Item {
+    uint64_t born;
+    ecs::Entity e;
+  };
+  std::vector<Item> items;
+  for (auto [e, f] : world.view<Fading>()) items.push_back({f.bornTick, e});
+  // Too many pieces: the oldest start to shrink now.
+  if (items.size() > kMaxPieces) {
+    std::sort(items.begin(), items.end(),
+              [](const Item& a, const Item& b) { return a.born != b.born ? a.born < b.born : a.e < b.e; });
+    for (size_t i = 0; i < items.size() - kMaxPieces; ++i) {
+      auto& f = world.get<Fading>(items[i].e);
+      if (tick >= kPieceLifeTicks) f.bornTick = std::min(f.bornTick, tick - kPieceLifeTicks);
+    }
+  }
+  std::vector<ecs::Entity> doomed;
+  for (auto [e, f, mr, t] : world.view<Fading, components::MeshRenderer, ecs::Transform>()) {
+    const uint64_t age = tick - std::min(tick, f.bornTick);
+    if (t.position.y < -1.f) {
+      doomed.push_back(e);
+      continue;
+    }
+    if (age < kPieceLifeTicks) continue;
+    const float s = 1.f - float(age - kPieceLifeTicks) / float(kPieceShrinkTicks);
+    if (s <= 0.02f) {
+      doomed.push_back(e);
+      continue;
+    }
+    mr.meshOffset = glm::scale(glm::mat4(1.f), glm::vec3(s)) * f.baseOffset;
+  }
+  // Render-only debris has no collider: it would sink through the floor, so it goes at the floor.
+  for (auto [e, d, t] : world.view<components::Debris, ecs::Transform>()) {
+    (void)d;
+    if (t.position.y < -0.3f) doomed.push_back(e);
+  }
+  std::sort(doomed.begin(), doomed.end());
+  doomed.erase(std::unique(doomed.begin(), doomed.end()), doomed.end());
+  for (ecs::Entity e : doomed) {
+    removeEntity(e);
+    ++piecesRemoved_;
+  }
+}
+
+void ArenaGame::physicsSync(app::TickContext& c) {
+  components::SplitWorld sw = splitWorld();
+  components::syncTransformsFromBodies(sw);
+  components::updateDebris(sw, float(c.dt));
+  updatePieces(c.tick);
+}
+
+void ArenaGame::animation(app::TickContext& c) {
+  const bool walking = playerSpeed_ > 0.3f;
+  const anim::AnimationClip* want = walking ? &character_.walk : &character_.idle;
+  if (animator_.clip() != want) animator_.play(want, 0.25f);
+  animator_.advance(float(c.dt) * (walking ? std::clamp(playerSpeed_ / 3.2f, 0.8f, 2.f) : 1.f));
+  animator_.evaluate(pose_);
+  anim::localToGlobal(character_.skeleton, pose_, jointGlobals_);
+  anim::jointMatrices(character_.skeleton, jointGlobals_, jointMatrices_);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Drawing
+
+void ArenaGame::drawWeapons(render::Renderer& r) {
+  const glm::mat4 playerModel = glm::translate(glm::mat4(1.f), glm::vec3(playerPosition_.x, 0.f, playerPosition_.y)) *
+                                glm::mat4_cast(glm::angleAxis(playerYaw_, glm::vec3(0, 1, 0)));
+  const render::Material blade[] = {materials_.blade};
+  if (swing_.ticksLeft > 0) {
+    // The blade sweeps through the swing's plane; a fan of lines trails it.
+    const float p = 1.f - float(swing_.ticksLeft) / float(swing_.duration);
+    const glm::quat plane = glm::angleAxis(swing_.yaw, glm::vec3(0, 1, 0)) * glm::angleAxis(swing_.tilt, glm::vec3(0, 0, 1));
+    const float from = swing_.spin ? -kPi : 1.7f, to = swing_.spin ? kPi : -1.7f;
+    const float reach = swing_.spin ? kSpinRadius : 2.2f;
+    const glm::vec3 pivot(playerPosition_.x, swing_.spin ? 1.05f : 1.1f, playerPosition_.y);
+    auto along = [&](float a) { return plane * glm::vec3(std::sin(a), 0.f, std::cos(a)); };
+    const float angle = glm::mix(from, to, p);
+    const glm::vec3 d = along(angle);
+    const glm::vec3 n = plane * glm::vec3(0, 1, 0);
+    const glm::vec3 side = glm::cross(n, d);
+    glm::mat4 model(1.f);
+    model[0] = glm::vec4(side, 0.f);
+    model[1] = glm::vec4(n, 0.f);
+    model[2] = glm::vec4(d, 0.f);
+    model[3] = glm::vec4(pivot + d * (reach * 0.5f + 0.2f), 1.f);
+    model = model * glm::scale(glm::mat4(1.f), glm::vec3(1.f, 1.f, reach * 0.85f));
+    r.submit(bladeMesh_, model, blade);
+    std::vector<glm::vec3> arc;
+    const int steps = 24;
+    for (int k = 0; k < steps; ++k) {
+      const float a0 = glm::mix(from, angle, float(k) / steps), a1 = glm::mix(from, angle, float(k + 1) / steps);
+      for (float rad : {reach, reach * 0.75f, reach * 0.5f}) {
+        arc.push_back(pivot + along(a0) * rad);
+        arc.push_back(pivot + along(a1) * rad);
+      }
+    }
+    r.submitLines(arc, glm::vec4(0.5f, 1.f, 1.f, 1.f));
+  } else if (const int32_t hand = character_.skeleton.find("right_hand"); hand >= 0 && size_t(hand) < jointGlobals_.size()) {
+    // At rest the energy blade hangs from the right hand, pointing forward and down.
+    const glm::vec3 grip = glm::vec3(playerModel * jointGlobals_[size_t(hand)][3]);
+    const glm::vec2 f = forwardOf(playerYaw_);
+    const glm::vec3 d = glm::normalize(glm::vec3(f.x, -0.55f, f.y));
+    const glm::vec3 side = glm::normalize(glm::cross(glm::vec3(0, 1, 0), d));
+    const glm::vec3 n = glm::cross(d, side);
+    glm::mat4 model(1.f);
+    model[0] = glm::vec4(side, 0.f);
+    model[1] = glm::vec4(n, 0.f);
+    model[2] = glm::vec4(d, 0.f);
+    model[3] = glm::vec4(grip + d * 0.5f, 1.f);
+    r.submit(bladeMesh_, model, blade);
+  }
+  if (disc_.active) {
+    const glm::mat4 model = glm::translate(glm::mat4(1.f), glm::vec3(disc_.position.x, kDiscHeight, disc_.position.y)) *
+                            glm::mat4_cast(glm::angleAxis(disc_.spin, glm::vec3(0, 1, 0)));
+    const render::Material disc[] = {materials_.disc};
+    r.submit(discMesh_, model, disc);
+    std::vector<glm::vec3> spokes;
+    for (int k = 0; k < 3; ++k) {
+      const float a = disc_.spin + float(k) * 2.f * kPi / 3.f;
+      spokes.push_back(glm::vec3(disc_.position.x, kDiscHeight, disc_.position.y));
+      spokes.push_back(glm::vec3(disc_.position.x + std::cos(a) * 0.36f, kDiscHeight,
+                                 disc_.position.y + std::sin(a) * 0.36f));
+    }
+    r.submitLines(spokes, glm::vec4(0.8f, 1.f, 1.f, 1.f));
+  }
+}
+
+void ArenaGame::render(app::TickContext& c) {
+  render::Camera camera;
+  camera.position = cameraPosition_;
+  camera.view = glm::lookAt(cameraPosition_, cameraTarget_, glm::vec3(0, 1, 0));
+  camera.verticalFovRadians = 0.9f;
+  camera.farPlane = 200.f;
+  render::Lighting lighting;
+  // Late-afternoon sun: warm, low from the south-west, long shadows.
+  lighting.sunDirection = glm::normalize(glm::vec3(0.55f, -0.62f, -0.56f));
+  lighting.sunColor = glm::vec3(1.0f, 0.84f, 0.62f);
+  lighting.sunIntensity = 1.8f;
+  lighting.ambientColor = glm::vec3(0.30f, 0.27f, 0.30f);
+  const glm::vec3 focus = state_ == MatchState::Menu ? glm::vec3(0.f, 0.f, 1.5f)
+                                                     : glm::vec3(playerPosition_.x, 0.f, playerPosition_.y);
+  lighting.shadowCenter = focus;
+  lighting.shadowRadius = state_ == MatchState::Menu ? 9.f : 15.f;
+  c.renderer.beginFrame(c.frameSize.x, c.frameSize.y, camera, lighting);
+  components::SplitWorld sw = splitWorld();
+  components::submitMeshes(sw);
+  const glm::mat4 playerModel = glm::translate(glm::mat4(1.f), glm::vec3(playerPosition_.x, 0.f, playerPosition_.y)) *
+                                glm::mat4_cast(glm::angleAxis(playerYaw_, glm::vec3(0, 1, 0)));
+  std::vector<render::Material> look = materials_.player;
+  if (hurtFlash_ > 0.f)
+    for (auto& m : look) m.baseColor = glm::mix(m.baseColor, glm::vec4(1.f, 0.15f, 0.1f, 1.f), hurtFlash_ * 1.5f);
+  c.renderer.submitSkinned(characterMesh_, playerModel, jointMatrices_, look);
+  drawWeapons(c.renderer);
+  drawHud(c);
+}
+
+void ArenaGame::drawHud(app::TickContext& c) {
+  render::Renderer& r = c.renderer;
+  const float u = float(c.frameSize.y) / 720.f;  // HUD scale: laid out for 720 lines
+  const float W = float(c.frameSize.x), H = float(c.frameSize.y);
+  const glm::vec4 white(1.f), shade(0.f, 0.f, 0.f, 0.5f), gold(1.f, 0.82f, 0.35f, 1.f);
+  char line[160];
+  if (state_ == MatchState::Menu || state_ == MatchState::Quitting) {
+    const char* title = "CLEAVE ARENA";
+    r.submitText(title, {W * 0.5f - 12.f * 7.f * 2.5f * u * 0.5f * 1.2f, 40.f * u}, 5.f * u, gold);
+    r.submitText("click a cube to cut it", {W * 0.5f - 150.f * u, 100.f * u}, 2.4f * u, white);
+  }
+  if (state_ == MatchState::Playing || state_ == MatchState::Starting || state_ == MatchState::Defeated) {
+    // Top left: the match (deterministic figures only).
+    r.submitOverlayRect(glm::vec4(10 * u, 10 * u, 300 * u, 112 * u), shade);
+    r.submitText("HEALTH", {20 * u, 20 * u}, 2.f * u, white);
+    r.submitOverlayRect(glm::vec4(110 * u, 20 * u, 185 * u, 16 * u), glm::vec4(0.2f, 0.05f, 0.05f, 0.9f));
+    r.submitOverlayRect(glm::vec4(110 * u, 20 * u, 185 * u * float(health_) / 100.f, 16 * u),
+                        glm::vec4(0.85f, 0.12f, 0.1f, 1.f));
+    std::snprintf(line, sizeof(line), "SCORE %d", score_);
+    r.submitText(line, {20 * u, 48 * u}, 2.6f * u, gold);
+    std::snprintf(line, sizeof(line), "WAVE %d   ENEMIES %zu", wave_, enemies_.size() + pendingSpawns_.size());
+    r.submitText(line, {20 * u, 80 * u}, 2.f * u, white);
+    std::snprintf(line, sizeof(line), "pieces %llu  kills %u", static_cast<unsigned long long>(piecesSpawned_),
+                  enemiesKilled_);
+    r.submitText(line, {20 * u, 102 * u}, 1.5f * u, white);
+  }
+  // Top right: the split budget and frame figures (wall-clock, masked in golden frames).
+  const auto& stats = splits_->budget().stats();
+  const float bx = W - 290 * u;
+  r.submitOverlayRect(glm::vec4(bx, 10 * u, 280 * u, 100 * u), shade);
+  std::snprintf(line, sizeof(line), "FPS %.0f  tick %.1f ms", c.app.framesPerSecond(), c.app.lastTickMilliseconds());
+  r.submitText(line, {bx + 10 * u, 18 * u}, 1.7f * u, white);
+  std::snprintf(line, sizeof(line), "split queue %u  this tick %u", stats.queueLength, splitsThisTick_);
+  r.submitText(line, {bx + 10 * u, 36 * u}, 1.7f * u, white);
+  std::snprintf(line, sizeof(line), "split ms %.2f / %.1f  max %.2f", splitMsThisTick_,
+                splits_->budget().settings().millisecondsPerTick, maxSplitMsInATick_);
+  r.submitText(line, {bx + 10 * u, 54 * u}, 1.7f * u, white);
+  const float gx = bx + 10 * u, gy = 74 * u, gw = 260 * u, gh = 28 * u;
+  const float budget = float(splits_->budget().settings().millisecondsPerTick);
+  const float scale = gh / (budget * 2.f);
+  std::vector<glm::vec2> graph;
+  for (size_t i = 0; i + 1 < splitMsHistory_.size(); ++i) {
+    graph.push_back({gx + gw * float(i) / 120.f, gy + gh - std::min(gh, splitMsHistory_[i] * scale)});
+    graph.push_back({gx + gw * float(i + 1) / 120.f, gy + gh - std::min(gh, splitMsHistory_[i + 1] * scale)});
+  }
+  r.submitOverlayLines(graph, glm::vec4(0.4f, 1.f, 0.5f, 1.f));
+  const glm::vec2 budgetLine[2] = {{gx, gy + gh - budget * scale}, {gx + gw, gy + gh - budget * scale}};
+  r.submitOverlayLines(budgetLine, glm::vec4(1.f, 0.4f, 0.3f, 1.f));
+
+  if (state_ == MatchState::Playing && c.tick < waveBannerTick_ + 120 && wave_ > 0) {
+    std::snprintf(line, sizeof(line), "WAVE %d", wave_);
+    r.submitText(line, {W * 0.5f - 70 * u, H * 0.28f}, 5.f * u, gold);
+  }
+  if (state_ == MatchState::Defeated) {
+    r.submitOverlayRect(glm::vec4(0, H * 0.4f, W, 90 * u), glm::vec4(0.f, 0.f, 0.f, 0.6f));
+    r.submitText("DEFEATED", {W * 0.5f - 100 * u, H * 0.4f + 12 * u}, 5.f * u, glm::vec4(1.f, 0.3f, 0.2f, 1.f));
+    r.submitText("press Enter for the menu", {W * 0.5f - 130 * u, H * 0.4f + 62 * u}, 2.f * u, white);
+  }
+  if (state_ == MatchState::Playing) {
+    r.submitText("WASD move   mouse aim   left: sword   right: disc   space: spin", {20 * u, H - 30 * u}, 1.8f * u,
+                 glm::vec4(1.f, 1.f, 1.f, 0.85f));
+    const glm::vec2 m = cursorInFrame(c.input, c.frameSize);
+    const float k = 9.f * u;
+    const glm::vec2 cross[8] = {m + glm::vec2(-k, 0), m + glm::vec2(-k * 0.35f, 0), m + glm::vec2(k, 0),
+                                m + glm::vec2(k * 0.35f, 0), m + glm::vec2(0, -k), m + glm::vec2(0, -k * 0.35f),
+                                m + glm::vec2(0, k), m + glm::vec2(0, k * 0.35f)};
+    r.submitOverlayLines(cross, glm::vec4(0.6f, 1.f, 1.f, 1.f));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// State dump
+
+void ArenaGame::dumpEntity(ecs::Entity e, nlohmann::json& out) {
+  ecs::World& world = app_->world();
+  if (const auto* tag = world.tryGet<ArenaTag>(e)) out["kind"] = tagName(tag->kind);
+  if (const auto* mi = world.tryGet<components::MassInfo>(e)) {
+    out["mass"] = mi->mass;
+    out["volume"] = mi->volume;
+  }
+  if (const auto* rb = world.tryGet<components::RigidBody>(e)) {
+    if (const auto state = physics_->bodyState(rb->body)) {
+      out["center_of_mass"] = {state->transform.position.x, state->transform.position.y, state->transform.position.z};
+      out["linear_velocity"] = {state->linearVelocity.x, state->linearVelocity.y, state->linearVelocity.z};
+      out["angular_velocity"] = {state->angularVelocity.x, state->angularVelocity.y, state->angularVelocity.z};
+    }
+  }
+  if (const auto* origin = world.tryGet<components::SplitOrigin>(e)) out["split_from"] = origin->parentId;
+  if (const auto* f = world.tryGet<Fading>(e)) out["born_tick"] = f->bornTick;
+  for (const Enemy& en : enemies_) {
+    if (en.entity != e) continue;
+    out["enemy_kind"] = kindInfo(en.kind).name;
+    out["hit"] = en.hit;
+  }
+}
+
+void ArenaGame::dumpFrame(nlohmann::json& line) {
+  line["arena"] = {{"state", toString(state_)},
+                   {"score", score_},
+                   {"wave", wave_},
+                   {"health", health_},
+                   {"enemies_killed", enemiesKilled_},
+                   {"enemies_alive", enemies_.size()},
+                   {"pieces_spawned", piecesSpawned_},
+                   {"pieces_removed", piecesRemoved_},
+                   {"props_broken", propsBroken_},
+                   {"disc_throws", discThrows_},
+                   {"sword_swings", swordSwings_},
+                   {"spin_attacks", spinAttacks_},
+                   {"max_enemies_hit_in_one_tick", maxEnemiesHitInOneTick_},
+                   {"max_kills_in_one_tick", maxKillsInOneTick_},
+                   {"player", {playerPosition_.x, playerPosition_.y}}};
+  nlohmann::json splits = nlohmann::json::array();
+  for (const SplitLogEntry& s : splitLog_) {
+    splits.push_back({{"tick", s.tick},
+                      {"original", s.original},
+                      {"status", s.status},
+                      {"pieces", s.pieces},
+                      {"parent_mass", s.parentMass},
+                      {"pieces_mass", s.piecesMass},
+                      {"ms", s.milliseconds}});
+  }
+  line["splits"] = std::move(splits);
+  const auto& stats = splits_->budget().stats();
+  line["budget"] = {{"deferred_total", deferredTotal_},
+                    {"max_queue", maxQueue_},
+                    {"max_split_ms", stats.maxSplitMilliseconds},
+                    {"max_split_ms_in_a_tick", maxSplitMsInATick_},
+                    {"ms_per_tick", splits_->budget().settings().millisecondsPerTick},
+                    {"queue", stats.queueLength}};
+}
+
+}  // namespace cleave::arena

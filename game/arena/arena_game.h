@@ -1,0 +1,213 @@
+// The arena sample: a round gladiator arena where waves of multi-part enemies walk to the player,
+// who cuts them with a thrown energy disc (a persistent Splitter that bounces off the wall and comes
+// back), an energy sword (a one-tick Splitter in the swing's plane) and a spin attack (a one-tick
+// Splitter around the player). A menu of metal cubes, split on click, starts the match.
+//
+// It is a game loop on the split components: everything that cuts is a Splitter, everything that is
+// cut is a Splitable, the split system's events tell the game who died, and the split budget spreads
+// a burst of kills over the following ticks. Pieces stay for a while, shrink and are removed with
+// their GPU mesh and body.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+#include "components/split_system.h"
+#include "engine/anim/animation_clip.h"
+#include "engine/app/app.h"
+#include "engine/assets/procedural_character.h"
+#include "engine/physics/physics_world.h"
+#include "game/arena/arena_art.h"
+#include "game/arena/enemies.h"
+
+namespace cleave::arena {
+
+enum class MatchState : uint8_t {
+  Menu,      // the Start and Quit cubes wait for a click
+  Starting,  // the Start cube was cut: its pieces fall while the camera moves behind the player
+  Playing,
+  Defeated,  // health ran out: Enter (or a click) goes back to the menu
+  Quitting,  // the Quit cube was cut: the game ends shortly
+};
+const char* toString(MatchState state);
+
+enum class PropKind : uint8_t { Crate, Urn };
+
+// What an entity is, for the state dump and the game's own queries.
+struct ArenaTag {
+  enum Kind : uint8_t { Level, Prop, MenuCube, Enemy, Piece, Player, Weapon } kind = Level;
+};
+
+// A piece's clock: it stays for a while, then shrinks about its centre of mass and is removed.
+struct Fading {
+  uint64_t bornTick = 0;
+  glm::mat4 baseOffset{1.f};  // its mesh offset when it was made
+};
+
+class ArenaGame {
+ public:
+  ArenaGame();
+  ~ArenaGame();
+
+  // Builds the arena and registers the systems. Returns false with a reason on failure.
+  bool setup(app::App& app, std::string* error);
+
+ private:
+  struct Disc {
+    bool active = false;
+    ecs::Entity splitter;
+    glm::vec2 position{0.f};
+    glm::vec2 direction{0.f, -1.f};
+    int bounces = 0;
+    bool returning = false;
+    float age = 0.f;
+    float spin = 0.f;
+  };
+  struct Swing {
+    int ticksLeft = 0;
+    int duration = 1;
+    bool spin = false;
+    float yaw = 0.f;
+    float tilt = 0.f;
+  };
+  struct SplitLogEntry {
+    uint64_t tick = 0;
+    std::string original;
+    std::string status;
+    size_t pieces = 0;
+    double parentMass = 0.0;
+    double piecesMass = 0.0;
+    double milliseconds = 0.0;
+  };
+  struct PendingSpawn {
+    uint64_t tick = 0;
+    EnemyKind kind = EnemyKind::Gladiator;
+    glm::vec2 position{0.f};
+    float yaw = 0.f;
+  };
+
+  // Building.
+  void buildLevel();
+  ecs::Entity addStatic(const std::string& name, geometry::MeshData mesh, std::vector<render::Material> materials,
+                        bool collide);
+  ecs::Entity spawnProp(PropKind kind, glm::vec3 position, float yaw);
+  void spawnMenuCubes();
+  void createPlayer();
+  ecs::Entity spawnDynamic(const std::string& name, geometry::MeshData mesh, std::vector<render::Material> materials,
+                           const components::Splitable& splitable, glm::vec3 position, glm::quat rotation,
+                           ArenaTag::Kind kind);
+
+  // Systems.
+  void gameplay(app::TickContext& c);
+  void triggers(app::TickContext& c);
+  void split(app::TickContext& c);
+  void physicsSync(app::TickContext& c);
+  void animation(app::TickContext& c);
+  void render(app::TickContext& c);
+
+  // Gameplay parts.
+  void updateCamera(float dt);
+  void updateMenu(app::TickContext& c);
+  void updatePlayer(app::TickContext& c);
+  void updateWeapons(app::TickContext& c);
+  void updateDisc(app::TickContext& c);
+  void updateWaves(app::TickContext& c);
+  void startWave(uint64_t tick);
+  void resetToMenu();
+  void throwDisc();
+  void swingSword(bool spin);
+  ecs::Entity makeSplitter(const std::string& name, const physics::ShapeDef& shape, glm::vec3 position,
+                           glm::quat rotation, bool persistent);
+  void onSplit(const components::SplitEvent& ev, uint64_t tick);
+  void updatePieces(uint64_t tick);
+  void removeEntity(ecs::Entity e);
+
+  // Camera and cursor.
+  glm::vec2 cursorInFrame(const input::InputState& in, glm::ivec2 frame) const;
+  glm::vec3 rayDirection(glm::vec2 framePixel, glm::ivec2 frame) const;
+  bool cursorOnFloor(const input::InputState& in, glm::ivec2 frame, glm::vec3* point) const;
+
+  // Drawing.
+  void drawWeapons(render::Renderer& r);
+  void drawHud(app::TickContext& c);
+  void dumpEntity(ecs::Entity e, nlohmann::json& out);
+  void dumpFrame(nlohmann::json& line);
+  components::SplitWorld splitWorld();
+  EnemyContext enemyContext();
+
+  app::App* app_ = nullptr;
+  std::unique_ptr<physics::PhysicsWorld> physics_;
+  std::unique_ptr<components::SplitSystem> splits_;
+  ArenaMaterials materials_;
+  EnemyMeshes enemyMeshes_;
+  std::vector<Obstacle> pillars_;
+  std::vector<physics::BodyId> staticBodies_;
+  std::vector<physics::ShapeId> staticShapes_;
+  uint64_t rng_ = 1;
+  float nextRandom();
+
+  // Match.
+  MatchState state_ = MatchState::Menu;
+  uint64_t stateTick_ = 0;  // tick the state was entered
+  ecs::Entity startCube_, quitCube_;
+  int health_ = 100;
+  int score_ = 0;
+  int wave_ = 0;
+  uint64_t nextWaveTick_ = 0;
+  uint64_t waveBannerTick_ = 0;
+  std::vector<Enemy> enemies_;
+  std::vector<PendingSpawn> pendingSpawns_;
+
+  // Player.
+  ecs::Entity player_;
+  glm::vec2 playerPosition_{0.f, 0.f};
+  float playerYaw_ = 0.f;
+  float playerSpeed_ = 0.f;
+  glm::vec3 aimPoint_{0.f, 0.f, -3.f};
+  float hurtFlash_ = 0.f;
+  assets::ProceduralCharacter character_;
+  render::MeshHandle characterMesh_;
+  anim::Animator animator_;
+  std::vector<glm::mat4> jointMatrices_;
+  std::vector<glm::mat4> jointGlobals_;
+  anim::Pose pose_;
+  render::MeshHandle bladeMesh_, discMesh_;
+
+  // Weapons.
+  Disc disc_;
+  Swing swing_;
+  uint64_t swordReadyTick_ = 0;
+  uint64_t spinReadyTick_ = 0;
+
+  // Camera: blends from the menu view to the follow view.
+  glm::vec3 cameraPosition_{0.f, 1.8f, 6.4f};
+  glm::vec3 cameraTarget_{0.f, 0.9f, 1.6f};
+  float cameraBlend_ = 0.f;
+
+  // Figures for the HUD and the state dump.
+  uint32_t enemiesKilled_ = 0;
+  uint64_t piecesSpawned_ = 0;
+  uint64_t piecesRemoved_ = 0;
+  uint32_t propsBroken_ = 0;
+  uint32_t discThrows_ = 0;
+  uint32_t swordSwings_ = 0;
+  uint32_t spinAttacks_ = 0;
+  uint32_t maxEnemiesHitInOneTick_ = 0;
+  uint32_t maxKillsInOneTick_ = 0;
+  std::vector<SplitLogEntry> splitLog_;
+  uint64_t deferredTotal_ = 0;
+  uint32_t maxQueue_ = 0;
+  uint32_t splitsThisTick_ = 0;
+  double splitMsThisTick_ = 0.0;
+  double maxSplitMsInATick_ = 0.0;
+  std::deque<float> splitMsHistory_;
+};
+
+}  // namespace cleave::arena

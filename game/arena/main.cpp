@@ -1,0 +1,34 @@
+// cleave-arena: the gladiator arena sample. In a window: click the Start cube, then WASD to move,
+// the mouse to aim, left button for the sword, right button for the disc, Space for a spin attack.
+// Headless: plays a replay and writes screenshots and state dumps (see --help).
+#include <cstdio>
+#include <string>
+
+#include "engine/app/app.h"
+#include "game/arena/arena_game.h"
+
+int main(int argc, char** argv) {
+  cleave::app::AppOptions options;
+  options.sceneName = "arena";
+  const auto parsed = cleave::app::parseAppOptions(argc, argv, options);
+  if (!parsed.ok) {
+    std::fprintf(stderr, "cleave-arena: %s\n", parsed.error.c_str());
+    return 2;
+  }
+  if (parsed.helpRequested) {
+    std::printf("usage: cleave-arena [options]\n\n%s", cleave::app::appOptionsUsage().c_str());
+    return 0;
+  }
+  cleave::app::App app;
+  std::string error;
+  if (!app.init(options, "Cleave arena", &error)) {
+    std::fprintf(stderr, "cleave-arena: %s\n", error.c_str());
+    return 1;
+  }
+  cleave::arena::ArenaGame game;
+  if (!game.setup(app, &error)) {
+    std::fprintf(stderr, "cleave-arena: %s\n", error.c_str());
+    return 1;
+  }
+  return app.run();
+}
