@@ -739,15 +739,7 @@ void ArenaGame::triggers(app::TickContext& c) {
 }
 
 void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
-  SplitLogEntry entry;
-  entry.tick = tick;
-  entry.original = ev.originalName;
-  entry.status = geometry::toString(ev.status);
-  entry.pieces = ev.pieces.size();
-  entry.parentMass = ev.parentMass;
-  entry.piecesMass = ev.piecesMass;
-  entry.milliseconds = ev.milliseconds;
-  splitLog_.push_back(std::move(entry));
+  splitLog_.record(tick, ev);
   ecs::World& world = app_->world();
   const bool cut = ev.status == geometry::SplitStatus::Ok && !ev.pieces.empty();
   auto enemy = std::find_if(enemies_.begin(), enemies_.end(), [&](const Enemy& e) { return e.entity == ev.original; });
@@ -1080,16 +1072,8 @@ void ArenaGame::dumpFrame(nlohmann::json& line) {
                    {"max_enemies_hit_in_one_tick", maxEnemiesHitInOneTick_},
                    {"max_kills_in_one_tick", maxKillsInOneTick_},
                    {"player", {playerPosition_.x, playerPosition_.y}}};
-  nlohmann::json splits = nlohmann::json::array();
-  for (const SplitLogEntry& s : splitLog_) {
-    splits.push_back({{"tick", s.tick},
-                      {"original", s.original},
-                      {"status", s.status},
-                      {"pieces", s.pieces},
-                      {"parent_mass", s.parentMass},
-                      {"pieces_mass", s.piecesMass},
-                      {"ms", s.milliseconds}});
-  }
+  nlohmann::json splits;
+  splitLog_.writeJson(splits);
   line["splits"] = std::move(splits);
   const auto& stats = splits_->budget().stats();
   line["budget"] = {{"deferred_total", deferredTotal_},

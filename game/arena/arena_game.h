@@ -19,6 +19,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include "components/split_log.h"
 #include "components/split_system.h"
 #include "engine/anim/animation_clip.h"
 #include "engine/app/app.h"
@@ -76,15 +77,6 @@ class ArenaGame {
     bool spin = false;
     float yaw = 0.f;
     float tilt = 0.f;
-  };
-  struct SplitLogEntry {
-    uint64_t tick = 0;
-    std::string original;
-    std::string status;
-    size_t pieces = 0;
-    double parentMass = 0.0;
-    double piecesMass = 0.0;
-    double milliseconds = 0.0;
   };
   struct PendingSpawn {
     uint64_t tick = 0;
@@ -201,7 +193,7 @@ class ArenaGame {
   uint32_t spinAttacks_ = 0;
   uint32_t maxEnemiesHitInOneTick_ = 0;
   uint32_t maxKillsInOneTick_ = 0;
-  std::vector<SplitLogEntry> splitLog_;
+  components::SplitLog splitLog_;
   uint64_t deferredTotal_ = 0;
   uint32_t maxQueue_ = 0;
   uint32_t splitsThisTick_ = 0;

@@ -11,6 +11,7 @@
 
 #include "components/scene_components.h"
 #include "components/scene_loader.h"
+#include "components/split_log.h"
 #include "components/splitable.h"
 #include "engine/assets/procedural_character.h"
 #include "engine/assets/procedural_textures.h"
@@ -452,20 +453,7 @@ bool DemoGame::setup(app::App& app, std::string* error) {
     splits_->activatePending(sw);
     splits_->runSplits(sw, c.tick, glm::dvec3(cameraPosition_));
     const auto& stats = splits_->budget().stats();
-    for (const components::SplitEvent& ev : splits_->lastEvents()) {
-      SplitLogEntry entry;
-      entry.tick = c.tick;
-      entry.status = geometry::toString(ev.status);
-      entry.pieces = ev.pieces.size();
-      entry.parentMass = ev.parentMass;
-      entry.piecesMass = ev.piecesMass;
-      entry.milliseconds = ev.milliseconds;
-      entry.geometryMilliseconds = ev.geometryMilliseconds;
-      entry.colliderMilliseconds = ev.colliderMilliseconds;
-      entry.uploadMilliseconds = ev.uploadMilliseconds;
-      entry.original = ev.originalName;
-      splitLog_.push_back(std::move(entry));
-    }
+    splitLog_.record(c.tick, splits_->lastEvents());
     deferredTotal_ += stats.deferred;
     maxQueue_ = std::max(maxQueue_, stats.queueLength);
     splitsThisTick_ = stats.executed;
@@ -488,19 +476,8 @@ bool DemoGame::setup(app::App& app, std::string* error) {
   app.addSystem(app::Phase::Render, "demo.render", [this](app::TickContext& c) { render(c); });
   app.setStateDumpExtension([this](ecs::Entity e, nlohmann::json& out) { dumpExtension(e, out); });
   app.setFrameDumpExtension([this](nlohmann::json& line) {
-    nlohmann::json splits = nlohmann::json::array();
-    for (const SplitLogEntry& s : splitLog_) {
-      splits.push_back({{"tick", s.tick},
-                        {"original", s.original},
-                        {"status", s.status},
-                        {"pieces", s.pieces},
-                        {"parent_mass", s.parentMass},
-                        {"pieces_mass", s.piecesMass},
-                        {"ms", s.milliseconds},
-                        {"geometry_ms", s.geometryMilliseconds},
-                        {"collider_ms", s.colliderMilliseconds},
-                        {"upload_ms", s.uploadMilliseconds}});
-    }
+    nlohmann::json splits;
+    splitLog_.writeJson(splits);
     line["splits"] = std::move(splits);
     const auto& stats = splits_->budget().stats();
     line["budget"] = {{"deferred_total", deferredTotal_},

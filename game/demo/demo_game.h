@@ -12,6 +12,7 @@
 
 #include "components/scene_loader.h"
 #include "components/skinned.h"
+#include "components/split_log.h"
 #include "components/split_system.h"
 #include "engine/app/app.h"
 #include "engine/physics/physics_world.h"
@@ -91,19 +92,7 @@ class DemoGame {
   std::vector<render::TextureHandle> textures_;
 
   // Every split of the run, for the state dump (replay tests check mass conservation per cut).
-  struct SplitLogEntry {
-    uint64_t tick = 0;
-    std::string original;
-    std::string status;
-    size_t pieces = 0;
-    double parentMass = 0.0;
-    double piecesMass = 0.0;
-    double milliseconds = 0.0;
-    double geometryMilliseconds = 0.0;
-    double colliderMilliseconds = 0.0;
-    double uploadMilliseconds = 0.0;
-  };
-  std::vector<SplitLogEntry> splitLog_;
+  components::SplitLog splitLog_;
   uint64_t deferredTotal_ = 0;
   uint32_t maxQueue_ = 0;
 

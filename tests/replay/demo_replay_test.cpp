@@ -16,6 +16,7 @@
 
 #include "engine/render/renderer.h"
 #include "tests/render/image_compare.h"
+#include "tests/support/executable_run.h"
 
 namespace {
 
@@ -24,61 +25,14 @@ namespace fs = std::filesystem;
 const std::string kDemo = std::string(CLEAVE_BINARY_DIR) + "/bin/cleave-demo";
 const std::string kReplays = std::string(CLEAVE_SOURCE_DIR) + "/assets/replays";
 
-struct RunResult {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr
-};
+using cleave::testing::expectEveryCutKeepsMass;
+using cleave::testing::lastDumpLine;
+using cleave::testing::RunResult;
+using cleave::testing::stateHash;
 
-RunResult run(const std::string& arguments) {
-  RunResult result;
-  const std::string command = "\"" + kDemo + "\" " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+RunResult run(const std::string& arguments) { return cleave::testing::runExecutable(kDemo, arguments); }
 
-fs::path scratchDir(const std::string& name) {
-  const fs::path dir = fs::path(CLEAVE_BINARY_DIR) / "test-output" / "replay" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string stateHash(const std::string& output) {
-  const std::string key = "state-hash: ";
-  const size_t at = output.rfind(key);
-  if (at == std::string::npos) return {};
-  return output.substr(at + key.size(), 16);
-}
-
-nlohmann::json lastDumpLine(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last.empty() ? nlohmann::json() : nlohmann::json::parse(last);
-}
-
-// Every cut keeps the mass of the object it cut: the pieces (with colliders or as debris) weigh
-// what the original weighed. Piece masses are density x volume in world space, so the only error is
-// float rounding of the world transform.
-void expectEveryCutKeepsMass(const nlohmann::json& dump) {
-  for (const auto& split : dump.at("splits")) {
-    // A trigger may touch a collider (its margin) while the plane misses the mesh: nothing to cut.
-    if (split.at("status") == "PlaneMissesMesh") continue;
-    ASSERT_EQ(split.at("status"), "Ok") << split.dump();
-    const double parent = split.at("parent_mass");
-    const double pieces = split.at("pieces_mass");
-    ASSERT_GT(parent, 0.0);
-    EXPECT_NEAR(pieces / parent, 1.0, 2e-6) << split.dump();
-    EXPECT_GE(split.at("pieces").get<int>(), 2) << split.dump();
-  }
-}
+fs::path scratchDir(const std::string& name) { return cleave::testing::scratchDir("replay", name); }
 
 // No entity lost: every position finite, nothing fell through the floor (top at y = 0).
 void expectNothingLost(const nlohmann::json& dump) {

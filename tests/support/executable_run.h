@@ -1,0 +1,78 @@
+// Running the engine's executables from tests: capture the output and exit status, a clean scratch
+// folder per test, the printed state hash, the last line of a JSON-lines state dump, and the
+// per-cut mass check on a dump's split log (components/split_log.h).
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace cleave::testing {
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr
+};
+
+// Runs `executable arguments` through the shell with stderr folded into stdout.
+inline RunResult runExecutable(const std::string& executable, const std::string& arguments) {
+  RunResult result;
+  const std::string command = "\"" + executable + "\" " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+// build/test-output/<suite>/<name>, emptied.
+inline std::filesystem::path scratchDir(const std::string& suite, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(CLEAVE_BINARY_DIR) / "test-output" / suite / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// The 16 hex digits after the last "state-hash: " of a run's output ("" when absent).
+inline std::string stateHash(const std::string& output) {
+  const std::string key = "state-hash: ";
+  const size_t at = output.rfind(key);
+  if (at == std::string::npos) return {};
+  return output.substr(at + key.size(), 16);
+}
+
+inline nlohmann::json lastDumpLine(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last.empty() ? nlohmann::json() : nlohmann::json::parse(last);
+}
+
+// Every cut of the dump's split log kept the mass of what it cut (pieces with colliders and debris
+// together) within `relative`. Piece masses come from world-space volumes, so float rounding of the
+// world transform is the only error. A splitter may touch a collider's margin while its plane misses
+// the mesh: those entries have nothing to check.
+inline void expectEveryCutKeepsMass(const nlohmann::json& dump, double relative = 2e-6) {
+  for (const auto& split : dump.at("splits")) {
+    if (split.at("status") == "PlaneMissesMesh") continue;
+    ASSERT_EQ(split.at("status"), "Ok") << split.dump();
+    const double parent = split.at("parent_mass");
+    const double pieces = split.at("pieces_mass");
+    ASSERT_GT(parent, 0.0) << split.dump();
+    EXPECT_NEAR(pieces / parent, 1.0, relative) << split.dump();
+    EXPECT_GE(split.at("pieces").get<int>(), 2) << split.dump();
+  }
+}
+
+}  // namespace cleave::testing
