@@ -18,7 +18,7 @@ namespace cleave::render {
 
 namespace {
 
-constexpr int kShadowMapSize = 2048;
+constexpr int kShadowMapSize = 1024;
 
 GLuint compileShader(GLenum type, const char* source, std::string* error) {
   GLuint shader = glCreateShader(type);
@@ -532,8 +532,9 @@ FrameStats Renderer::endFrame() {
     const GLint shadowJoints = glGetUniformLocation(r.shadowProgram, "uJoints");
     for (const DrawItem& d : r.draws) {
       const GpuMesh& m = r.meshes[d.mesh];
-      // The floor (checker material) receives but does not need to cast.
-      if (r.materials[d.firstMaterial].shading == Shading::Checker) continue;
+      // The floor (checker material) and materials marked so receive but do not cast.
+      const Material& first = r.materials[d.firstMaterial];
+      if (first.shading == Shading::Checker || !first.castsShadow) continue;
       r.setSkin(d, shadowSkinned, shadowJoints);
       glUniformMatrix4fv(loc, 1, GL_FALSE, glm::value_ptr(lightVp * d.model));
       glBindVertexArray(m.vao);
@@ -549,16 +550,7 @@ FrameStats Renderer::endFrame() {
   glClearColor(0.f, 0.f, 0.f, 1.f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
-  // Sky: a full-screen triangle at the far plane.
-  glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  glUseProgram(r.skyProgram);
-  const glm::mat4 invViewProj = glm::inverse(viewProj);
-  glUniformMatrix4fv(glGetUniformLocation(r.skyProgram, "uInvViewProj"), 1, GL_FALSE,
-                     glm::value_ptr(invViewProj));
-  glUniform3fv(glGetUniformLocation(r.skyProgram, "uSunDir"), 1, glm::value_ptr(sunDir));
-  glBindVertexArray(r.emptyVao);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
 
   // Lit pass. Back faces are drawn too (flipped normals) so open pieces in hollow mode look right.
   glEnable(GL_DEPTH_TEST);
@@ -610,6 +602,20 @@ FrameStats Renderer::endFrame() {
       stats.triangles += s.indexCount / 3;
     }
   }
+
+  // Sky: a full-screen triangle at the far plane, drawn after the meshes so that only the pixels
+  // nothing covers pay for the sky colour (the depth test keeps the rest).
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glUseProgram(r.skyProgram);
+  const glm::mat4 invViewProj = glm::inverse(viewProj);
+  glUniformMatrix4fv(glGetUniformLocation(r.skyProgram, "uInvViewProj"), 1, GL_FALSE,
+                     glm::value_ptr(invViewProj));
+  glUniform3fv(glGetUniformLocation(r.skyProgram, "uSunDir"), 1, glm::value_ptr(sunDir));
+  glBindVertexArray(r.emptyVao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
 
   // World lines, then the 2D overlay on top.
   glUseProgram(r.lineProgram);

@@ -55,6 +55,8 @@ struct Material {
   float reflectivity = 0.f;        // 0..1 mix of the sky reflected about the normal (metal)
   float checkerScale = 1.f;        // Checker / CheckerCube: squares per metre
   glm::vec4 checkerColor{0.2f, 0.2f, 0.22f, 1.f};  // second checker colour
+  bool castsShadow = true;         // read from a draw's first material: false for floors and walls
+                                   // that only receive shadows (saves the shadow pass their area)
 };
 
 struct Camera {

@@ -383,6 +383,7 @@ bool DemoGame::loadSceneFile(const std::string& path, std::string* error) {
   components::SceneContext context{app_->world(), *physics_, &app_->renderer(), splits_.get(), {}};
   // Material names of the scene file map to the demo's looks; caps get the inside look.
   context.materials = [this](const std::string& name, bool cap) {
+    if (name == "floor") return floorMaterial_;
     static const char* aliases[7][2] = {{"wood", "wooden"},  {"metal", "steel"},
                                         {"marble", "stone"}, {"melon", "watermelon"},
                                         {"normals", "debug"}, {"checker", "checker3d"},
