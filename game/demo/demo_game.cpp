@@ -480,6 +480,7 @@ bool DemoGame::setup(app::App& app, std::string* error) {
     nlohmann::json splits;
     splitLog_.writeJson(splits);
     line["splits"] = std::move(splits);
+    line["looks_cycled"] = looksShown_;  // every look Q/E switched an object to, sorted
     const auto& stats = splits_->budget().stats();
     line["budget"] = {{"deferred_total", deferredTotal_},
                       {"max_queue", maxQueue_},
@@ -618,6 +619,7 @@ void DemoGame::gameplay(app::TickContext& c) {
     const ecs::Entity target = entityUnderCrosshair();
     if (auto* choice = c.world.tryGet<components::MaterialChoice>(target)) {
       choice->index = (choice->index + (in.pressed(Key::Q) ? 6 : 1)) % 7;
+      looksShown_.insert(lookNames_[size_t(choice->index)]);
       if (auto* mr = c.world.tryGet<components::MeshRenderer>(target)) {
         mr->materials[0] = looks_[size_t(choice->index)];
         if (mr->materials.size() > 1) mr->materials[1] = capLooks_[size_t(choice->index)];
@@ -744,6 +746,8 @@ void DemoGame::dumpExtension(ecs::Entity e, nlohmann::json& out) {
     }
   }
   if (const auto* origin = world.tryGet<components::SplitOrigin>(e)) out["split_from"] = origin->parentId;
+  if (const auto* choice = world.tryGet<components::MaterialChoice>(e))
+    out["look"] = lookNames_[size_t(choice->index) % lookNames_.size()];
 }
 
 }  // namespace cleave::demo

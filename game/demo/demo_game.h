@@ -5,6 +5,7 @@
 #include <array>
 #include <deque>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,7 @@ class DemoGame {
 
   // Every split of the run, for the state dump (replay tests check mass conservation per cut).
   components::SplitLog splitLog_;
+  std::set<std::string> looksShown_;  // looks Q/E switched an object to (for the state dump)
   uint64_t deferredTotal_ = 0;
   uint32_t maxQueue_ = 0;
 

@@ -78,6 +78,8 @@ TEST(DemoReplay, TourCutsEveryObjectAndKeepsMass) {
   EXPECT_GE(dump.at("splits").size(), 9u);
   EXPECT_GE(countPieces(dump), 14u);
   EXPECT_EQ(dump.at("budget").at("queue"), 0) << "split requests left over at the end";
+  // Q/E cycled an object through all seven looks.
+  EXPECT_EQ(dump.at("looks_cycled").size(), 7u) << dump.at("looks_cycled").dump();
   EXPECT_EQ(stateHash(r.output).size(), 16u);
 }
 
