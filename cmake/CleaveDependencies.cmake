@@ -10,7 +10,6 @@ find_package(nlohmann_json CONFIG REQUIRED)
 pkg_check_modules(BULLET REQUIRED IMPORTED_TARGET bullet)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)     # libstb.so carries the implementations
 pkg_check_modules(OSMESA IMPORTED_TARGET osmesa)        # optional headless fallback
-find_library(CLEAVE_HACD_LIB HACD)
 find_program(GLAD_EXE glad REQUIRED)
 
 if(CLEAVE_BUILD_TESTS)
