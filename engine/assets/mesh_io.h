@@ -68,6 +68,8 @@ struct MeshWriteOptions {
   uint32_t capMaterialId = 1;
   // Names by material id for the other submeshes; an id without a name is written "material_<id>".
   std::vector<std::string> materialNames;
+  // Linear RGBA base colours by material id (skinned GLB writer); an id without one gets none.
+  std::vector<glm::vec4> materialColors;
   bool writeNormals = true;  // when the mesh has normals
   bool writeUvs = true;      // when the mesh has uv0
 };

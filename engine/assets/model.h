@@ -31,6 +31,7 @@
 
 #include "engine/anim/animation_clip.h"
 #include "engine/anim/skeleton.h"
+#include "engine/assets/mesh_io.h"
 #include "engine/geometry/mesh_data.h"
 
 namespace cleave::assets {
@@ -88,5 +89,22 @@ ModelLoadResult loadModel(const std::string& path);
 // The same from bytes in memory; `name` is used in messages only. Only data: URIs and GLB chunks
 // can be read (there is no folder to look in).
 ModelLoadResult readModelFromMemory(std::span<const uint8_t> bytes, const std::string& name);
+
+// Writes a skinned mesh (bind space, joints and weights indexing `skeleton`) with its skeleton and
+// clips as binary glTF 2.0 that loadModel reads back as one skinned ModelMesh with one skin and
+// these clips: a node per joint (rest transform as translation, rotation, scale; a joint's fixed
+// offset as an extra parent node), the skin (joints in skeleton order, inverse bind matrices), one
+// animation per clip, one primitive per submesh run (materials named as in MeshWriteOptions, with
+// MeshWriteOptions::materialColors as base colours), POSITION with bounds, NORMAL, TEXCOORD_0,
+// JOINTS_0 (unsigned short) and WEIGHTS_0. Every joint of the skeleton is written, also those the
+// mesh does not use, so the clips keep driving the whole hierarchy. Malformed clip channels are
+// left out. Failure (invalid mesh or skeleton, a weight on a joint outside the skeleton) gives
+// ok = false and a one-line error.
+MeshWriteResult writeSkinnedGlbToMemory(const geometry::MeshData& mesh, const anim::Skeleton& skeleton,
+                                        std::span<const anim::AnimationClip> clips,
+                                        const MeshWriteOptions& options, std::vector<uint8_t>& out);
+MeshWriteResult writeSkinnedGlb(const std::string& path, const geometry::MeshData& mesh,
+                                const anim::Skeleton& skeleton, std::span<const anim::AnimationClip> clips,
+                                const MeshWriteOptions& options);
 
 }  // namespace cleave::assets

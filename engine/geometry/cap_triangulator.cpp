@@ -39,6 +39,15 @@ bool collinearForward(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2
   return std::abs(cross) <= kCollinear * len * len && glm::dot(u, v) >= 0.0;
 }
 
+// Squared distance from p to the segment [a, c].
+double segmentDistance2(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& c) {
+  const glm::dvec2 d = c - a, w = p - a;
+  const double len2 = glm::dot(d, d);
+  const double t = len2 > 0.0 ? std::clamp(glm::dot(w, d) / len2, 0.0, 1.0) : 0.0;
+  const glm::dvec2 e = w - t * d;
+  return glm::dot(e, e);
+}
+
 }  // namespace
 
 double CapTriangulator::twiceSignedArea(std::span<const glm::dvec2> points, CapRing ring) {
@@ -53,7 +62,22 @@ double CapTriangulator::twiceSignedArea(std::span<const glm::dvec2> points, CapR
   return sum;
 }
 
-// Marks the collinear points of a ring (kept_ = 0) and links the rest (nextKept_).
+// True when every point strictly between a and c along the ring lies within the tolerance of the
+// segment [a, c]: hiding them all behind that segment moves the boundary by no more than that.
+bool CapTriangulator::hiddenFit(std::span<const glm::dvec2> points, uint32_t a, uint32_t c) const {
+  const double tolerance2 = tolerance_ * tolerance_;
+  for (uint32_t m = nextPoint_[a]; m != c; m = nextPoint_[m]) {
+    if (segmentDistance2(points[m], points[a], points[c]) > tolerance2) return false;
+  }
+  return true;
+}
+
+// Marks the points of a ring that are not corners (kept_ = 0) and links the rest (nextKept_). A
+// point is not a corner when it is collinear with its neighbours, or when it and every point hidden
+// before it lie within the tolerance of the segment joining the neighbouring corners: rounding
+// leaves runs of nearly collinear points that zig-zag by a few ulps, and near-coincident points whose
+// order along the run is reversed, so the exact ring can overlap itself at the scale of the rounding.
+// Those points are not dropped: finish() fans them back in.
 void CapTriangulator::prepareRing(std::span<const glm::dvec2> points, CapRing ring) {
   const uint32_t n = ring.end - ring.begin;
   for (uint32_t i = ring.begin; i < ring.end; ++i) {
@@ -62,6 +86,7 @@ void CapTriangulator::prepareRing(std::span<const glm::dvec2> points, CapRing ri
     ringNext_[i] = static_cast<int32_t>(nextPoint_[i]);
     ringPrev_[i] = static_cast<int32_t>(i == ring.begin ? ring.end - 1 : i - 1);
   }
+  const double tolerance2 = tolerance_ * tolerance_;
   uint32_t count = n;
   uint32_t start = ring.begin;
   bool changed = true;
@@ -72,7 +97,10 @@ void CapTriangulator::prepareRing(std::span<const glm::dvec2> points, CapRing ri
     for (uint32_t s = 0; s < steps && count > 3; ++s) {
       const uint32_t a = static_cast<uint32_t>(ringPrev_[p]);
       const uint32_t c = static_cast<uint32_t>(ringNext_[p]);
-      if (collinearForward(points[a], points[p], points[c])) {
+      const bool hide = collinearForward(points[a], points[p], points[c]) ||
+                        (tolerance2 > 0.0 && segmentDistance2(points[p], points[a], points[c]) <= tolerance2 &&
+                         hiddenFit(points, a, c));
+      if (hide) {
         kept_[p] = 0;
         ringNext_[a] = static_cast<int32_t>(c);
         ringPrev_[c] = static_cast<int32_t>(a);
@@ -520,8 +548,10 @@ void CapTriangulator::sortLinked(int32_t list) {
 }
 
 bool CapTriangulator::triangulate(std::span<const glm::dvec2> points, std::span<const CapRing> rings,
-                                  std::vector<uint32_t>& triangles) {
+                                  std::vector<uint32_t>& triangles, double tolerance) {
   const size_t outputStart = triangles.size();
+  tolerance_ = tolerance > 0.0 && std::isfinite(tolerance) ? tolerance : 0.0;
+  strict_ = false;
   if (rings.empty()) return false;
   if (kept_.size() < points.size()) {
     kept_.resize(points.size());
@@ -560,8 +590,11 @@ bool CapTriangulator::triangulate(std::span<const glm::dvec2> points, std::span<
 }
 
 bool CapTriangulator::triangulateConvex(std::span<const glm::dvec2> points, CapRing ring,
-                                        std::vector<uint32_t>& triangles) {
+                                        std::vector<uint32_t>& triangles, double tolerance) {
   const size_t outputStart = triangles.size();
+  tolerance_ = tolerance > 0.0 && std::isfinite(tolerance) ? tolerance : 0.0;
+  strict_ = false;
+  strict_ = true;  // a fast path: any inverted sliver sends the ring to the general path instead
   if (ring.end < ring.begin + 3 || ring.end > points.size()) return false;
   if (kept_.size() < points.size()) {
     kept_.resize(points.size());
@@ -644,16 +677,24 @@ bool CapTriangulator::finish(std::span<const glm::dvec2> points, std::span<const
       extent = std::max({extent, std::abs(d.x), std::abs(d.y)});
     }
   }
-  double sumSigned = 0.0, sumAbs = 0.0;
+  // An inverted triangle no wider than twice the tolerance is the fold of a rounding run (two
+  // near-coincident points in reversed order fanned from a far corner): a sliver, not an overlap.
+  double sumSigned = 0.0, sumAbs = 0.0, slivers = 0.0;
   for (size_t k = outputStart; k < triangles.size(); k += 3) {
     const glm::dvec2 a = points[triangles[k]], b = points[triangles[k + 1]], c = points[triangles[k + 2]];
     const glm::dvec2 u = b - a, v = c - a;
     const double twice = u.x * v.y - u.y * v.x;
     sumSigned += twice;
     sumAbs += std::abs(twice);
+    if (twice < 0.0 && tolerance_ > 0.0 && !strict_) {
+      const glm::dvec2 w = c - b;
+      const double longest = std::sqrt(std::max({glm::dot(u, u), glm::dot(v, v), glm::dot(w, w)}));
+      if (-twice <= 2.0 * tolerance_ * longest) slivers -= twice;
+    }
   }
   const double slack = 1e-9 * std::abs(polygon) + 1e-12 * extent * extent;
-  const bool ok = polygon > 0.0 && std::abs(sumSigned - polygon) <= slack && sumAbs - polygon <= slack;
+  const bool ok =
+      polygon > 0.0 && std::abs(sumSigned - polygon) <= slack && sumAbs - 2.0 * slivers - polygon <= slack;
   if (!ok) triangles.resize(outputStart);
   return ok;
 }

@@ -6,8 +6,12 @@
 // Output: triangles appended as indices into `points`, counter-clockwise. Every ring edge appears in
 // exactly one output triangle, in the ring's direction, and every ring point is used: collinear and
 // duplicate points are never dropped (that would leave a T-junction against the side triangles), they
-// are fanned into the triangle that holds their edge. Triangles never overlap: the call checks that
-// the unsigned areas of the triangles add up to the polygon area and fails otherwise.
+// are fanned into the triangle that holds their edge. With a tolerance > 0, points within it of the
+// segment joining the corners around them (nearly collinear zig-zag runs and near-coincident points
+// left by rounding, which can make the exact ring overlap itself by a few ulps) are treated the same
+// way. Triangles never overlap beyond that: the call checks that the unsigned areas of the triangles
+// add up to the polygon area, counting inverted triangles narrower than twice the tolerance (the
+// folds of those rounding runs) as slivers, and fails otherwise.
 //
 // Scratch memory is kept between calls, so after warm-up a same-size call does not allocate.
 // Not thread-safe; one triangulator per splitter.
@@ -33,13 +37,13 @@ class CapTriangulator {
   // input). Returns false when the polygon could not be triangulated without overlap or gap; the
   // output vector then keeps only what it held before the call.
   bool triangulate(std::span<const glm::dvec2> points, std::span<const CapRing> rings,
-                   std::vector<uint32_t>& triangles);
+                   std::vector<uint32_t>& triangles, double tolerance = 0.0);
 
   // Fan from the first strictly convex point of a convex ring (collinear points removed first and
   // fanned back in). Returns false, with the output untouched, when the ring is not strictly convex
-  // once collinear points are removed.
+  // once collinear points are removed, or when fanning them back in inverts a triangle.
   bool triangulateConvex(std::span<const glm::dvec2> points, CapRing ring,
-                         std::vector<uint32_t>& triangles);
+                         std::vector<uint32_t>& triangles, double tolerance = 0.0);
 
   // Twice the signed area of a ring (positive counter-clockwise).
   static double twiceSignedArea(std::span<const glm::dvec2> points, CapRing ring);
@@ -54,6 +58,7 @@ class CapTriangulator {
   };
 
   void prepareRing(std::span<const glm::dvec2> points, CapRing ring);
+  bool hiddenFit(std::span<const glm::dvec2> points, uint32_t a, uint32_t c) const;
   int32_t linkKept(CapRing ring);
   int32_t newNode(uint32_t i);
   void removeNode(int32_t p);
@@ -96,6 +101,8 @@ class CapTriangulator {
   std::vector<uint32_t> stack_;
   double minX_ = 0.0, minY_ = 0.0, invSize_ = 0.0;
   bool hashed_ = false;
+  double tolerance_ = 0.0;  // of the current call
+  bool strict_ = false;     // no inverted sliver accepted (triangulateConvex)
 };
 
 }  // namespace cleave::geometry

@@ -47,10 +47,12 @@ MassProperties computeMassProperties(std::span<const glm::dvec3> positions,
 // Allocation-free integration for callers that know the surface is closed (a splitter's pieces are
 // closed by construction): no weld, no closedness check, no hull fallback; `closed` is reported true.
 // `flipWinding` reverses every triangle (for a mirrored space). Only the vertices referenced by
-// `indices` are read. An index out of range or a ragged index list gives all-zero properties with
-// closed = false.
+// `indices` are read, unless `everyPointUsed` says every vertex is referenced (then the bounds that
+// pick the integration origin are taken over the positions in order, which is faster). An index out
+// of range or a ragged index list gives all-zero properties with closed = false.
 MassProperties integrateClosedSurface(std::span<const glm::dvec3> positions,
-                                      std::span<const uint32_t> indices, bool flipWinding = false);
+                                      std::span<const uint32_t> indices, bool flipWinding = false,
+                                      bool everyPointUsed = false);
 
 // Invalid input (an index out of range, an index count not a multiple of 3, a NaN or infinite
 // coordinate, no triangle) gives all-zero properties with closed = false and fromConvexHull = false.

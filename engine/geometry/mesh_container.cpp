@@ -23,6 +23,23 @@ constexpr uint32_t kNone = 0xffffffffu;
 constexpr int kCellBits = 21;
 constexpr uint64_t kCellMask = (uint64_t(1) << kCellBits) - 1;
 
+// Scratch memory of the weld and the closedness check, which only setMesh needs. It is kept per
+// thread rather than per container: the engine builds a container for every object it cuts, and
+// fresh arrays of a few megabytes each time would cost more in page faults than the weld itself.
+struct WeldScratch {
+  std::vector<uint64_t> cellKeys;     // weld hash table: per slot, the cell key and first | last vertex
+  std::vector<uint32_t> cellNext;     // per vertex: the next vertex of its cell, ascending
+  std::vector<uint64_t> sortKeys;     // sorted weld: cell key per vertex
+  std::vector<uint32_t> sortOrder;    // sorted weld: vertices by (cell, index)
+  std::vector<uint32_t> edgeStart;    // closedness: edges filed per position id (offsets)
+  std::vector<uint32_t> edgeTargets;  // closedness: edges filed per position id
+};
+
+WeldScratch& weldScratch() {
+  thread_local WeldScratch scratch;
+  return scratch;
+}
+
 bool finite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 template <typename T>
@@ -47,6 +64,7 @@ SplitStatus MeshContainer::setMesh(const MeshData& mesh, std::string* message) {
     positionIdCount_ = 0;
     boundsDiagonal_ = 0.0;
     closed_ = false;
+    cutIsSource_ = false;
     return SplitStatus::InvalidInput;
   };
   const size_t n = mesh.positions.size();
@@ -91,11 +109,11 @@ SplitStatus MeshContainer::setMesh(const MeshData& mesh, std::string* message) {
   mesh_ = mesh;  // copy assignment keeps the capacity of our arrays
   model_ = glm::dmat4(1.0);
   jointMatrices_.clear();
-  weld();
+  weld();  // also sets boundsDiagonal_: the cut space is the source space for now
   cutPositions_.resize(n);
   for (size_t i = 0; i < n; ++i) cutPositions_[i] = glm::dvec3(mesh_.positions[i]);
   mirrored_ = false;
-  updateBounds();
+  cutIsSource_ = true;
   if (message) message->clear();
   return SplitStatus::Ok;
 }
@@ -106,41 +124,53 @@ void MeshContainer::weld() {
     lo = glm::min(lo, glm::dvec3(p));
     hi = glm::max(hi, glm::dvec3(p));
   }
-  const double tolerance = kWeldRelative * glm::length(hi - lo);
+  boundsDiagonal_ = mesh_.positions.empty() ? 0.0 : glm::length(hi - lo);
+  const double tolerance = kWeldRelative * boundsDiagonal_;
   if (!weldHashed(tolerance, lo, hi)) weldSorted(tolerance, lo);
   positionIdCount_ = static_cast<uint32_t>(representatives_.size());
   computeClosed();
 }
 
-// The fast weld: a hashed grid of cells about one vertex spacing wide (at least four tolerances),
-// each cell's vertices chained in ascending index order. A vertex is compared with the earlier
-// vertices of its own cell and, along an axis where it lies within the tolerance of a cell face, of
-// the neighbouring cell too; the first one within the tolerance (ascending order) is the lowest.
-// Returns false, leaving the ids unset, when the vertices crowd into few cells (more comparisons
-// than a fixed budget): the sorted weld below has no such worst case.
+// The fast weld: a hashed grid of cells a few vertex spacings wide (at least four tolerances), each
+// cell's vertices chained in ascending index order. A vertex is compared with the earlier vertices
+// of its own cell and, along an axis where it lies within the tolerance of a cell face, of the
+// neighbouring cell too; the first one within the tolerance (ascending order) is the lowest.
+// Cells of a few vertices each keep consecutive vertices (meshes list their vertices with spatial
+// coherence) in the same cells, so the table stays in cache; a slot is one 16-byte record (key,
+// first and last vertex). Returns false, leaving the ids unset, when the vertices crowd into few
+// cells (more comparisons than a fixed budget): the sorted weld below has no such worst case.
 bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi) {
+  std::vector<uint64_t>& cellKeys_ = weldScratch().cellKeys;
+  std::vector<uint32_t>& cellNext_ = weldScratch().cellNext;
   const size_t n = mesh_.positions.size();
   const glm::dvec3 extent = hi - lo;
   const double largest = std::max(extent.x, std::max(extent.y, extent.z));
-  // About sqrt(n) cells along the largest side: a surface of n vertices puts a few in each cell.
-  double cell = largest / std::max(1.0, std::ceil(std::sqrt(double(n))));
+  // About sqrt(n) / 4 cells along the largest side: a surface of n vertices puts a few in each cell.
+  double cell = largest / std::max(1.0, std::ceil(0.25 * std::sqrt(double(n))));
   cell = std::max(cell, 4.0 * tolerance);
   if (!(cell > 0.0) || !std::isfinite(cell)) cell = 1.0;  // every vertex at one point
   if (largest / cell > double(kCellMask - 2)) return false;
+  const double inverseCell = 1.0 / cell;
+  // Surface meshes fill about one cell per five vertices; a table of n / 2 slots or more keeps the
+  // load low, and a crowded one (over 3/4 full) hands over to the sorted weld.
   size_t capacity = 16;
-  while (capacity < 2 * n) capacity *= 2;
+  while (capacity < n / 2) capacity *= 2;
   const uint64_t mask = capacity - 1;
-  cellKeys_.resize(capacity);
-  cellFirst_.assign(capacity, kNone);
-  cellLast_.resize(capacity);
+  constexpr uint64_t kEmpty = ~uint64_t(0);
+  cellKeys_.assign(2 * capacity, kEmpty);  // per slot: [2 s] cell key, [2 s + 1] first | last << 32
   cellNext_.resize(n);
   positionIds_.resize(n);
   representatives_.clear();
+  representatives_.reserve(n);
+  size_t occupied = 0;
   auto slotOf = [&](uint64_t key) {
-    uint64_t h = key * 0x9E3779B97F4A7C15ull;
-    size_t slot = static_cast<size_t>(h >> 20) & mask;
-    while (cellFirst_[slot] != kNone && cellKeys_[slot] != key) slot = (slot + 1) & mask;
+    const uint64_t h = key * 0x9E3779B97F4A7C15ull;
+    size_t slot = static_cast<size_t>(h >> 24) & mask;
+    while (cellKeys_[2 * slot + 1] != kEmpty && cellKeys_[2 * slot] != key) slot = (slot + 1) & mask;
     return slot;
+  };
+  auto keyOf = [](int64_t x, int64_t y, int64_t z) {
+    return (uint64_t(x) << (2 * kCellBits)) | (uint64_t(y) << kCellBits) | uint64_t(z);
   };
   const double tolerance2 = tolerance * tolerance;
   const double reach = tolerance * 1.001;  // generous: the distance test below decides
@@ -149,28 +179,38 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
     const glm::dvec3 p(mesh_.positions[v]);
     int64_t c[3];
     int lowSide[3], highSide[3];
+    bool near = false;
     for (int a = 0; a < 3; ++a) {
-      const double f = (p[a] - lo[a]) / cell;
-      c[a] = static_cast<int64_t>(std::floor(f));
+      // p >= lo, so truncation is the floor; the cell index is at most largest / cell + 1.
+      c[a] = static_cast<int64_t>((p[a] - lo[a]) * inverseCell);
       const double inCell = p[a] - (lo[a] + double(c[a]) * cell);
       lowSide[a] = inCell <= reach && c[a] > 0 ? -1 : 0;
       highSide[a] = cell - inCell <= reach ? 1 : 0;
+      near = near || lowSide[a] != 0 || highSide[a] != 0;
     }
+    const uint64_t own = keyOf(c[0], c[1], c[2]);
+    const size_t ownSlot = slotOf(own);
     uint32_t best = kNone;
-    for (int dx = lowSide[0]; dx <= highSide[0]; ++dx) {
-      for (int dy = lowSide[1]; dy <= highSide[1]; ++dy) {
-        for (int dz = lowSide[2]; dz <= highSide[2]; ++dz) {
-          const uint64_t key = (uint64_t(c[0] + dx) << (2 * kCellBits)) | (uint64_t(c[1] + dy) << kCellBits) |
-                               uint64_t(c[2] + dz);
-          const size_t slot = slotOf(key);
-          if (cellFirst_[slot] == kNone) continue;
-          for (uint32_t w = cellFirst_[slot]; w != kNone && w < best; w = cellNext_[w]) {
-            if (budget-- == 0) return false;
-            const glm::dvec3 d = glm::dvec3(mesh_.positions[w]) - p;
-            if (glm::dot(d, d) <= tolerance2) {
-              best = w;
-              break;
-            }
+    auto scan = [&](size_t slot) {
+      const uint64_t record = cellKeys_[2 * slot + 1];
+      if (record == kEmpty) return true;
+      for (uint32_t w = static_cast<uint32_t>(record); w != kNone && w < best; w = cellNext_[w]) {
+        if (budget-- == 0) return false;
+        const glm::dvec3 d = glm::dvec3(mesh_.positions[w]) - p;
+        if (glm::dot(d, d) <= tolerance2) {
+          best = w;
+          break;
+        }
+      }
+      return true;
+    };
+    if (!scan(ownSlot)) return false;
+    if (near) {
+      for (int dx = lowSide[0]; dx <= highSide[0]; ++dx) {
+        for (int dy = lowSide[1]; dy <= highSide[1]; ++dy) {
+          for (int dz = lowSide[2]; dz <= highSide[2]; ++dz) {
+            if (dx == 0 && dy == 0 && dz == 0) continue;
+            if (!scan(slotOf(keyOf(c[0] + dx, c[1] + dy, c[2] + dz)))) return false;
           }
         }
       }
@@ -181,16 +221,16 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
       positionIds_[v] = static_cast<uint32_t>(representatives_.size());
       representatives_.push_back(v);
     }
-    const uint64_t own = (uint64_t(c[0]) << (2 * kCellBits)) | (uint64_t(c[1]) << kCellBits) | uint64_t(c[2]);
-    const size_t slot = slotOf(own);
     cellNext_[v] = kNone;
-    if (cellFirst_[slot] == kNone) {
-      cellKeys_[slot] = own;
-      cellFirst_[slot] = v;
+    uint64_t& record = cellKeys_[2 * ownSlot + 1];
+    if (record == kEmpty) {
+      cellKeys_[2 * ownSlot] = own;
+      record = uint64_t(v) | (uint64_t(v) << 32);
+      if (4 * ++occupied > 3 * capacity) return false;  // keep probes short; the sorted weld takes over
     } else {
-      cellNext_[cellLast_[slot]] = v;
+      cellNext_[record >> 32] = v;
+      record = (record & 0xffffffffull) | (uint64_t(v) << 32);
     }
-    cellLast_[slot] = v;
   }
   return true;
 }
@@ -199,6 +239,8 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
 // can only meet a vertex within the tolerance in its own cell or, per axis, in the one neighbouring
 // cell on the side of the cell it is nearest to, so 8 cells are searched by binary search.
 void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
+  std::vector<uint64_t>& weldScratch_ = weldScratch().sortKeys;
+  std::vector<uint32_t>& weldOrder_ = weldScratch().sortOrder;
   const size_t n = mesh_.positions.size();
   const double cell = 2.0 * tolerance;
   auto cellOf = [&](const glm::vec3& p, int axis, double* fraction) -> int64_t {
@@ -226,6 +268,7 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
   });
   positionIds_.assign(n, kNone);
   representatives_.clear();
+  representatives_.reserve(n);
   const double tolerance2 = tolerance * tolerance;
   for (uint32_t v = 0; v < n; ++v) {
     const glm::vec3& p = mesh_.positions[v];
@@ -267,8 +310,14 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
 }
 
 // Closedness on position ids: every directed edge of a non-degenerate triangle used once, and its
-// reverse used once. The outgoing edges of each id are gathered by a counting sort; an id has few.
+// reverse used once. Each edge is filed (counting sort) under the lower of its two ids, as the
+// higher id and a direction bit; the surface is closed when every list, sorted, is made of pairs
+// (2 h, 2 h + 1) with distinct h: each undirected edge once in each direction. Every check reads
+// one short list in order; an id has few edges.
 void MeshContainer::computeClosed() {
+  std::vector<uint32_t>& edgeStart_ = weldScratch().edgeStart;
+  std::vector<uint32_t>& edgeTargets_ = weldScratch().edgeTargets;
+  std::vector<uint32_t>& cellNext_ = weldScratch().cellNext;
   const uint32_t ids = positionIdCount_;
   edgeStart_.assign(size_t(ids) + 1, 0u);
   const size_t indexCount = mesh_.indices.size();
@@ -282,10 +331,10 @@ void MeshContainer::computeClosed() {
   for (size_t t = 0; t + 2 < indexCount; t += 3) {
     uint32_t c[3];
     if (!corners(t, c)) continue;
-    for (int e = 0; e < 3; ++e) ++edgeStart_[c[e] + 1];
+    for (int e = 0; e < 3; ++e) ++edgeStart_[std::min(c[e], c[(e + 1) % 3]) + 1];
     edges += 3;
   }
-  closed_ = edges > 0;
+  closed_ = edges > 0 && edges % 2 == 0 && ids < 0x80000000u;
   if (!closed_) return;
   for (uint32_t id = 0; id < ids; ++id) edgeStart_[id + 1] += edgeStart_[id];
   edgeTargets_.resize(edges);
@@ -293,31 +342,46 @@ void MeshContainer::computeClosed() {
   for (size_t t = 0; t + 2 < indexCount; t += 3) {
     uint32_t c[3];
     if (!corners(t, c)) continue;
-    for (int e = 0; e < 3; ++e) edgeTargets_[cellNext_[c[e]]++] = c[(e + 1) % 3];
-  }
-  // Lists longer than kShort are sorted and searched by bisection; short ones are scanned.
-  constexpr uint32_t kShort = 16;
-  for (uint32_t a = 0; a < ids; ++a) {
-    if (edgeStart_[a + 1] - edgeStart_[a] > kShort) {
-      std::sort(edgeTargets_.begin() + edgeStart_[a], edgeTargets_.begin() + edgeStart_[a + 1]);
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t a = c[e], b = c[(e + 1) % 3];
+      edgeTargets_[cellNext_[std::min(a, b)]++] = a < b ? 2 * b : 2 * a + 1;
     }
   }
-  auto count = [&](uint32_t from, uint32_t to) -> uint32_t {
-    const auto first = edgeTargets_.begin() + edgeStart_[from], last = edgeTargets_.begin() + edgeStart_[from + 1];
-    if (last - first > kShort) {
-      const auto range = std::equal_range(first, last, to);
-      return static_cast<uint32_t>(range.second - range.first);
-    }
-    uint32_t found = 0;
-    for (auto it = first; it != last; ++it) found += *it == to;
-    return found;
-  };
   for (uint32_t a = 0; a < ids && closed_; ++a) {
-    for (uint32_t k = edgeStart_[a]; k < edgeStart_[a + 1] && closed_; ++k) {
-      const uint32_t b = edgeTargets_[k];
-      // Each directed edge once, and its reverse once.
-      closed_ = count(a, b) == 1 && count(b, a) == 1;
+    uint32_t* first = edgeTargets_.data() + edgeStart_[a];
+    uint32_t* last = edgeTargets_.data() + edgeStart_[a + 1];
+    const size_t size = static_cast<size_t>(last - first);
+    if (size % 2 != 0) {
+      closed_ = false;
+      break;
     }
+    if (size > 16) {
+      std::sort(first, last);
+      for (uint32_t* i = first; i < last; i += 2) {
+        if ((i[0] & 1u) != 0 || i[1] != i[0] + 1 || (i + 2 < last && (i[2] >> 1) == (i[0] >> 1))) {
+          closed_ = false;
+          break;
+        }
+      }
+      continue;
+    }
+    // A short list: every forward entry 2 h once, its reverse 2 h + 1 once, as many forward entries
+    // as reverse ones (then each reverse entry is the partner of exactly one forward entry).
+    size_t forward = 0;
+    for (const uint32_t* i = first; i < last; ++i) {
+      if ((*i & 1u) != 0) continue;
+      ++forward;
+      uint32_t same = 0, partner = 0;
+      for (const uint32_t* j = first; j < last; ++j) {
+        same += *j == *i;
+        partner += *j == *i + 1;
+      }
+      if (same != 1 || partner != 1) {
+        closed_ = false;
+        break;
+      }
+    }
+    closed_ = closed_ && 2 * forward == size;
   }
 }
 
@@ -333,6 +397,9 @@ void MeshContainer::updateBounds() {
 void MeshContainer::setTransform(const glm::mat4& model) {
   model_ = glm::dmat4(model);
   jointMatrices_.clear();
+  const bool identity = model == glm::mat4(1.f);
+  if (identity && cutIsSource_) return;  // the cut positions, bounds and winding are those already set
+  cutIsSource_ = identity;
   cutPositions_.resize(mesh_.positions.size());
   for (size_t i = 0; i < cutPositions_.size(); ++i) {
     cutPositions_[i] = glm::dvec3(model_ * glm::dvec4(glm::dvec3(mesh_.positions[i]), 1.0));
@@ -373,23 +440,54 @@ SplitStatus MeshContainer::setSkinningPose(std::span<const glm::mat4> jointMatri
   }
   model_ = glm::dmat4(model);
   jointMatrices_.assign(jointMatrices.begin(), jointMatrices.end());
+  cutIsSource_ = false;
+  // Once per pose: model x joint matrix as an affine 3 x 4 (the bottom row of a skinning matrix is
+  // (0, 0, 0, 1)); its 3 x 3 part, and whether every one is a similarity (rotation, uniform scale)
+  // with a determinant of one sign. A blend of such matrices keeps that sign wherever it is not
+  // singular (a blend of rotations has det >= 0), so the winding flip is known for the whole pose
+  // and no per-vertex determinant is needed; otherwise each vertex's blend is tested as before.
+  const size_t joints = jointMatrices.size();
+  poseAffine_.resize(joints + 1);
+  int poseSign = 0;
+  bool uniformSign = true;
+  for (size_t j = 0; j <= joints; ++j) {
+    // The last entry is the model alone, for vertices without weight.
+    const glm::dmat4 m = j < joints ? model_ * glm::dmat4(jointMatrices[j]) : model_;
+    poseAffine_[j] = glm::dmat4x3(m);
+    const glm::dmat3 linear(m);
+    const double det = glm::determinant(linear);
+    const int sign = det > 0.0 ? 1 : (det < 0.0 ? -1 : 0);
+    const glm::dmat3 gram = glm::transpose(linear) * linear;
+    const double scale2 = (gram[0][0] + gram[1][1] + gram[2][2]) / 3.0;
+    double offDiagonal = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < 3; ++r) offDiagonal = std::max(offDiagonal, std::abs(gram[c][r] - (c == r ? scale2 : 0.0)));
+    }
+    const bool similarity = scale2 > 0.0 && offDiagonal <= 1e-6 * scale2;
+    if (poseSign == 0) poseSign = sign;
+    uniformSign = uniformSign && similarity && sign != 0 && sign == poseSign;
+  }
   cutPositions_.resize(n);
   size_t negative = 0;
   for (size_t i = 0; i < n; ++i) {
-    glm::dmat4 blend(0.0);
-    double total = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      const double w = mesh_.weights[i][k];
-      if (w == 0.0) continue;
-      blend += w * jointMatrices_[mesh_.joints[i][k]];
-      total += w;
+    const glm::vec4& w = mesh_.weights[i];
+    const glm::u16vec4& jt = mesh_.joints[i];
+    const double total = double(w[0]) + double(w[1]) + double(w[2]) + double(w[3]);
+    const glm::dvec4 p(glm::dvec3(mesh_.positions[i]), 1.0);
+    glm::dmat4x3 blend;
+    if (total > 0.0) {
+      blend = glm::dmat4x3(0.0);
+      for (int k = 0; k < 4; ++k) {
+        if (w[k] == 0.f) continue;
+        blend += (double(w[k]) / total) * poseAffine_[jt[k]];
+      }
+    } else {
+      blend = poseAffine_[joints];
     }
-    blend = total > 0.0 ? blend / total : glm::dmat4(1.0);
-    const glm::dmat4 m = model_ * blend;
-    cutPositions_[i] = glm::dvec3(m * glm::dvec4(glm::dvec3(mesh_.positions[i]), 1.0));
-    if (glm::determinant(glm::dmat3(m)) < 0.0) ++negative;
+    cutPositions_[i] = blend * p;
+    if (!uniformSign && glm::determinant(glm::dmat3(blend)) < 0.0) ++negative;
   }
-  mirrored_ = 2 * negative > n;
+  mirrored_ = uniformSign ? poseSign < 0 : 2 * negative > n;
   updateBounds();
   if (message) message->clear();
   return SplitStatus::Ok;

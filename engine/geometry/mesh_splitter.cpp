@@ -17,7 +17,10 @@
 //     non-manifold at the cut. The segments are chained into loops on welded ids (at a vertex with
 //     several ways on, the sharpest left turn keeps touching loops apart); a chain that does not
 //     close is an open section.
-//  5. Caps: the loops are projected on a fixed orthonormal basis of the plane, split by signed area
+//  5. Caps: runs of loop points within float rounding of each other (a plane crossing the sliver
+//     fans of an earlier cap leaves them, in an order scrambled by rounding) are merged into one
+//     point, their cut vertices moved onto it on both sides so the pieces stay watertight. The
+//     loops are projected on a fixed orthonormal basis of the plane, split by signed area
 //     into outer borders and holes, each hole given to the smallest border containing it (any nesting
 //     depth), and each border with its holes triangulated by CapTriangulator. The convex splitter
 //     first tries the thesis's fast path: one loop, in angular order around its centroid, strictly
@@ -171,6 +174,7 @@ class Splitter final : public IMeshSplitter {
   void cutTriangles();
   void collectBoundary(int side, std::vector<uint64_t>& boundary);
   void buildLoops();
+  void mergeNearPoints();
   uint32_t nextSegment(uint32_t at, uint32_t incoming) const;
   bool capSection(const SplitOptions& options, std::string& why);
   bool tryConvexCap();
@@ -197,6 +201,9 @@ class Splitter final : public IMeshSplitter {
   glm::dvec3 normal_{0.0};
   double offset_ = 0.0;
   glm::dvec3 u_{0.0}, v_{0.0}, origin_{0.0};
+  double capTolerance_ = 0.0;
+  double mergeTolerance_ = 0.0;
+  double onPlaneTolerance_ = 0.0;
 
   std::vector<double> distance_;   // per position id
   std::vector<int8_t> side_;       // per position id: +1, -1, 0
@@ -218,6 +225,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint64_t> reversed_;
   std::vector<uint8_t> segmentUsed_;
   std::vector<uint32_t> loopIds_;      // welded ids of the loop vertices, loop after loop
+  std::vector<uint32_t> mergedIds_;    // loopIds_ after merging near-coincident points
   std::vector<glm::dvec2> points_;     // their projection on the plane
   std::vector<LoopInfo> loops_;
   std::vector<CapRing> rings_;
@@ -231,8 +239,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint32_t> label_;
   std::vector<uint32_t> pieceOf_;
   std::vector<uint32_t> order_;
-  std::vector<uint32_t> remap_;
-  std::vector<uint32_t> stamp_;
+  std::vector<uint64_t> stampRemap_;  // per vertex reference: stamp << 32 | index in the piece
   uint32_t stampValue_ = 0;
   std::vector<glm::dvec3> pieceCut_;
   std::vector<uint32_t> flipped_;
@@ -324,6 +331,7 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   normal_ = plane.normal / length;
   offset_ = plane.offset / length;
   const double tolerance = options.relativeTolerance * diagonal;
+  onPlaneTolerance_ = tolerance;
 
   // 1. Classification per position id.
   distance_.resize(idCount_);
@@ -644,6 +652,21 @@ void Splitter::buildLoops() {
     loop.end = static_cast<uint32_t>(loopIds_.size());
     loops_.push_back(loop);
   }
+  // The scale of float rounding at the section: cut points are computed from float source positions,
+  // so re-cut sections carry zig-zag runs and near-coincident points a few ulps of the coordinates
+  // apart. Four ulps of the largest coordinate on the section is the cap tolerance: points that
+  // close to the segment joining their neighbouring corners are not corners (see CapTriangulator),
+  // which leaves the cap area exact up to slivers of that width. Runs of near-coincident points are
+  // merged within the on-plane tolerance (points that close are one point to the classification
+  // too), never less than the cap tolerance: merging moves cut vertices by at most a few of those.
+  double largest = 0.0;
+  for (uint32_t welded : loopIds_) {
+    const glm::dvec3 p = glm::abs(sectionCut(welded));
+    largest = std::max({largest, p.x, p.y, p.z});
+  }
+  capTolerance_ = std::max(4.0 * 0x1.0p-24 * largest, 1e-12 * container_->boundsDiagonal());
+  mergeTolerance_ = std::max(capTolerance_, onPlaneTolerance_);
+  mergeNearPoints();
   points_.resize(loopIds_.size());
   for (size_t k = 0; k < loopIds_.size(); ++k) points_[k] = project(sectionCut(loopIds_[k]));
   for (LoopInfo& loop : loops_) {
@@ -655,6 +678,74 @@ void Splitter::buildLoops() {
       loop.lo = glm::min(loop.lo, points_[k]);
       loop.hi = glm::max(loop.hi, points_[k]);
     }
+  }
+}
+
+// Merges runs of consecutive loop points into one: each point of a run lies within the merge
+// tolerance of the one before it and within four merge tolerances of the run's first point.
+// Such runs come from planes that cross many edges next to one another, typically the sliver fans
+// of an earlier cap: rounding leaves their order along the section scrambled by a few ulps, so the
+// exact loop folds over itself. The cut vertices of a run are moved onto its representative (the
+// on-plane source vertex of the run if it has one, else its first point), for both sides, in cut
+// and source space alike, so the side triangles and the cap still meet edge to edge (the side
+// triangles between merged points become degenerate) and the loop keeps the representative only.
+// A run never holds two source vertices: those cannot move.
+void Splitter::mergeNearPoints() {
+  const double tolerance2 = mergeTolerance_ * mergeTolerance_;
+  if (!(tolerance2 > 0.0)) return;
+  auto distance2 = [&](uint32_t a, uint32_t b) {
+    const glm::dvec3 d = sectionCut(a) - sectionCut(b);
+    return glm::dot(d, d);
+  };
+  bool moved = false;
+  mergedIds_.clear();
+  for (LoopInfo& loop : loops_) {
+    const uint32_t n = loop.end - loop.begin;
+    const uint32_t begin = static_cast<uint32_t>(mergedIds_.size());
+    uint32_t start = kNone;
+    if (n >= 4) {
+      for (uint32_t i = 0; i < n && start == kNone; ++i) {
+        const uint32_t prev = loopIds_[loop.begin + (i + n - 1) % n];
+        if (distance2(loopIds_[loop.begin + i], prev) > tolerance2) start = i;
+      }
+    }
+    if (start == kNone) {
+      mergedIds_.insert(mergedIds_.end(), loopIds_.begin() + loop.begin, loopIds_.begin() + loop.end);
+    } else {
+      for (uint32_t i = 0; i < n;) {
+        const uint32_t first = loopIds_[loop.begin + (start + i) % n];
+        uint32_t rep = first;
+        uint32_t j = i + 1;
+        for (; j < n; ++j) {
+          const uint32_t id = loopIds_[loop.begin + (start + j) % n];
+          const uint32_t previous = loopIds_[loop.begin + (start + j - 1) % n];
+          if (distance2(id, previous) > tolerance2 || distance2(id, first) > 16.0 * tolerance2) break;
+          if (id < idCount_) {
+            if (rep < idCount_) break;
+            rep = id;
+          }
+        }
+        if (j > i + 1) {
+          const glm::dvec3 cut = sectionCut(rep);
+          const glm::vec3 source = rep < idCount_ ? mesh_->positions[reps_[rep]] : edgeSource_[rep - idCount_];
+          for (uint32_t m = i; m < j; ++m) {
+            const uint32_t id = loopIds_[loop.begin + (start + m) % n];
+            if (id == rep) continue;
+            edgeCut_[id - idCount_] = cut;
+            edgeSource_[id - idCount_] = source;
+            moved = true;
+          }
+        }
+        mergedIds_.push_back(rep);
+        i = j;
+      }
+    }
+    loop.begin = begin;
+    loop.end = static_cast<uint32_t>(mergedIds_.size());
+  }
+  loopIds_.swap(mergedIds_);
+  if (moved) {
+    for (size_t k = 0; k < pairs_.size(); ++k) extra_.positions[k] = edgeSource_[pairEdge_[k]];
   }
 }
 
@@ -689,7 +780,7 @@ bool Splitter::tryConvexCap() {
   for (uint32_t k = 0; k < count; ++k) {
     if (angular_[(at + k) % count].second != loop.begin + k) return false;
   }
-  return triangulator_.triangulateConvex(points_, CapRing{loop.begin, loop.end}, capTriangles_);
+  return triangulator_.triangulateConvex(points_, CapRing{loop.begin, loop.end}, capTriangles_, capTolerance_);
 }
 
 bool Splitter::capSection(const SplitOptions& options, std::string& why) {
@@ -733,7 +824,7 @@ bool Splitter::capSection(const SplitOptions& options, std::string& why) {
     for (const LoopInfo& hole : loops_) {
       if (hole.capped && hole.outer == o) rings_.push_back({hole.begin, hole.end});
     }
-    if (!triangulator_.triangulate(points_, rings_, capTriangles_)) {
+    if (!triangulator_.triangulate(points_, rings_, capTriangles_, capTolerance_)) {
       why = "cap triangulation failed for a border of " + std::to_string(outer.end - outer.begin) + " points with " +
             std::to_string(rings_.size() - 1) + " hole(s): the section polygon overlaps itself";
       return false;
@@ -958,10 +1049,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
   const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
   const uint32_t refCount = capBase_ + 2 * loopVertices;
   auto weldedRef = [&](uint32_t ref) { return weldedOfAny(ref); };
-  if (stamp_.size() < refCount) {
-    stamp_.resize(refCount, 0);
-    remap_.resize(refCount, 0);
-  }
+  if (stampRemap_.size() < refCount) stampRemap_.resize(refCount, 0);
   label_.resize(weldedCount);
 
   size_t totalPieces = 0;
@@ -979,18 +1067,21 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
           if (a != b) parent_[std::max(a, b)] = std::min(a, b);
         }
       }
+      // A parent always has a lower id than its child, so one ascending pass points every id at
+      // its root.
+      for (uint32_t x = 0; x < weldedCount; ++x) parent_[x] = parent_[parent_[x]];
       std::fill(label_.begin(), label_.end(), kNone);
     }
     uint32_t pieces = 0;
-    for (size_t k = 0; k < tris.size(); ++k) {
-      if (!options.separateIslands) {
-        pieceOf_[k] = 0;
-        pieces = 1;
-        continue;
+    if (!options.separateIslands) {
+      std::fill(pieceOf_.begin(), pieceOf_.end(), 0u);
+      pieces = tris.empty() ? 0 : 1;
+    } else {
+      for (size_t k = 0; k < tris.size(); ++k) {
+        const uint32_t root = parent_[weldedRef(tris[k].v[0])];
+        if (label_[root] == kNone) label_[root] = pieces++;
+        pieceOf_[k] = label_[root];
       }
-      const uint32_t root = find(weldedRef(tris[k].v[0]));
-      if (label_[root] == kNone) label_[root] = pieces++;
-      pieceOf_[k] = label_[root];
     }
     pieceMap_.resize(pieces);
     std::iota(pieceMap_.begin(), pieceMap_.end(), 0u);
@@ -1009,7 +1100,13 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
     order_.resize(tris.size());
     const size_t slots = size_t(std::max(slotCount_, capSlot_)) + 1;
     const size_t buckets = size_t(pieces) * slots;
-    if (buckets <= 4 * tris.size() + 4096) {
+    bool sorted = true;  // already in (piece, slot) order: one piece of one run, caps last
+    for (size_t k = 1; k < tris.size() && sorted; ++k) {
+      sorted = size_t(pieceOf_[k - 1]) * slots + tris[k - 1].slot <= size_t(pieceOf_[k]) * slots + tris[k].slot;
+    }
+    if (sorted) {
+      std::iota(order_.begin(), order_.end(), 0u);
+    } else if (buckets <= 4 * tris.size() + 4096) {
       bucket_.assign(buckets + 1, 0u);
       for (size_t k = 0; k < tris.size(); ++k) ++bucket_[size_t(pieceOf_[k]) * slots + tris[k].slot + 1];
       for (size_t b = 0; b < buckets; ++b) bucket_[b + 1] += bucket_[b];
@@ -1047,30 +1144,39 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
       out.mass = MassProperties{};
       ++stampValue_;
       if (stampValue_ == 0) {  // wrapped: clear the stamps once
-        std::fill(stamp_.begin(), stamp_.end(), 0u);
+        std::fill(stampRemap_.begin(), stampRemap_.end(), uint64_t(0));
         stampValue_ = 1;
       }
-      uint32_t currentSlot = kNone;
       vertexRefs_.clear();
-      for (; k < order_.size() && pieceOf_[order_[k]] == p; ++k) {
-        const SideTriangle& tri = tris[order_[k]];
-        if (tri.slot != currentSlot) {
-          uint32_t material = options.capMaterialId;
-          if (tri.slot < slotCount_) material = mesh.submeshes.empty() ? 0u : mesh.submeshes[tri.slot].materialId;
-          m.submeshes.push_back({static_cast<uint32_t>(m.indices.size()), 0u, material});
-          currentSlot = tri.slot;
-        }
-        if (tri.slot == capSlot_) ++out.capTriangles;
-        const uint32_t corner[3] = {tri.v[0], mirrored_ ? tri.v[2] : tri.v[1], mirrored_ ? tri.v[1] : tri.v[2]};
-        for (uint32_t ref : corner) {
-          if (stamp_[ref] != stampValue_) {
-            stamp_[ref] = stampValue_;
-            remap_[ref] = static_cast<uint32_t>(vertexRefs_.size());
-            vertexRefs_.push_back(ref);
+      size_t end = k;
+      while (end < order_.size() && pieceOf_[order_[end]] == p) ++end;
+      m.indices.resize(3 * (end - k));
+      uint32_t* index = m.indices.data();
+      const uint64_t stamp = uint64_t(stampValue_) << 32;
+      const int second = mirrored_ ? 2 : 1, third = mirrored_ ? 1 : 2;
+      // One run of triangles of the same slot at a time.
+      while (k < end) {
+        const uint32_t slot = tris[order_[k]].slot;
+        uint32_t material = options.capMaterialId;
+        if (slot < slotCount_) material = mesh.submeshes.empty() ? 0u : mesh.submeshes[slot].materialId;
+        const uint32_t first = static_cast<uint32_t>(index - m.indices.data());
+        size_t runEnd = k;
+        while (runEnd < end && tris[order_[runEnd]].slot == slot) ++runEnd;
+        for (; k < runEnd; ++k) {
+          const SideTriangle& tri = tris[order_[k]];
+          const uint32_t corner[3] = {tri.v[0], tri.v[second], tri.v[third]};
+          for (uint32_t ref : corner) {
+            uint64_t& entry = stampRemap_[ref];
+            if ((entry & ~uint64_t(0xffffffffu)) != stamp) {
+              entry = stamp | vertexRefs_.size();
+              vertexRefs_.push_back(ref);
+            }
+            *index++ = static_cast<uint32_t>(entry);
           }
-          m.indices.push_back(remap_[ref]);
         }
-        m.submeshes.back().indexCount += 3;
+        const uint32_t count = static_cast<uint32_t>(index - m.indices.data()) - first;
+        m.submeshes.push_back({first, count, material});
+        if (slot == capSlot_) out.capTriangles += count / 3;
       }
       gatherVertices(m);
       for (size_t l = 0; l < loops_.size(); ++l) {
@@ -1079,7 +1185,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
       collectUsedJoints(m, out.joints);
       if (options.computeMass) {
         if (options.cap && container_->closed()) {
-          out.mass = integrateClosedSurface(pieceCut_, m.indices, mirrored_);
+          out.mass = integrateClosedSurface(pieceCut_, m.indices, mirrored_, true);
         } else {
           std::span<const uint32_t> indices = m.indices;
           if (mirrored_) {

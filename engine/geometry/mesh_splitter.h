@@ -94,6 +94,8 @@ class MeshContainer {
   void setTransform(const glm::mat4& model);
   // Cut space = linear blend skinning: sum_k w_k * jointMatrices[j_k] * p, where each joint matrix is
   // already (joint world transform * inverse bind matrix), times `model`. Needs joints and weights.
+  // mirrored() is decided once for the pose when every model * joint matrix is a similarity with a
+  // determinant of one sign, else by the majority of the vertices' blended matrices.
   SplitStatus setSkinningPose(std::span<const glm::mat4> jointMatrices, const glm::mat4& model,
                               std::string* message = nullptr);
 
@@ -127,23 +129,19 @@ class MeshContainer {
   uint32_t positionIdCount_ = 0;
   bool mirrored_ = false;
   double boundsDiagonal_ = 0.0;
-  std::vector<uint64_t> weldScratch_;
   // Additions (private): see mesh_container.cpp.
   bool weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi);
   void weldSorted(double tolerance, const glm::dvec3& lo);
   void computeClosed();
   void updateBounds();
-  std::vector<uint64_t> cellKeys_;    // weld hash table: cell key per slot
-  std::vector<uint32_t> cellFirst_;   // weld hash table: first vertex per slot (kNone: empty slot)
-  std::vector<uint32_t> cellLast_;    // weld hash table: last vertex per slot
-  std::vector<uint32_t> cellNext_;    // per vertex: the next vertex of its cell, ascending
-  std::vector<uint32_t> edgeStart_;   // closedness: outgoing edges per position id (offsets)
-  std::vector<uint32_t> edgeTargets_; // closedness: outgoing edges per position id (targets)
+  // The weld and closedness scratch arrays are per thread (see mesh_container.cpp), not per
+  // container: a container made for every cut then reuses warm memory.
   glm::dmat4 model_{1.0};
   std::vector<glm::dmat4> jointMatrices_;
+  std::vector<glm::dmat4x3> poseAffine_;  // per joint: model x joint matrix (3 x 4); last: model
   std::vector<uint32_t> representatives_;
-  std::vector<uint32_t> weldOrder_;
   bool closed_ = false;
+  bool cutIsSource_ = false;  // the cut positions equal the source positions (identity transform)
 };
 
 // One interface, two implementations (the thesis's IMeshSplitter). A splitter owns reusable scratch

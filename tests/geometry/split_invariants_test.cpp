@@ -10,10 +10,14 @@
 //   - no vertex lies on the wrong side of the plane beyond the tolerance;
 //   - island counts where they are known (meshes made of disjoint convex parts; special planes).
 // A failing plane is reported with its index and values, and dumped as a corpus-ready text file.
+// Re-cuts: a recorded piece whose cap once failed (tests/geometry/data), and pieces cut again and
+// again, five generations deep under random rigid motions, with the same invariants.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <numbers>
@@ -23,6 +27,7 @@
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "engine/geometry/mass_properties.h"
 #include "engine/geometry/mesh_splitter.h"
@@ -305,11 +310,29 @@ std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer
             std::to_string(originalVolume));
   }
   if (!skinned) {
-    if (relative(recomputedVolume, originalVolume) > 1e-6) {
+    // New vertices are stored as float source positions: each may move by half an ulp of the largest
+    // source coordinate (times the model's largest stretch). That changes the volume by up to about
+    // that much times the surface area, and the cap area by that much times the section perimeter
+    // (bounded here by four bounding-box diagonals). It matters for small pieces far from their
+    // source origin, as re-cut pieces are.
+    double largest = 0.0;
+    for (const glm::vec3& p : source.positions) largest = std::max({largest, double(std::abs(p.x)), double(std::abs(p.y)), double(std::abs(p.z))});
+    const double stretch = std::max({glm::length(model[0]), glm::length(model[1]), glm::length(model[2])});
+    const double ulp = 0x1.0p-24 * largest * stretch;
+    double surface = 2.0 * std::abs(section);
+    for (size_t k = 0; k + 2 < source.indices.size(); k += 3) {
+      surface += testing::triangleArea(cut[source.indices[k]], cut[source.indices[k + 1]], cut[source.indices[k + 2]]);
+    }
+    if (std::abs(recomputedVolume - originalVolume) > 1e-6 * std::abs(originalVolume) + ulp * surface) {
       problem("piece meshes enclose " + std::to_string(recomputedVolume) + " in total, original " +
               std::to_string(originalVolume));
     }
-    const double areaSlack = 1e-6 * std::abs(section) + 1e-10 * diagonal * diagonal;
+    const double rounding = ulp * 4.0 * diagonal;
+    // Cut points closer than the on-plane tolerance (SplitOptions::relativeTolerance, 1e-6 of the
+    // diagonal) are merged into one, which moves each by at most that much: the cap then differs from
+    // the exact section by at most the tolerance times twice the perimeter (bounded by 4 diagonals).
+    const double merging = 1e-6 * diagonal * 2.0 * 4.0 * diagonal;
+    const double areaSlack = 1e-6 * std::abs(section) + 1e-10 * diagonal * diagonal + rounding + merging;
     if (std::abs(capAbove - section) > areaSlack || std::abs(capBelow - section) > areaSlack) {
       char text[200];
       std::snprintf(text, sizeof text, "cap areas above %.12g and below %.12g, section area %.12g", capAbove,
@@ -479,6 +502,182 @@ TEST(SplitInvariants, ConvexSplitterGivesOnePiecePerSideOnTheBox) {
   auto splitter = makeConvexSplitter();
   ASSERT_NE(splitter, nullptr);
   EXPECT_EQ(runCase(*splitter, makeCase("boxSeams"), "special", {{planeOf({1, 1, 1}, 0.1), Expected{1, 1, 1}}}), 1u);
+}
+
+// ---- Re-cut pieces: sections of earlier caps, rounded floats. ----
+
+// Reads the v and f lines of a small OBJ file (faces fanned; v/vt/vn forms take the position index)
+// and the "# model" (16 floats, column-major) and "# plane" header lines of a recorded failure.
+bool readRecordedCase(const std::filesystem::path& path, MeshData& mesh, glm::mat4& model, Plane& plane) {
+  std::ifstream in(path);
+  if (!in) return false;
+  std::string line;
+  bool hasPlane = false;
+  while (std::getline(in, line)) {
+    std::istringstream ss(line);
+    std::string tag;
+    ss >> tag;
+    if (tag == "v") {
+      glm::vec3 p;
+      ss >> p.x >> p.y >> p.z;
+      mesh.positions.push_back(p);
+    } else if (tag == "f") {
+      std::vector<uint32_t> face;
+      std::string corner;
+      while (ss >> corner) face.push_back(static_cast<uint32_t>(std::stoul(corner.substr(0, corner.find('/'))) - 1));
+      for (size_t k = 1; k + 1 < face.size(); ++k) mesh.indices.insert(mesh.indices.end(), {face[0], face[k], face[k + 1]});
+    } else if (tag == "#" && line.rfind("# model ", 0) == 0) {
+      std::istringstream values(line.substr(8));
+      for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) values >> model[c][r];
+      }
+    } else if (tag == "#" && line.rfind("# plane", 0) == 0) {
+      const size_t at = line.find("normal ");
+      if (at == std::string::npos) continue;
+      std::istringstream values(line.substr(at + 7));
+      std::string word;
+      values >> plane.normal.x >> plane.normal.y >> plane.normal.z >> word >> plane.offset;
+      hasPlane = word == "offset" && !values.fail();
+    }
+  }
+  return hasPlane && !mesh.positions.empty() && !mesh.indices.empty();
+}
+
+// A piece of a cylinder cut three times, recorded from the demo: its earlier caps are fan and ear
+// triangulated, so the new plane crosses many cap edges and the section has long runs of nearly
+// collinear points, two of them 2e-8 apart in reversed order (the exact ring overlaps itself). Both
+// splitters used to fail with TriangulationFailed ("the section polygon overlaps itself").
+TEST(SplitRegression, RecutCylinderPieceCapsWithItsModelMatrix) {
+  const std::filesystem::path path =
+      std::filesystem::path(CLEAVE_SOURCE_DIR) / "tests" / "geometry" / "data" / "recut_cylinder_piece.obj";
+  InvariantCase c;
+  c.name = "recutCylinderPiece";
+  Plane plane;
+  ASSERT_TRUE(readRecordedCase(path, c.mesh, c.model, plane)) << "cannot read " << path;
+  ASSERT_EQ(c.mesh.triangleCount(), 478u);
+  MeshContainer container;
+  std::string why;
+  ASSERT_TRUE(prepare(container, c, why)) << why;
+  for (int convex = 0; convex < 2; ++convex) {
+    auto splitter = convex ? makeConvexSplitter() : makeConcaveSplitter();
+    SplitResult result;
+    const std::vector<std::string> problems = checkSplit(*splitter, container, c, plane, Expected{1, 1, 1}, result);
+    std::string text;
+    for (const std::string& p : problems) text += "\n  - " + p;
+    EXPECT_TRUE(problems.empty()) << (convex ? "convex" : "concave") << " splitter:" << text;
+    EXPECT_EQ(result.status, SplitStatus::Ok) << result.message;
+  }
+}
+
+// A random rigid motion (rotation by a random unit quaternion, translation within +-2 m).
+glm::mat4 randomRigid(SeededRandom& rng) {
+  glm::dquat q(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+  q = glm::length(q) > 1e-3 ? glm::normalize(q) : glm::dquat(1, 0, 0, 0);
+  glm::dmat4 m = glm::mat4_cast(q);
+  m[3] = glm::dvec4(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2), 1.0);
+  return glm::mat4(m);
+}
+
+// Every piece is cut again, five generations deep, by random planes through its middle, each time
+// under a new random rigid model matrix; about half of the pieces are first baked into float
+// positions in the cut space of their parent (as a physics step would leave them), so earlier caps
+// carry rounding.
+// Every split must succeed with all the invariants (closed pieces, volume kept, cap area equal to
+// the section area), with the concave and the convex splitter alternately.
+struct RecutTotals {
+  size_t splits = 0, failures = 0, misses = 0;
+};
+
+RecutTotals runRecutGenerations(const std::string& name, const MeshData& base, uint64_t seed) {
+  constexpr int kGenerations = 5;
+  constexpr size_t kPiecesPerGeneration = 16;
+  SeededRandom rng(seed);
+  auto concave = makeConcaveSplitter();
+  auto convex = makeConvexSplitter();
+  RecutTotals totals;
+  std::vector<MeshData> generation{base};
+  SplitResult result;
+  for (int g = 0; g < kGenerations && !generation.empty(); ++g) {
+    std::vector<MeshData> next;
+    for (size_t k = 0; k < generation.size(); ++k) {
+      InvariantCase c;
+      c.name = name + "_g" + std::to_string(g) + "_p" + std::to_string(k);
+      c.mesh = std::move(generation[k]);
+      c.model = randomRigid(rng);
+      MeshContainer container;
+      std::string why;
+      if (!prepare(container, c, why)) {
+        ADD_FAILURE() << c.name << ": the container rejected the piece: " << why;
+        ++totals.failures;
+        continue;
+      }
+      glm::dvec3 lo, hi;
+      testing::bounds(container.cutPositions(), lo, hi);
+      glm::dvec3 point;
+      for (int a = 0; a < 3; ++a) point[a] = lo[a] + (hi[a] - lo[a]) * rng.uniform(0.3, 0.7);
+      Plane plane;
+      plane.normal = rng.unitVector();
+      plane.offset = glm::dot(plane.normal, point);
+      const bool useConvex = (totals.splits & 1) != 0;
+      const std::vector<std::string> problems =
+          checkSplit(useConvex ? *convex : *concave, container, c, plane, Expected{}, result);
+      ++totals.splits;
+      if (!problems.empty()) {
+        ++totals.failures;
+        std::ostringstream text;
+        text << c.name << (useConvex ? " (convex)" : " (concave)") << " " << describePlane(plane) << ":";
+        for (const std::string& p : problems) text << "\n  - " << p;
+        if (totals.failures <= 3) {
+          text << "\n  case written to "
+               << testing::dumpCase("recut_" + c.name, c.mesh, glm::dmat4(c.model), plane, problems.front());
+        }
+        ADD_FAILURE() << text.str();
+        continue;
+      }
+      if (result.status != SplitStatus::Ok) {
+        ++totals.misses;
+        continue;
+      }
+      for (SplitPiece& piece : result.pieces) {
+        if (next.size() >= kPiecesPerGeneration) break;
+        MeshData m = std::move(piece.mesh);
+        m.submeshes.clear();  // one material again: the next cap area is then that of the new cut alone
+        if (rng.uniform() < 0.5) {
+          const glm::dmat4 model(c.model);
+          const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(model)));
+          for (glm::vec3& p : m.positions) p = glm::vec3(model * glm::dvec4(glm::dvec3(p), 1.0));
+          for (glm::vec3& n : m.normals) n = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(n)));
+          for (glm::vec4& t : m.tangents) t = glm::vec4(glm::vec3(glm::normalize(glm::dmat3(model) * glm::dvec3(t))), t.w);
+        }
+        next.push_back(std::move(m));
+      }
+    }
+    generation = std::move(next);
+  }
+  std::cout << "[ checked  ] recut / " << name << ": " << totals.splits << " splits over " << kGenerations
+            << " generations, " << totals.misses << " planes missing a thin piece, " << totals.failures
+            << " failing\n";
+  return totals;
+}
+
+TEST(SplitRecutStress, FiveGenerationsOfRandomCutsUnderRandomRigidMotions) {
+  const std::vector<std::pair<std::string, MeshData>> shapes = {
+      {"cylinder", prim::cylinder(0.4f, 1.2f, 40)},
+      {"sphere", prim::uvSphere(0.5f, 32, 17)},
+      {"box", prim::box(glm::vec3(0.5f, 0.3f, 0.2f))},
+      {"capsule", prim::capsule(0.3f, 0.6f, 24, 12)},
+  };
+  size_t splits = 0, failures = 0;
+  for (uint64_t seed = 1; seed <= 4; ++seed) {
+    for (const auto& [name, mesh] : shapes) {
+      const RecutTotals t = runRecutGenerations(name + "_seed" + std::to_string(seed), mesh, 1000 + seed);
+      splits += t.splits;
+      failures += t.failures;
+    }
+  }
+  ::testing::Test::RecordProperty("recutSplits", static_cast<int>(splits));
+  EXPECT_GE(splits, 300u);
+  EXPECT_EQ(failures, 0u);
 }
 
 // ---- The independent section area, checked on its own so the invariants above can trust it. ----

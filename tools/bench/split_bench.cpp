@@ -149,6 +149,28 @@ BENCHMARK(BM_SkinnedCharacterPoseAndSplit)->Unit(benchmark::kMicrosecond);
 void BM_SkinnedCharacterPoseOnly(benchmark::State& state) { runSkinnedCharacter(state, false); }
 BENCHMARK(BM_SkinnedCharacterPoseOnly)->Unit(benchmark::kMicrosecond);
 
+// MeshContainer::setSkinningPose alone on the generated character (one fixed walk pose): the
+// per-vertex blend of joint matrices into cut-space positions.
+void BM_SkinnedCharacterSetSkinningPose(benchmark::State& state) {
+  const assets::ProceduralCharacter character = assets::makeProceduralCharacter();
+  MeshContainer container;
+  std::string why;
+  if (container.setMesh(character.mesh, &why) != SplitStatus::Ok) {
+    state.SkipWithError(("setMesh failed: " + why).c_str());
+    return;
+  }
+  anim::Pose pose;
+  std::vector<glm::mat4> joints;
+  anim::sampleClip(character.skeleton, character.walk, 0.3f, true, pose);
+  anim::poseToJointMatrices(character.skeleton, pose, joints);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(container.setSkinningPose(joints, glm::mat4(1.f)));
+    benchmark::ClobberMemory();
+  }
+  state.counters["vertices"] = double(character.mesh.positions.size());
+}
+BENCHMARK(BM_SkinnedCharacterSetSkinningPose)->Unit(benchmark::kMicrosecond);
+
 // Time from split request to pieces created for the generated character through the split system
 // (renderer null): the walking character on a kinematic body is cut across the chest with
 // SplitSystem::splitNow, which cuts in the pose, builds the pieces of the chosen mode (keep

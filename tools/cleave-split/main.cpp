@@ -1,5 +1,7 @@
 // cleave-split: reads a mesh file, cuts it by a plane with the concave splitter (caps, islands, mass
-// properties) and reports the pieces, optionally writing one file per piece. See docs/cleave-split.md.
+// properties) and reports the pieces, optionally writing one file per piece. With --pose it cuts the
+// skinned mesh of a glTF model in a sampled pose and writes skinned, animated pieces. See
+// docs/cleave-split.md.
 //
 // Exit codes: 0 success, 1 data error (unreadable or invalid file, split failure, write failure),
 // 2 usage error.
@@ -17,14 +19,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/anim/animation_clip.h"
+#include "engine/anim/skeleton.h"
 #include "engine/assets/mesh_io.h"
+#include "engine/assets/model.h"
 #include "engine/geometry/mass_properties.h"
 #include "engine/geometry/mesh_splitter.h"
+#include "engine/geometry/primitives.h"
 
 namespace {
 
 namespace assets = cleave::assets;
 namespace geometry = cleave::geometry;
+namespace anim = cleave::anim;
 
 constexpr int kExitData = 1;
 constexpr int kExitUsage = 2;
@@ -32,7 +39,8 @@ constexpr int kMaxRepeat = 1000000;
 
 constexpr const char* kUsage =
     "usage: cleave-split INPUT --plane NX NY NZ D [--out DIR] [--format obj|glb] [--hollow]\n"
-    "                    [--no-islands] [--uv world|bounds] [--repeat N] [--json]\n"
+    "                    [--no-islands] [--uv world|bounds] [--pose CLIP:SECONDS] [--repeat N]\n"
+    "                    [--json]\n"
     "\n"
     "Cuts the mesh in INPUT (.obj .off .stl .ply .gltf .glb) by the plane {x : dot(n, x) = D}.\n"
     "The normal n is normalised (and D scaled with it); 'above' means dot(n, x) > D.\n"
@@ -43,6 +51,9 @@ constexpr const char* kUsage =
     "  --hollow            do not cap the cut (open sections allowed)\n"
     "  --no-islands        keep each side as one piece even when it falls apart\n"
     "  --uv world|bounds   cap texture coordinates: world-planar (default) or normalised bounds\n"
+    "  --pose CLIP:SECONDS cut the skinned mesh of a glTF model posed by clip CLIP (name or index)\n"
+    "                      at SECONDS (wrapped into the clip); --format glb pieces keep the skin\n"
+    "                      and the animations\n"
     "  --repeat N          run the split N times and report the median and minimum time\n"
     "  --json              print one JSON object on stdout instead of text\n"
     "  --help              show this help\n"
@@ -60,6 +71,8 @@ struct Arguments {
   bool islands = true;
   geometry::CapUvMode uvMode = geometry::CapUvMode::WorldPlanar;
   int repeat = 1;
+  std::optional<std::string> poseClip;  // --pose: clip name or index
+  double poseSeconds = 0.0;
   bool json = false;
   bool help = false;
 };
@@ -142,6 +155,15 @@ bool parseArguments(int argc, char** argv, Arguments& args, std::string& error) 
         error = "--repeat needs an integer from 1 to " + std::to_string(kMaxRepeat);
         return false;
       }
+    } else if (arg == "--pose") {
+      if (!needs(1)) return false;
+      const std::string_view value = list[++i];
+      const size_t colon = value.rfind(':');
+      if (colon == std::string_view::npos || colon == 0 || !parseNumber(value.substr(colon + 1), args.poseSeconds)) {
+        error = "--pose needs CLIP:SECONDS (a clip name or index, a finite time), not '" + std::string(value) + "'";
+        return false;
+      }
+      args.poseClip = std::string(value.substr(0, colon));
     } else if (arg == "--json") {
       args.json = true;
     } else if (arg.size() > 1 && arg.front() == '-') {
@@ -196,18 +218,104 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  const assets::MeshReadResult loaded = assets::loadMesh(args.input);
-  if (!loaded.ok) {
-    std::fprintf(stderr, "cleave-split: %s\n", loaded.error.c_str());
-    return kExitData;
+  geometry::MeshData mesh;
+  std::vector<std::string> materialNames;
+  std::vector<glm::vec4> materialColors;
+  std::vector<std::string> warnings;
+  // --pose: the skinned mesh of the model's first skin (all of its meshes merged), its skin and the
+  // joint matrices of the sampled pose.
+  assets::ModelSkin skin;
+  std::string clipName;
+  std::vector<glm::mat4> jointMatrices;
+  if (args.poseClip) {
+    assets::ModelLoadResult model = assets::loadModel(args.input);
+    if (!model.ok) {
+      std::fprintf(stderr, "cleave-split: %s\n", model.error.c_str());
+      return kExitData;
+    }
+    warnings = model.warnings;
+    int32_t skinIndex = -1;
+    for (const assets::ModelMesh& part : model.model.meshes) {
+      if (part.skin >= 0) {
+        skinIndex = part.skin;
+        break;
+      }
+    }
+    if (skinIndex < 0) {
+      std::fprintf(stderr, "cleave-split: %s: --pose needs a skinned mesh and the model has none\n",
+                   args.input.c_str());
+      return kExitData;
+    }
+    for (const assets::ModelMesh& part : model.model.meshes) {
+      if (part.skin == skinIndex) mesh = mesh.positions.empty() ? part.mesh : geometry::primitives::merge(mesh, part.mesh);
+    }
+    skin = std::move(model.model.skins[static_cast<size_t>(skinIndex)]);
+    const anim::AnimationClip* clip = nullptr;
+    for (const anim::AnimationClip& c : skin.clips) {
+      if (c.name == *args.poseClip) {
+        clip = &c;
+        break;
+      }
+    }
+    int index = -1;
+    if (clip == nullptr && parseInt(*args.poseClip, index) && index >= 0 && size_t(index) < skin.clips.size()) {
+      clip = &skin.clips[static_cast<size_t>(index)];
+    }
+    if (clip == nullptr) {
+      std::string names;
+      for (size_t k = 0; k < skin.clips.size(); ++k) {
+        names += (k ? ", '" : "'") + skin.clips[k].name + "'";
+      }
+      std::fprintf(stderr, "cleave-split: %s: --pose: no clip '%s' (the skin has %zu clip(s)%s%s)\n",
+                   args.input.c_str(), args.poseClip->c_str(), skin.clips.size(), names.empty() ? "" : ": ",
+                   names.c_str());
+      return kExitData;
+    }
+    clipName = clip->name;
+    anim::Pose pose;
+    anim::sampleClip(skin.skeleton, *clip, static_cast<float>(args.poseSeconds), true, pose);
+    anim::poseToJointMatrices(skin.skeleton, pose, jointMatrices);
+    for (const assets::ModelMaterial& material : model.model.materials) {
+      materialNames.push_back(material.name);
+      materialColors.push_back(material.baseColorFactor);
+    }
+  } else {
+    assets::MeshReadResult loaded = assets::loadMesh(args.input);
+    if (!loaded.ok) {
+      std::fprintf(stderr, "cleave-split: %s\n", loaded.error.c_str());
+      return kExitData;
+    }
+    mesh = std::move(loaded.mesh);
+    materialNames = std::move(loaded.materialNames);
+    warnings = std::move(loaded.warnings);
   }
   if (!args.json) {
-    for (const std::string& warning : loaded.warnings) {
+    for (const std::string& warning : warnings) {
       std::fprintf(stderr, "cleave-split: warning: %s\n", warning.c_str());
     }
   }
-  const geometry::MeshData& mesh = loaded.mesh;
-  const geometry::MassProperties inputMass = geometry::computeMassProperties(mesh);
+  // The container's cut space: the source positions, or the skinned positions of the pose.
+  auto prepare = [&](geometry::MeshContainer& container, std::string& message) {
+    const geometry::SplitStatus status = container.setMesh(mesh, &message);
+    if (status != geometry::SplitStatus::Ok) return status;
+    if (args.poseClip) return container.setSkinningPose(jointMatrices, glm::mat4(1.f), &message);
+    container.setTransform(glm::mat4(1.f));
+    return geometry::SplitStatus::Ok;
+  };
+  geometry::MassProperties inputMass;
+  if (args.poseClip) {  // the posed input, as it is cut
+    geometry::MeshContainer posed;
+    std::string message;
+    const geometry::SplitStatus status = prepare(posed, message);
+    if (status != geometry::SplitStatus::Ok) {
+      std::fprintf(stderr, "cleave-split: %s: invalid skinned mesh: %s\n", args.input.c_str(),
+                   message.empty() ? geometry::toString(status) : message.c_str());
+      return kExitData;
+    }
+    inputMass = geometry::computeMassProperties(posed.cutPositions(), mesh.indices);
+  } else {
+    inputMass = geometry::computeMassProperties(mesh);
+  }
   const bool inputClosed = geometry::isClosedAndOriented(mesh.positions, mesh.indices);
 
   geometry::SplitOptions options;
@@ -220,7 +328,7 @@ int main(int argc, char** argv) {
   for (const geometry::SubMesh& sub : mesh.submeshes) {
     capMaterialId = std::max(capMaterialId, sub.materialId + 1);
   }
-  capMaterialId = std::max<uint32_t>(capMaterialId, static_cast<uint32_t>(loaded.materialNames.size()));
+  capMaterialId = std::max<uint32_t>(capMaterialId, static_cast<uint32_t>(materialNames.size()));
   options.capMaterialId = capMaterialId;
 
   geometry::Plane plane;
@@ -239,13 +347,12 @@ int main(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     geometry::MeshContainer container;
     std::string message;
-    const geometry::SplitStatus setStatus = container.setMesh(mesh, &message);
+    const geometry::SplitStatus setStatus = prepare(container, message);
     if (setStatus != geometry::SplitStatus::Ok) {
       std::fprintf(stderr, "cleave-split: %s: invalid mesh: %s\n", args.input.c_str(),
                    message.empty() ? geometry::toString(setStatus) : message.c_str());
       return kExitData;
     }
-    container.setTransform(glm::mat4(1.f));
     const auto setUp = std::chrono::steady_clock::now();
     splitter->split(container, plane, options, result);
     const auto end = std::chrono::steady_clock::now();
@@ -268,15 +375,18 @@ int main(int argc, char** argv) {
     }
     assets::MeshWriteOptions writeOptions;
     writeOptions.capMaterialId = capMaterialId;
-    writeOptions.materialNames = loaded.materialNames;
+    writeOptions.materialNames = materialNames;
+    writeOptions.materialColors = materialColors;
     for (size_t k = 0; k < result.pieces.size(); ++k) {
       const geometry::SplitPiece& piece = result.pieces[k];
       const std::string file = "piece_" + std::to_string(k) + (piece.side > 0 ? "_above." : "_below.") +
                                args.format;
       const std::string path = (std::filesystem::path(*args.outDir) / file).string();
-      const assets::MeshWriteResult w = args.format == "glb"
-                                            ? assets::writeGlb(path, piece.mesh, writeOptions)
-                                            : assets::writeObj(path, piece.mesh, writeOptions);
+      // With --pose: pieces in bind space; GLB keeps the skin and the clips, OBJ is the bind-space mesh.
+      const assets::MeshWriteResult w =
+          args.format != "glb" ? assets::writeObj(path, piece.mesh, writeOptions)
+          : args.poseClip      ? assets::writeSkinnedGlb(path, piece.mesh, skin.skeleton, skin.clips, writeOptions)
+                               : assets::writeGlb(path, piece.mesh, writeOptions);
       if (!w.ok) {
         std::fprintf(stderr, "cleave-split: %s\n", w.error.c_str());
         return kExitData;
@@ -294,6 +404,10 @@ int main(int argc, char** argv) {
                     {"triangles", mesh.triangleCount()},
                     {"closed", inputClosed},
                     {"volume", inputMass.volume}};
+    if (args.poseClip) {
+      out["pose"] = {{"clip", clipName}, {"seconds", args.poseSeconds}, {"joints", skin.skeleton.size()},
+                     {"clips", skin.clips.size()}};
+    }
     out["plane"] = {{"normal", {plane.normal.x, plane.normal.y, plane.normal.z}},
                     {"offset", plane.offset}};
     out["status"] = geometry::toString(result.status);
@@ -307,6 +421,7 @@ int main(int argc, char** argv) {
       p["cap_triangles"] = piece.capTriangles;
       p["cap_loops"] = piece.capLoops;
       p["closed"] = piece.mass.closed;
+      if (args.poseClip) p["joints_used"] = piece.joints.size();
       const nlohmann::ordered_json mass = massJson(piece.mass);
       for (const auto& [key, value] : mass.items()) p[key] = value;
       pieces.push_back(std::move(p));
@@ -321,6 +436,10 @@ int main(int argc, char** argv) {
     std::printf("%s: %zu vertices, %zu triangles, %s, volume %.9g\n", args.input.c_str(),
                 mesh.vertexCount(), mesh.triangleCount(), inputClosed ? "closed" : "open",
                 inputMass.volume);
+    if (args.poseClip) {
+      std::printf("pose: clip '%s' at %.6g s, %zu joints\n", clipName.c_str(), args.poseSeconds,
+                  skin.skeleton.size());
+    }
     std::printf("plane: normal (%.9g, %.9g, %.9g), offset %.9g\n", plane.normal.x, plane.normal.y,
                 plane.normal.z, plane.offset);
     std::printf("status: %s%s%s\n", geometry::toString(result.status), splitOk ? "" : ": ",
