@@ -690,16 +690,7 @@ MeshWriteResult writeGlb(const std::string& path, const geometry::MeshData& mesh
                          const MeshWriteOptions& options) {
   std::vector<uint8_t> bytes;
   MeshWriteResult result = writeGlbToMemory(mesh, options, bytes);
-  if (!result.ok) {
-    result.error = path + ": " + result.error;
-    return result;
-  }
-  std::string error;
-  if (!detail::writeBytes(path, bytes.data(), bytes.size(), error)) {
-    result.ok = false;
-    result.error = error;
-  }
-  return result;
+  return detail::saveSerialised(path, std::move(result), bytes);
 }
 
 }  // namespace cleave::assets

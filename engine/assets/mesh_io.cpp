@@ -381,6 +381,20 @@ bool writableRuns(const geometry::MeshData& mesh, std::vector<geometry::SubMesh>
   return true;
 }
 
+MeshWriteResult saveSerialised(const std::string& path, MeshWriteResult serialised,
+                               const std::vector<uint8_t>& bytes) {
+  if (!serialised.ok) {
+    serialised.error = path + ": " + serialised.error;
+    return serialised;
+  }
+  std::string error;
+  if (!writeBytes(path, bytes.data(), bytes.size(), error)) {
+    serialised.ok = false;
+    serialised.error = error;
+  }
+  return serialised;
+}
+
 bool writeBytes(const std::string& path, const void* data, size_t size, std::string& error) {
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (file == nullptr) {

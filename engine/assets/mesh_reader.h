@@ -66,6 +66,10 @@ bool writableRuns(const geometry::MeshData& mesh, std::vector<geometry::SubMesh>
                   std::string& reason);
 // Writes bytes to a file; on failure `error` names the file.
 bool writeBytes(const std::string& path, const void* data, size_t size, std::string& error);
+// The file half of a writer: when `serialised` is ok, writes `bytes` to `path`; every error of the
+// result names the file.
+MeshWriteResult saveSerialised(const std::string& path, MeshWriteResult serialised,
+                               const std::vector<uint8_t>& bytes);
 
 // Short printable rendering of a token for messages ("..." when cut).
 std::string quoted(std::string_view token);

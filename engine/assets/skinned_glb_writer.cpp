@@ -336,16 +336,7 @@ MeshWriteResult writeSkinnedGlb(const std::string& path, const geometry::MeshDat
                                 const MeshWriteOptions& options) {
   std::vector<uint8_t> bytes;
   MeshWriteResult result = writeSkinnedGlbToMemory(mesh, skeleton, clips, options, bytes);
-  if (!result.ok) {
-    result.error = path + ": " + result.error;
-    return result;
-  }
-  std::string error;
-  if (!detail::writeBytes(path, bytes.data(), bytes.size(), error)) {
-    result.ok = false;
-    result.error = error;
-  }
-  return result;
+  return detail::saveSerialised(path, std::move(result), bytes);
 }
 
 }  // namespace cleave::assets
