@@ -353,6 +353,20 @@ ArenaMaterials createArenaMaterials(render::Renderer& r, const std::vector<glm::
     m.player[2].specular = 0.3f;
   }
   if (m.player.size() > 3) m.player[3].baseColor = glm::vec4(0.30f, 0.22f, 0.15f, 1.f);
+  // The skinned enemies: the same character in a dark red tunic with bronze skin, black trousers
+  // and bronze boots, so they never read as the player; their caps (id 1) are the blade's burn.
+  m.skinnedEnemy = m.player;
+  if (m.skinnedEnemy.size() < 5) m.skinnedEnemy.resize(5);
+  m.skinnedEnemy[0].baseColor = glm::vec4(0.58f, 0.36f, 0.18f, 1.f);
+  m.skinnedEnemy[0].specular = 0.45f;
+  m.skinnedEnemy[0].shininess = 30.f;
+  m.skinnedEnemy[1] = m.flesh;
+  m.skinnedEnemy[2].baseColor = glm::vec4(0.20f, 0.02f, 0.04f, 1.f);
+  m.skinnedEnemy[2].specular = 0.2f;
+  m.skinnedEnemy[3].baseColor = glm::vec4(0.07f, 0.06f, 0.07f, 1.f);
+  m.skinnedEnemy[4].baseColor = glm::vec4(0.62f, 0.42f, 0.16f, 1.f);
+  m.skinnedEnemy[4].specular = 0.6f;
+  m.skinnedEnemy[4].shininess = 40.f;
   return m;
 }
 

@@ -49,6 +49,7 @@ struct ArenaMaterials {
   render::Material startCube, quitCube, metalCap;
   render::Material disc, blade, bladeCore;
   std::vector<render::Material> player;              // by the character's submesh id
+  std::vector<render::Material> skinnedEnemy;        // the same ids, restyled; id 1 (caps) is flesh
   std::vector<render::TextureHandle> textures;       // owned; destroyed with the renderer
 };
 ArenaMaterials createArenaMaterials(render::Renderer& renderer, const std::vector<glm::vec4>& characterColors);

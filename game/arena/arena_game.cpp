@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "components/scene_components.h"
+#include "components/skinned.h"
 #include "components/splitable.h"
 #include "engine/ecs/hierarchy.h"
 #include "engine/geometry/primitives.h"
@@ -81,6 +82,12 @@ const char* tagName(ArenaTag::Kind k) {
 }
 
 }  // namespace
+
+uint8_t ArenaGame::weaponIndex(const std::string& splitterName) {
+  for (size_t w = 1; w < kWeaponCount; ++w)
+    if (splitterName == kWeaponSplitterNames[w]) return uint8_t(w);
+  return 0;
+}
 
 const char* toString(MatchState state) {
   switch (state) {
@@ -336,7 +343,7 @@ bool ArenaGame::setup(app::App& app, std::string* error) {
 
   character_ = assets::makeProceduralCharacter();
   materials_ = createArenaMaterials(app.renderer(), character_.materialColors);
-  enemyMeshes_ = makeEnemyMeshes();
+  enemyMeshes_ = makeEnemyMeshes(character_);
   buildLevel();
   createPlayer();
   // Props: crates and urns around the sand, one crate on the north gate's path.
@@ -450,6 +457,13 @@ void ArenaGame::removeEntity(ecs::Entity e) {
   components::SplitWorld sw = splitWorld();
   components::releaseEntityResources(sw, e);
   world.destroy(e);
+  // A ragdoll piece goes with every bone body: count it, and any bone body still alive afterwards.
+  if (auto it = ragdollBones_.find(e); it != ragdollBones_.end()) {
+    ++ragdollPiecesRemoved_;
+    for (physics::BodyId body : it->second)
+      if (physics_->bodyState(body)) ++ragdollBodiesLeaked_;
+    ragdollBones_.erase(it);
+  }
 }
 
 void ArenaGame::updateMenu(app::TickContext& c) {
@@ -598,7 +612,12 @@ void ArenaGame::startWave(uint64_t tick) {
   ++wave_;
   waveBannerTick_ = tick;
   // Wave 1 comes through the north gate one by one; later waves through all four gates at once.
-  const int count = 4 * wave_;
+  // Every wave mixes the kinds: 4 gladiators a wave number and one skinned warrior more than the
+  // wave number (wave 1: 4 + 2, wave 2: 8 + 3). In wave 1 the second and fifth are skinned; in later
+  // waves the skinned ones come last, one at each gate in turn.
+  const int gladiators = 4 * wave_;
+  const int skinned = wave_ + 1;
+  const int count = gladiators + skinned;
   for (int i = 0; i < count; ++i) {
     const int gate = wave_ == 1 ? 0 : i % 4;
     const int slot = wave_ == 1 ? i : i / 4;
@@ -607,7 +626,7 @@ void ArenaGame::startWave(uint64_t tick) {
     const glm::vec2 side(-inward.y, inward.x);
     const float lateral = ((slot % 2) ? 1.f : -1.f) * (0.7f + 0.9f * float(slot / 2)) + (nextRandom() - 0.5f) * 0.3f;
     PendingSpawn s;
-    s.kind = EnemyKind::Gladiator;
+    s.kind = (wave_ == 1 ? (i == 1 || i == 4) : i >= gladiators) ? EnemyKind::Skinned : EnemyKind::Gladiator;
     s.position = compass(angle) * (kArenaRadius - 1.2f) + side * lateral;
     s.yaw = std::atan2(inward.x, inward.y);
     s.tick = tick + 30 + uint64_t(wave_ == 1 ? slot * 30 : slot * 6);
@@ -723,9 +742,12 @@ void ArenaGame::triggers(app::TickContext& c) {
     if (!splitterUser || !bodyUser) continue;
     if (!c.world.has<components::Splitter>(fromUser(*splitterUser))) continue;
     const ecs::Entity target = fromUser(*bodyUser);
+    const auto* splitterName = c.world.tryGet<ecs::Name>(fromUser(*splitterUser));
+    const uint8_t weapon = splitterName ? weaponIndex(splitterName->value) : 0;
     for (Enemy& e : enemies_) {
       if (e.entity == target && !e.hit) {
         e.hit = true;
+        e.hitBy = weapon;
         e.lunge = 0.f;
         e.walkPhase = float(c.tick) * 1e-9f;  // the freeze pose
         e.attackTimer = float(kHitFreezeTicks) * float(c.dt);
@@ -747,8 +769,20 @@ void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
     if (enemy != enemies_.end()) enemy->hit = false;  // the plane missed: it walks on
     return;
   }
+  // A ragdoll piece cut again (by the disc on its way back, say) is gone with all its bone bodies.
+  if (auto it = ragdollBones_.find(ev.original); it != ragdollBones_.end()) {
+    ++ragdollPiecesCut_;
+    for (physics::BodyId body : it->second)
+      if (physics_->bodyState(body)) ++ragdollBodiesLeaked_;
+    ragdollBones_.erase(it);
+  }
   for (ecs::Entity piece : ev.pieces) {
     if (!world.alive(piece)) continue;
+    if (const auto* ragdoll = world.tryGet<components::Ragdoll>(piece)) {
+      auto& bones = ragdollBones_[piece];
+      for (const components::RagdollBone& bone : ragdoll->bones) bones.push_back(bone.body);
+      ++ragdollPiecesSpawned_;
+    }
     world.add<ArenaTag>(piece, ArenaTag{ArenaTag::Piece});
     Fading f;
     f.bornTick = tick;
@@ -769,9 +803,23 @@ void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
       const auto* t = world.tryGet<ecs::Transform>(piece);
       if (!rb || !mi || !t) continue;
       const float lift = t->position.y > 0.9f ? 1.2f : 0.3f;  // upper parts fly, legs buckle
+      if (const auto* ragdoll = world.tryGet<components::Ragdoll>(piece)) {
+        // A ragdoll half: every bone gets the same push (by its own mass), so the half is thrown
+        // whole and its joints only carry the tumble.
+        for (const components::RagdollBone& bone : ragdoll->bones) {
+          const auto state = physics_->bodyState(bone.body);
+          if (!state) continue;
+          const glm::vec3 impulse = glm::vec3(dir.x * 1.6f, lift * 0.6f, dir.y * 1.6f) * bone.mass;
+          physics_->applyImpulse(bone.body, impulse, state->transform.position + glm::vec3(0.f, 0.05f, 0.f));
+        }
+        continue;
+      }
       const glm::vec3 impulse = glm::vec3(dir.x * 2.2f, lift, dir.y * 2.2f) * float(mi->mass);
       physics_->applyImpulse(rb->body, impulse, t->position + glm::vec3(0.f, 0.12f, 0.f));
     }
+    const size_t kind = std::min(size_t(enemy->kind), kKindCount - 1);
+    ++killsByKind_[kind][0];
+    if (enemy->hitBy > 0 && enemy->hitBy < kWeaponCount) ++killsByKind_[kind][enemy->hitBy];
     enemies_.erase(enemy);
     ++score_;
     ++enemiesKilled_;
@@ -856,6 +904,9 @@ void ArenaGame::physicsSync(app::TickContext& c) {
 }
 
 void ArenaGame::animation(app::TickContext& c) {
+  // The skinned enemies play their clips; their ragdoll halves take their poses from their bones.
+  components::SplitWorld sw = splitWorld();
+  components::updateAnimations(sw, float(c.dt));
   const bool walking = playerSpeed_ > 0.3f;
   const anim::AnimationClip* want = walking ? &character_.walk : &character_.idle;
   if (animator_.clip() != want) animator_.play(want, 0.25f);
@@ -982,8 +1033,9 @@ void ArenaGame::drawHud(app::TickContext& c) {
     r.submitText(line, {20 * u, 48 * u}, 2.6f * u, gold);
     std::snprintf(line, sizeof(line), "WAVE %d   ENEMIES %zu", wave_, enemies_.size() + pendingSpawns_.size());
     r.submitText(line, {20 * u, 80 * u}, 2.f * u, white);
-    std::snprintf(line, sizeof(line), "pieces %llu  kills %u", static_cast<unsigned long long>(piecesSpawned_),
-                  enemiesKilled_);
+    std::snprintf(line, sizeof(line), "pieces %llu  kills %u  skinned %u",
+                  static_cast<unsigned long long>(piecesSpawned_), enemiesKilled_,
+                  killsByKind_[size_t(EnemyKind::Skinned)][0]);
     r.submitText(line, {20 * u, 102 * u}, 1.5f * u, white);
   }
   // Top right: the split budget and frame figures (wall-clock, masked in golden frames).
@@ -1049,6 +1101,7 @@ void ArenaGame::dumpEntity(ecs::Entity e, nlohmann::json& out) {
   }
   if (const auto* origin = world.tryGet<components::SplitOrigin>(e)) out["split_from"] = origin->parentId;
   if (const auto* f = world.tryGet<Fading>(e)) out["born_tick"] = f->bornTick;
+  if (const auto* ragdoll = world.tryGet<components::Ragdoll>(e)) out["ragdoll_bones"] = ragdoll->bones.size();
   for (const Enemy& en : enemies_) {
     if (en.entity != e) continue;
     out["enemy_kind"] = kindInfo(en.kind).name;
@@ -1071,7 +1124,19 @@ void ArenaGame::dumpFrame(nlohmann::json& line) {
                    {"spin_attacks", spinAttacks_},
                    {"max_enemies_hit_in_one_tick", maxEnemiesHitInOneTick_},
                    {"max_kills_in_one_tick", maxKillsInOneTick_},
+                   {"ragdoll_pieces_spawned", ragdollPiecesSpawned_},
+                   {"ragdoll_pieces_removed", ragdollPiecesRemoved_},
+                   {"ragdoll_pieces_cut", ragdollPiecesCut_},
+                   {"ragdoll_bodies_leaked", ragdollBodiesLeaked_},
                    {"player", {playerPosition_.x, playerPosition_.y}}};
+  // Kills per enemy kind, in total and by the weapon whose blade touched the enemy.
+  nlohmann::json kills = nlohmann::json::object();
+  for (size_t k = 0; k < kKindCount; ++k) {
+    nlohmann::json perKind = {{"total", killsByKind_[k][0]}};
+    for (size_t w = 1; w < kWeaponCount; ++w) perKind[kWeaponNames[w]] = killsByKind_[k][w];
+    kills[kindInfo(EnemyKind(k)).name] = std::move(perKind);
+  }
+  line["arena"]["kills_by_kind"] = std::move(kills);
   nlohmann::json splits;
   splitLog_.writeJson(splits);
   line["splits"] = std::move(splits);

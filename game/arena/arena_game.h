@@ -1,4 +1,5 @@
-// The arena sample: a round gladiator arena where waves of multi-part enemies walk to the player,
+// The arena sample: a round gladiator arena where waves of enemies (multi-part gladiators and skinned
+// warriors that fall as ragdoll halves) walk to the player,
 // who cuts them with a thrown energy disc (a persistent Splitter that bounces off the wall and comes
 // back), an energy sword (a one-tick Splitter in the swing's plane) and a spin attack (a one-tick
 // Splitter around the player). A menu of metal cubes, split on click, starts the match.
@@ -11,6 +12,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -193,6 +195,18 @@ class ArenaGame {
   uint32_t spinAttacks_ = 0;
   uint32_t maxEnemiesHitInOneTick_ = 0;
   uint32_t maxKillsInOneTick_ = 0;
+  // Kills per enemy kind: [kind][0] in total, [kind][w] by weapon w (disc, sword, spin).
+  static constexpr size_t kKindCount = size_t(EnemyKind::Count);
+  static constexpr size_t kWeaponCount = 4;
+  static constexpr const char* kWeaponNames[kWeaponCount] = {"", "disc", "sword", "spin"};
+  static constexpr const char* kWeaponSplitterNames[kWeaponCount] = {"", "energy disc", "sword swing", "spin attack"};
+  static uint8_t weaponIndex(const std::string& splitterName);
+  uint32_t killsByKind_[kKindCount][kWeaponCount] = {};
+  uint32_t ragdollPiecesSpawned_ = 0;
+  uint32_t ragdollPiecesRemoved_ = 0;
+  uint32_t ragdollPiecesCut_ = 0;     // ragdoll pieces cut again (their pieces are counted as spawned)
+  std::map<ecs::Entity, std::vector<physics::BodyId>> ragdollBones_;  // live ragdoll pieces' bone bodies
+  uint32_t ragdollBodiesLeaked_ = 0;  // bone bodies still in the physics world after their piece went
   components::SplitLog splitLog_;
   uint64_t deferredTotal_ = 0;
   uint32_t maxQueue_ = 0;

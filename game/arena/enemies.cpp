@@ -17,7 +17,8 @@ constexpr float kFootClearance = 0.02f;  // m: bodies hover this much so they ne
 
 
 glm::quat enemyRotation(const Enemy& e) {
-  const float sway = e.hit ? 0.f : 0.07f * std::sin(e.walkPhase);
+  // The skinned kind's walk is in its clip: only the gladiators sway as they go.
+  const float sway = e.hit || e.kind == EnemyKind::Skinned ? 0.f : 0.07f * std::sin(e.walkPhase);
   const float lean = e.lunge > 0.f ? 0.35f * std::sin(e.lunge / 0.4f * 3.14159265f) : 0.f;
   return glm::angleAxis(e.yaw, glm::vec3(0, 1, 0)) * glm::angleAxis(lean, glm::vec3(1, 0, 0)) *
          glm::angleAxis(sway, glm::vec3(0, 0, 1));
@@ -67,11 +68,64 @@ Enemy spawnGladiator(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 posit
   return enemy;
 }
 
+// The skinned enemy: the generated character (one closed skinned mesh) playing its walk clip, with a
+// kinematic body (the posed hull) that the game moves every tick. A blade cuts it in the pose it
+// shows; each half becomes a ragdoll (capsules per bone it keeps) that starts with the motion of the
+// points it carries and falls.
+Enemy spawnSkinned(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 position, float yaw) {
+  Enemy enemy;
+  enemy.kind = EnemyKind::Skinned;
+  ecs::World& world = c.world;
+  const ecs::Entity e = world.create();
+  world.add<ecs::Name>(e, ecs::Name{"skinned warrior"});
+  // Built at the origin, facing +z, so the body frame is the one in the enemy's own frame.
+  ecs::Transform t;
+  world.add<ecs::Transform>(e, t);
+  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
+  components::MeshRenderer mr;
+  mr.source = meshes.skinned;
+  if (c.renderer) mr.gpu = c.renderer->uploadMesh(*meshes.skinned);
+  mr.materials = c.materials.skinnedEnemy;
+  world.add<components::MeshRenderer>(e, std::move(mr));
+  // Each one starts its stride somewhere else (from its spawn point: deterministic).
+  const float start = std::fmod(std::abs(position.x * 0.37f + position.y * 0.61f), 1.f);
+  world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(meshes.skinnedAsset, "walk", start));
+  components::Splitable splitable;
+  splitable.density = 1000.0;  // the body's mass; the halves share it by posed volume
+  splitable.capMaterial = c.materials.flesh;
+  splitable.capMaterialId = 1;
+  splitable.skinnedPieces = components::SkinnedPieceMode::Ragdoll;
+  splitable.splitImpulse = 0.6;
+  splitable.maxDepth = 3;
+  world.add<components::Splitable>(e, splitable);
+  components::SplitWorld sw{world, c.physics, c.renderer};
+  std::string error;
+  if (!components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true, &error)) {
+    std::fprintf(stderr, "arena: skinned enemy has no body: %s\n", error.c_str());
+    components::releaseEntityResources(sw, e);
+    world.destroy(e);
+    return enemy;
+  }
+  const auto& rb = world.get<components::RigidBody>(e);
+  if (const auto bt = c.physics.bodyTransform(rb.body)) {
+    enemy.bodyLocalPosition = bt->position;
+    enemy.bodyLocalRotation = bt->rotation;
+  }
+  enemy.entity = e;
+  enemy.position = position;
+  enemy.yaw = yaw;
+  return enemy;
+}
+
 }  // namespace
 
 const EnemyKindInfo& kindInfo(EnemyKind kind) {
   static const EnemyKindInfo kGladiator{"gladiator", 1.8f, 1.25f, 6.f, 1.1f, 0.42f};
+  // Slower and heavier-handed than the gladiators.
+  static const EnemyKindInfo kSkinned{"skinned", 1.5f, 1.3f, 8.f, 1.4f, 0.4f};
   switch (kind) {
+    case EnemyKind::Skinned:
+      return kSkinned;
     case EnemyKind::Gladiator:
     case EnemyKind::Count:
       break;
@@ -79,15 +133,23 @@ const EnemyKindInfo& kindInfo(EnemyKind kind) {
   return kGladiator;
 }
 
-EnemyMeshes makeEnemyMeshes() {
+EnemyMeshes makeEnemyMeshes(const assets::ProceduralCharacter& character) {
   EnemyMeshes meshes;
   meshes.gladiator = std::make_shared<const geometry::MeshData>(gladiatorMesh());
+  meshes.skinned = std::make_shared<const geometry::MeshData>(character.mesh);
+  auto asset = std::make_shared<components::SkinnedAsset>();
+  asset->skeleton = character.skeleton;
+  asset->clips = {character.idle, character.walk};
+  meshes.skinnedAsset = std::move(asset);
   return meshes;
 }
 
 Enemy spawnEnemy(EnemyContext& c, const EnemyMeshes& meshes, EnemyKind kind, glm::vec2 position, float yaw) {
   Enemy enemy;
   switch (kind) {
+    case EnemyKind::Skinned:
+      enemy = spawnSkinned(c, meshes, position, yaw);
+      break;
     case EnemyKind::Gladiator:
     case EnemyKind::Count:
       enemy = spawnGladiator(c, meshes, position, yaw);
@@ -102,7 +164,7 @@ void poseEnemy(EnemyContext& c, const Enemy& enemy, glm::vec3 velocity) {
   auto* rb = world.tryGet<components::RigidBody>(enemy.entity);
   auto* t = world.tryGet<ecs::Transform>(enemy.entity);
   if (!rb || !t) return;
-  const float bob = enemy.hit ? 0.f : 0.035f * std::abs(std::sin(enemy.walkPhase));
+  const float bob = enemy.hit || enemy.kind == EnemyKind::Skinned ? 0.f : 0.035f * std::abs(std::sin(enemy.walkPhase));
   const glm::quat r = enemyRotation(enemy);
   const glm::vec3 base(enemy.position.x, kFootClearance + bob, enemy.position.y);
   physics::BodyTransform bt;
@@ -113,6 +175,15 @@ void poseEnemy(EnemyContext& c, const Enemy& enemy, glm::vec3 velocity) {
   t->position = bt.position;
   t->rotation = bt.rotation;
   if (auto* wt = world.tryGet<ecs::WorldTransform>(enemy.entity)) wt->matrix = ecs::localMatrix(*t);
+  // The skinned kind walks in its clip at the pace it moves, stands in its idle clip, and holds its
+  // pose while a blade is on it (the cut happens in the pose it shows).
+  if (auto* skin = world.tryGet<components::SkinnedMesh>(enemy.entity); skin && skin->asset) {
+    const float speed = glm::length(glm::vec2(velocity.x, velocity.z));
+    const bool walking = speed > 0.3f;
+    const anim::AnimationClip* want = skin->asset->clip(walking ? "walk" : "idle");
+    if (want && skin->animator.clip() != want) skin->animator.play(want, 0.25f);
+    skin->speed = enemy.hit ? 0.f : walking ? std::clamp(speed / 2.2f, 0.6f, 1.6f) : 1.f;
+  }
 }
 
 float updateEnemies(EnemyContext& c, std::vector<Enemy>& enemies, glm::vec2 player, float dt,

@@ -1,8 +1,9 @@
 // Arena enemies: kinds, spawning and the walk-to-the-player-and-strike behaviour.
 //
-// An enemy is one entity with a MeshRenderer, a Splitable and a dynamic rigid body that the game
-// moves itself every tick (setBodyTransform plus the walking velocity, so the pieces of a cut go on
-// with the motion the enemy had). A blade touching it freezes it until its split is done; the split
+// An enemy is one entity with a MeshRenderer, a Splitable and a rigid body that the game moves
+// itself every tick (setBodyTransform plus the walking velocity, so the pieces of a cut go on with
+// the motion the enemy had): a dynamic body for the gladiators, a kinematic one (the posed hull) for
+// the skinned warriors, whose SkinnedMesh plays its walk and idle clips. A blade touching it freezes it until its split is done; the split
 // system's event for its entity is its death.
 //
 // Adding a kind: a value in EnemyKind, a case in kindInfo() (name and tuning), a spawn function in
@@ -16,6 +17,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "components/skinned.h"
+#include "engine/assets/procedural_character.h"
 #include "engine/ecs/entity.h"
 #include "engine/ecs/world.h"
 #include "engine/geometry/mesh_data.h"
@@ -27,6 +30,7 @@ namespace cleave::arena {
 
 enum class EnemyKind : uint8_t {
   Gladiator,  // convex parts (legs, torso, head, arms) merged into one mesh under one Splitable
+  Skinned,    // the generated skinned character, animated; cut in its pose, its halves fall as ragdolls
   Count
 };
 
@@ -49,6 +53,7 @@ struct Enemy {
   float attackTimer = 0.f;  // seconds until a blow may land
   float lunge = 0.f;        // seconds left of the blow animation
   bool hit = false;         // a blade touches it: frozen until the split lands (or misses)
+  uint8_t hitBy = 0;        // the weapon that touched it (ArenaGame's weapon index), for the kill count
   // The body frame (centre of mass, principal axes) in the enemy's own frame.
   glm::vec3 bodyLocalPosition{0.f};
   glm::quat bodyLocalRotation{1.f, 0.f, 0.f, 0.f};
@@ -65,8 +70,12 @@ struct EnemyContext {
 // Shared meshes of the kinds (built once; immutable, shared by every enemy's MeshRenderer).
 struct EnemyMeshes {
   std::shared_ptr<const geometry::MeshData> gladiator;
+  // The skinned kind: the generated character's bind-space mesh and its skeleton with the idle and
+  // walk clips.
+  std::shared_ptr<const geometry::MeshData> skinned;
+  std::shared_ptr<const components::SkinnedAsset> skinnedAsset;
 };
-EnemyMeshes makeEnemyMeshes();
+EnemyMeshes makeEnemyMeshes(const assets::ProceduralCharacter& character);
 
 // Creates an enemy of `kind` standing at `position` facing `yaw`. Returns an Enemy with a null
 // entity (and prints why) when its body cannot be made.

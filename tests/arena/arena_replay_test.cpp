@@ -1,9 +1,11 @@
 // The arena sample's bundled replays, run headless through the real executable: the match (menu,
-// two waves, disc, sword and spin), the burst of kills the split budget has to spread, the Quit
+// two waves of gladiators and skinned warriors, disc, sword and spin; the skinned ones fall as
+// ragdoll halves), the burst of kills the split budget has to spread, the Quit
 // cube, determinism (two runs, and a recorded-then-replayed run, give the same state hash) and
 // golden frames.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -52,6 +54,23 @@ size_t countKind(const nlohmann::json& dump, const std::string& kind) {
   return n;
 }
 
+// Every line of a state dump (JSON lines).
+std::vector<nlohmann::json> allDumpLines(const fs::path& path) {
+  std::vector<nlohmann::json> lines;
+  std::ifstream in(path);
+  std::string text;
+  while (std::getline(in, text))
+    if (!text.empty()) lines.push_back(nlohmann::json::parse(text));
+  return lines;
+}
+
+size_t countRagdollPieces(const nlohmann::json& dump) {
+  size_t n = 0;
+  for (const auto& e : dump.at("entities"))
+    if (e.value("kind", "") == "piece" && e.value("ragdoll_bones", 0) > 0) ++n;
+  return n;
+}
+
 size_t countCutsOf(const nlohmann::json& dump, const std::string& original) {
   size_t n = 0;
   for (const auto& s : dump.at("splits"))
@@ -62,18 +81,18 @@ size_t countCutsOf(const nlohmann::json& dump, const std::string& original) {
 TEST(ArenaReplay, MatchClearsTwoWavesWithBothWeapons) {
   const fs::path dir = scratchDir("match");
   const RunResult r = run("--headless --replay " + replay("arena_match.replay") + " --dump-state \"" +
-                          (dir / "state.jsonl").string() + "\" --print-state-hash");
+                          (dir / "state.jsonl").string() + "\" --dump-every 20 --print-state-hash");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
   ASSERT_TRUE(dump.is_object());
-  EXPECT_EQ(dump.at("tick"), 1259);
+  EXPECT_EQ(dump.at("tick"), 1339);
   const auto& arena = dump.at("arena");
   // The menu click cut the Start cube and started the match; wave 3 has begun, so waves 1 and 2
-  // (4 + 8 gladiators) were cleared, and the player lived through it.
+  // (4 + 2 and 8 + 3 gladiators and skinned warriors) were cleared, and the player lived through it.
   EXPECT_EQ(countCutsOf(dump, "start cube"), 1u);
   EXPECT_EQ(arena.at("state"), "playing");
   EXPECT_GE(arena.at("wave").get<int>(), 3);
-  EXPECT_GE(arena.at("enemies_killed").get<int>(), 12) << arena.dump();
+  EXPECT_GE(arena.at("enemies_killed").get<int>(), 17) << arena.dump();
   EXPECT_EQ(arena.at("score"), arena.at("enemies_killed"));
   EXPECT_GT(arena.at("health").get<int>(), 0);
   // Both weapons and the spin were used, and each killed: the disc and sword kills of wave 1 come
@@ -96,6 +115,73 @@ TEST(ArenaReplay, MatchClearsTwoWavesWithBothWeapons) {
   EXPECT_EQ(stateHash(r.output).size(), 16u);
 }
 
+TEST(ArenaReplay, SkinnedEnemiesFallAsRagdollHalves) {
+  const fs::path dir = scratchDir("skinned");
+  const RunResult r = run("--headless --replay " + replay("arena_match.replay") + " --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\" --dump-every 20");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::vector<nlohmann::json> lines = allDumpLines(dir / "state.jsonl");
+  ASSERT_FALSE(lines.empty());
+  const nlohmann::json& dump = lines.back();
+  const auto& arena = dump.at("arena");
+  // Kills are counted per kind and add up to the total; the five skinned warriors of waves 1 and 2
+  // died, at least one to each weapon (disc, sword slash, spin).
+  const auto& kills = arena.at("kills_by_kind");
+  const auto& skinned = kills.at("skinned");
+  EXPECT_EQ(kills.at("gladiator").at("total").get<int>() + skinned.at("total").get<int>(),
+            arena.at("enemies_killed").get<int>())
+      << kills.dump();
+  EXPECT_GE(skinned.at("total").get<int>(), 5) << kills.dump();
+  EXPECT_GE(skinned.at("disc").get<int>(), 1) << kills.dump();
+  EXPECT_GE(skinned.at("sword").get<int>(), 1) << kills.dump();
+  EXPECT_GE(skinned.at("spin").get<int>(), 1) << kills.dump();
+  EXPECT_GE(kills.at("gladiator").at("total").get<int>(), 12) << kills.dump();
+  // Each skinned kill is a cut of the whole character in its pose: at least two pieces that share
+  // its mass (by posed volume) within 2e-6 relative.
+  size_t skinnedCuts = 0;
+  for (const auto& s : dump.at("splits")) {
+    if (s.at("original") != "skinned warrior" || s.at("status") != "Ok") continue;
+    ++skinnedCuts;
+    EXPECT_GE(s.at("pieces").get<int>(), 2) << s.dump();
+    const double parent = s.at("parent_mass").get<double>();
+    const double pieces = s.at("pieces_mass").get<double>();
+    EXPECT_GT(parent, 30.0) << s.dump();  // a whole character (about 76 kg), not a scrap
+    EXPECT_LE(std::abs(pieces - parent), 2e-6 * parent) << s.dump();
+  }
+  EXPECT_EQ(skinnedCuts, size_t(skinned.at("total").get<int>()));
+  // The halves are ragdolls: they appear in the dump after the first skinned kill (with their bones),
+  // are counted, and the first ones fade out and are removed with every bone body.
+  int firstKillTick = -1;
+  for (const auto& s : dump.at("splits"))
+    if (s.at("original") == "skinned warrior" && s.at("status") == "Ok") {
+      firstKillTick = s.at("tick").get<int>();
+      break;
+    }
+  ASSERT_GE(firstKillTick, 0);
+  // A half is a ragdoll of many bones (a hand or a shoulder cut off on the way is a small one of
+  // one or two): right after the kill both halves are there.
+  size_t mostRagdolls = 0;
+  bool halvesRightAfterTheKill = false;
+  for (const auto& line : lines) {
+    mostRagdolls = std::max(mostRagdolls, countRagdollPieces(line));
+    const int tick = line.at("tick").get<int>();
+    if (tick <= firstKillTick || tick > firstKillTick + 40) continue;
+    size_t halves = 0;
+    for (const auto& e : line.at("entities"))
+      if (e.value("kind", "") == "piece" && e.value("ragdoll_bones", 0) >= 6) ++halves;
+    if (halves >= 2) halvesRightAfterTheKill = true;
+  }
+  EXPECT_TRUE(halvesRightAfterTheKill) << "no ragdoll halves after the kill at tick " << firstKillTick;
+  EXPECT_GE(mostRagdolls, 4u);
+  EXPECT_GE(arena.at("ragdoll_pieces_spawned").get<int>(), 2 * skinned.at("total").get<int>()) << arena.dump();
+  EXPECT_GE(arena.at("ragdoll_pieces_removed").get<int>(), 4) << arena.dump();
+  EXPECT_EQ(countRagdollPieces(dump), size_t(arena.at("ragdoll_pieces_spawned").get<int>() -
+                                             arena.at("ragdoll_pieces_removed").get<int>() -
+                                             arena.at("ragdoll_pieces_cut").get<int>()))
+      << arena.dump();
+  EXPECT_EQ(arena.at("ragdoll_bodies_leaked"), 0) << arena.dump();
+}
+
 TEST(ArenaReplay, BurstOfKillsIsSpreadByTheBudget) {
   const fs::path dir = scratchDir("burst");
   const RunResult r = run("--headless --replay " + replay("arena_burst.replay") + " --dump-state \"" +
@@ -105,10 +191,13 @@ TEST(ArenaReplay, BurstOfKillsIsSpreadByTheBudget) {
   ASSERT_TRUE(dump.is_object());
   const auto& arena = dump.at("arena");
   const auto& budget = dump.at("budget");
-  // Three spins: 4, 8 and 12 gladiators touched in one step each.
+  // Three spins: 4, 8 and 12 enemies touched in one step each; the skinned stragglers go to the
+  // disc and the sword, and all three waves (6 + 11 + 16) are cleared.
   EXPECT_EQ(arena.at("spin_attacks"), 3);
   EXPECT_GE(arena.at("max_enemies_hit_in_one_tick").get<int>(), 12) << arena.dump();
-  EXPECT_GE(arena.at("enemies_killed").get<int>(), 24) << arena.dump();
+  EXPECT_GE(arena.at("enemies_killed").get<int>(), 33) << arena.dump();
+  EXPECT_GE(arena.at("kills_by_kind").at("skinned").at("total").get<int>(), 9) << arena.dump();
+  EXPECT_EQ(arena.at("ragdoll_bodies_leaked"), 0) << arena.dump();
   // The budget (6 ms a tick, a gladiator charged about 3.4 ms) lets at most two gladiators fall
   // apart in one tick: the twelve wait in the queue and go over the next ticks.
   EXPECT_LE(arena.at("max_kills_in_one_tick").get<int>(), 2) << arena.dump();
@@ -161,15 +250,16 @@ TEST(ArenaReplay, RecordedRunReplaysToTheSameState) {
 }
 
 // Frames of the match at 640 x 360 (the replay declares a 1280 x 720 window, so the clicks land on
-// the same things): the disc's first kills, wave 2 closing in, and the pieces after the spin. The
+// the same things): the disc's first kills (a skinned warrior's halves falling), wave 2 closing in,
+// and the pieces after the spin (the skinned warriors of wave 2 still coming). The
 // top-right HUD box shows wall-clock figures and is blanked before comparing. Goldens are refreshed
 // with CLEAVE_UPDATE_GOLDENS=1.
 TEST(ArenaReplay, MatchFramesMatchGoldenImages) {
   const fs::path dir = scratchDir("golden");
-  const RunResult r = run("--headless --replay " + replay("arena_match.replay") + " --ticks 1000 --width 640 --height 360 "
-                          "--screenshot-dir \"" + dir.string() + "\" --screenshot-every 300");
+  const RunResult r = run("--headless --replay " + replay("arena_match.replay") + " --ticks 1100 --width 640 --height 360 "
+                          "--screenshot-dir \"" + dir.string() + "\" --screenshot-every 100");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const char* frame : {"frame_000300.png", "frame_000900.png", "frame_000999.png"}) {
+  for (const char* frame : {"frame_000300.png", "frame_001000.png", "frame_001099.png"}) {
     int width = 0, height = 0;
     std::vector<uint8_t> rgba;
     std::string error;
