@@ -13,6 +13,8 @@
 // under 1 % dropped, and the rest renormalised.
 #include "engine/assets/procedural_character.h"
 
+#include "engine/geometry/primitives.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -476,6 +478,86 @@ ProceduralCharacter makeProceduralCharacter(const CharacterOptions& options) {
       {0.35f, 0.22f, 0.12f, 1.f},  // 4 shoes
   };
   return character;
+}
+
+geometry::MeshData makeCharacterParts(const ProceduralCharacter& character) {
+  const anim::Skeleton& skeleton = character.skeleton;
+  const size_t count = skeleton.joints.size();
+  std::vector<glm::vec3> at(count);
+  for (size_t j = 0; j < count; ++j) at[j] = glm::vec3(glm::inverse(skeleton.joints[j].inverseBind)[3]);
+  std::vector<std::vector<size_t>> children(count);
+  for (size_t j = 0; j < count; ++j) {
+    const int32_t parent = skeleton.joints[j].parent;
+    if (parent >= 0 && size_t(parent) < count) children[size_t(parent)].push_back(j);
+  }
+  auto has = [](const std::string& name, const char* part) { return name.find(part) != std::string::npos; };
+  geometry::MeshData parts;
+  auto addBox = [&](size_t joint, glm::vec3 from, glm::vec3 to, float halfWidth, float halfDepth, uint32_t material) {
+    const glm::vec3 axis = to - from;
+    const float length = glm::length(axis);
+    if (!(length > 1e-4f)) return;
+    const glm::vec3 y = axis / length;
+    // A frame with y along the bone and z as close to the character's forward (+z) as possible.
+    glm::vec3 z = glm::vec3(0.f, 0.f, 1.f) - y * y.z;
+    if (glm::length(z) < 1e-3f) z = glm::vec3(1.f, 0.f, 0.f) - y * y.x;
+    z = glm::normalize(z);
+    const glm::vec3 x = glm::cross(y, z);
+    glm::mat4 frame(1.f);
+    frame[0] = glm::vec4(x, 0.f);
+    frame[1] = glm::vec4(y, 0.f);
+    frame[2] = glm::vec4(z, 0.f);
+    frame[3] = glm::vec4(0.5f * (from + to), 1.f);
+    geometry::MeshData box = geometry::primitives::box(glm::vec3(halfWidth, 0.5f * length, halfDepth));
+    geometry::primitives::transform(box, frame);
+    box.joints.assign(box.positions.size(), glm::u16vec4(uint16_t(joint), 0, 0, 0));
+    box.weights.assign(box.positions.size(), glm::vec4(1.f, 0.f, 0.f, 0.f));
+    box.submeshes = {{0, uint32_t(box.indices.size()), material}};
+    parts = parts.positions.empty() ? std::move(box) : geometry::primitives::merge(parts, box);
+  };
+  constexpr float kGap = 0.035f;  // at each end of a bone: neighbouring parts never touch
+  for (size_t j = 0; j < count; ++j) {
+    const std::string& name = skeleton.joints[j].name;
+    if (has(name, "hips")) continue;  // the thighs and the spine carry the pelvis
+    const uint32_t material = has(name, "foot") || has(name, "shin") ? (has(name, "foot") ? 4u : 3u)
+                              : has(name, "thigh")                    ? 3u
+                              : has(name, "head") || has(name, "hand") || has(name, "neck") ? 0u
+                                                                                            : 2u;
+    glm::vec3 from = at[j];
+    glm::vec3 to;
+    if (children[j].size() == 1) {
+      to = at[children[j][0]];
+    } else if (!children[j].empty()) {
+      // The chest: up to the neck only (the shoulders start the arms).
+      size_t up = children[j][0];
+      for (size_t c : children[j])
+        if (at[c].y > at[up].y) up = c;
+      to = at[up];
+    } else if (has(name, "head")) {
+      to = from + glm::vec3(0.f, 0.24f, 0.f);
+    } else if (has(name, "foot")) {
+      to = glm::vec3(from.x, 0.f, from.z + 0.18f);
+      from = glm::vec3(from.x, 0.f, from.z - 0.06f);
+      addBox(j, from + glm::vec3(0.f, 0.05f, 0.f), to + glm::vec3(0.f, 0.05f, 0.f), 0.05f, 0.045f, material);
+      continue;
+    } else {  // hands: along the forearm's direction
+      const int32_t parent = skeleton.joints[j].parent;
+      const glm::vec3 dir = parent >= 0 ? glm::normalize(from - at[size_t(parent)]) : glm::vec3(0.f, -1.f, 0.f);
+      to = from + dir * 0.16f;
+    }
+    const glm::vec3 dir = glm::normalize(to - from);
+    from += dir * kGap;
+    to -= dir * kGap;
+    const float half = has(name, "spine") || has(name, "chest") ? 0.15f
+                       : has(name, "thigh")                     ? 0.065f
+                       : has(name, "shin")                      ? 0.05f
+                       : has(name, "head")                      ? 0.1f
+                       : has(name, "upper_arm")                 ? 0.045f
+                       : has(name, "neck")                      ? 0.045f
+                                                                : 0.04f;
+    const float depth = has(name, "spine") || has(name, "chest") ? 0.1f : has(name, "head") ? 0.11f : half;
+    addBox(j, from, to, half, depth, material);
+  }
+  return parts;
 }
 
 }  // namespace cleave::assets

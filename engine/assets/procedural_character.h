@@ -42,4 +42,10 @@ struct ProceduralCharacter {
 
 ProceduralCharacter makeProceduralCharacter(const CharacterOptions& options = {});
 
+// The convex multi-part variant of the same character (the thesis's figure of convex parts
+// animated as one): one box per bone in the bind pose, each rigidly bound to its joint (weight 1),
+// shortened at both ends so no two parts touch. It uses the character's skeleton and clips, so it
+// animates with the same Animator; every part is closed and convex. Materials as the character's.
+geometry::MeshData makeCharacterParts(const ProceduralCharacter& character);
+
 }  // namespace cleave::assets

@@ -136,6 +136,7 @@ void DemoGame::createMaterials() {
   asset->clips = {made.idle, made.walk};
   characterAsset_ = asset;
   characterMesh_ = std::make_shared<geometry::MeshData>(made.mesh);
+  figureMesh_ = std::make_shared<geometry::MeshData>(assets::makeCharacterParts(made));
   characterMaterials_.clear();
   for (size_t id = 0; id < made.materialColors.size(); ++id) {
     render::Material look;
@@ -219,25 +220,8 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
       look = 3;
       name = "melon";
       break;
-    case ObjectKind::MultiPart: {
-      // A figure of convex parts under one Splitable: torso, head, arms and legs, a hand's width
-      // apart so every part stays convex and the figure is cut as one object.
-      mesh = geometry::primitives::box(glm::vec3(0.25f, 0.35f, 0.15f));
-      auto add = [&](geometry::MeshData part, glm::vec3 offset) {
-        geometry::primitives::transform(part, glm::translate(glm::mat4(1.f), offset));
-        mesh = geometry::primitives::merge(mesh, part);
-      };
-      add(geometry::primitives::uvSphere(0.17f, 20, 10), {0.f, 0.56f, 0.f});
-      add(geometry::primitives::box(glm::vec3(0.07f, 0.3f, 0.07f)), {-0.36f, 0.03f, 0.f});
-      add(geometry::primitives::box(glm::vec3(0.07f, 0.3f, 0.07f)), {0.36f, 0.03f, 0.f});
-      add(geometry::primitives::box(glm::vec3(0.09f, 0.32f, 0.09f)), {-0.13f, -0.7f, 0.f});
-      add(geometry::primitives::box(glm::vec3(0.09f, 0.32f, 0.09f)), {0.13f, -0.7f, 0.f});
-      splitable.separateIslands = false;
-      splitable.density = 1000.0;
-      look = 5;
-      name = "figure";
-      break;
-    }
+    case ObjectKind::MultiPart:
+      return spawnFigure(position, rotation);
     case ObjectKind::Skinned:
       return spawnCharacter(position, rotation);
     case ObjectKind::Torus:
@@ -309,6 +293,36 @@ ecs::Entity DemoGame::spawnCharacter(const glm::vec3& position, const glm::quat&
     walker.bodyFromRoot = glm::inverse(root) * bodyWorld;
   }
   world.add<Walker>(e, walker);
+  return e;
+}
+
+ecs::Entity DemoGame::spawnFigure(const glm::vec3& position, const glm::quat& rotation) {
+  ecs::World& world = app_->world();
+  const ecs::Entity e = world.create();
+  world.add<ecs::Name>(e, ecs::Name{"figure"});
+  ecs::Transform t;
+  t.position = glm::vec3(position.x, 0.f, position.z);  // feet on the floor
+  t.rotation = rotation;
+  world.add<ecs::Transform>(e, t);
+  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
+  components::MeshRenderer mr;
+  mr.source = figureMesh_;
+  mr.gpu = app_->renderer().uploadMesh(*figureMesh_);
+  mr.materials = characterMaterials_;
+  world.add<components::MeshRenderer>(e, std::move(mr));
+  world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(characterAsset_, "idle"));
+  world.add<components::MaterialChoice>(e, components::MaterialChoice{5});
+  components::Splitable splitable;
+  splitable.density = 1000.0;
+  splitable.capMaterialId = 1;
+  splitable.capMaterial = capLooks_[5];
+  splitable.skinnedPieces = components::SkinnedPieceMode::Bake;
+  splitable.separateIslands = false;  // each side of a cut stays one figure piece
+  world.add<components::Splitable>(e, splitable);
+  components::SplitWorld sw = splitWorld();
+  std::string error;
+  if (!components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true, &error))
+    std::fprintf(stderr, "demo: the figure has no body: %s\n", error.c_str());
   return e;
 }
 

@@ -54,6 +54,9 @@ class DemoGame {
   void createFloor();
   // Object 6: the generated character, walking a small circle, cut into ragdolls by default.
   ecs::Entity spawnCharacter(const glm::vec3& position, const glm::quat& rotation);
+  // Object 5: the character's convex multi-part variant (a box per bone), playing the idle clip in
+  // place, animated as one through the same skeleton; its pieces are baked into physics pieces.
+  ecs::Entity spawnFigure(const glm::vec3& position, const glm::quat& rotation);
   void walkCharacters(double dt);
   // --scene FILE: the objects, splitters, budget and camera of a JSON scene (docs/scene-format.md).
   bool loadSceneFile(const std::string& path, std::string* error);
@@ -89,6 +92,7 @@ class DemoGame {
   // The generated character (object 6): shared skeleton and clips, mesh, and its materials by id.
   std::shared_ptr<const components::SkinnedAsset> characterAsset_;
   std::shared_ptr<const geometry::MeshData> characterMesh_;
+  std::shared_ptr<const geometry::MeshData> figureMesh_;
   std::vector<render::Material> characterMaterials_;
   std::vector<render::TextureHandle> textures_;
 

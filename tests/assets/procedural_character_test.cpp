@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
+#include "engine/anim/animation_clip.h"
 #include "engine/geometry/mesh_splitter.h"
 
 namespace cleave::assets {
@@ -120,6 +123,55 @@ TEST(ProceduralCharacter, CutsWithCapsInAWalkingPose) {
       EXPECT_GT(piece.capTriangles, 0u);
       EXPECT_GT(piece.mass.volume, 0.0);
       EXPECT_FALSE(piece.joints.empty());
+      geometry::MeshContainer check;
+      ASSERT_EQ(check.setMesh(piece.mesh), geometry::SplitStatus::Ok);
+      EXPECT_TRUE(check.closed());
+    }
+  }
+}
+
+// The convex multi-part variant: one closed convex box per bone, rigidly bound, no two touching,
+// and cuttable in a pose like the smooth character (the sections of separate parts never overlap).
+TEST(ProceduralCharacter, MultiPartVariantIsRigidConvexPartsThatNeverTouch) {
+  const ProceduralCharacter& c = character();
+  const geometry::MeshData parts = makeCharacterParts(c);
+  ASSERT_EQ(parts.joints.size(), parts.positions.size());
+  ASSERT_EQ(parts.weights.size(), parts.positions.size());
+  // Boxes of 24 vertices and 12 triangles, one joint each with weight 1.
+  ASSERT_EQ(parts.positions.size() % 24, 0u);
+  const size_t boxes = parts.positions.size() / 24;
+  EXPECT_GE(boxes, 14u);
+  std::vector<glm::vec3> lo(boxes, glm::vec3(1e9f)), hi(boxes, glm::vec3(-1e9f));
+  for (size_t v = 0; v < parts.positions.size(); ++v) {
+    EXPECT_EQ(parts.weights[v], glm::vec4(1.f, 0.f, 0.f, 0.f));
+    EXPECT_EQ(parts.joints[v].x, parts.joints[v / 24 * 24].x) << "a box spans two joints";
+    lo[v / 24] = glm::min(lo[v / 24], parts.positions[v]);
+    hi[v / 24] = glm::max(hi[v / 24], parts.positions[v]);
+  }
+  geometry::MeshContainer container;
+  ASSERT_EQ(container.setMesh(parts), geometry::SplitStatus::Ok);
+  EXPECT_TRUE(container.closed());
+  // Every box is convex and the parts are apart: the smallest gap between vertices of different
+  // boxes is positive (a conservative check against touching parts).
+  double nearest = 1e9;
+  for (size_t a = 0; a < boxes; ++a)
+    for (size_t b = a + 1; b < boxes; ++b)
+      for (size_t i = 0; i < 24; ++i)
+        for (size_t k = 0; k < 24; ++k)
+          nearest = std::min(nearest, double(glm::distance(parts.positions[a * 24 + i], parts.positions[b * 24 + k])));
+  EXPECT_GT(nearest, 0.01);
+  anim::Pose pose;
+  anim::sampleClip(c.skeleton, c.idle, 0.7f, true, pose);
+  std::vector<glm::mat4> joints;
+  anim::poseToJointMatrices(c.skeleton, pose, joints);
+  ASSERT_EQ(container.setSkinningPose(joints, glm::mat4(1.f)), geometry::SplitStatus::Ok);
+  auto splitter = geometry::makeConcaveSplitter();
+  for (const geometry::Plane& plane : {geometry::Plane{{0, 1, 0}, 1.1}, geometry::Plane{{0, 1, 0}, 0.5},
+                                       geometry::Plane{{1, 0, 0.3}, 0.05}, geometry::Plane{{0.2, 1, 0.1}, 1.4}}) {
+    geometry::SplitResult result;
+    ASSERT_EQ(splitter->split(container, plane, geometry::SplitOptions{}, result), geometry::SplitStatus::Ok)
+        << result.message;
+    for (const geometry::SplitPiece& piece : result.pieces) {
       geometry::MeshContainer check;
       ASSERT_EQ(check.setMesh(piece.mesh), geometry::SplitStatus::Ok);
       EXPECT_TRUE(check.closed());
