@@ -288,6 +288,7 @@ ArenaMaterials createArenaMaterials(render::Renderer& r, const std::vector<glm::
   m.floor.albedo = flag;
   m.floor.specular = 0.12f;
   m.floor.shininess = 16.f;
+  m.floor.castsShadow = false;  // it only receives: the shadow pass skips the whole arena floor
   m.wall.albedo = stone;
   m.wall.baseColor = glm::vec4(1.05f, 0.92f, 0.78f, 1.f);
   m.wall.specular = 0.08f;
