@@ -7,6 +7,8 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -42,5 +44,17 @@ std::string sameFilePath(const std::string& path, void*);
 bool noReadWholeFile(std::vector<unsigned char>*, std::string* err, const std::string& path, void*);
 bool noWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&,
                       void*);
+
+// tinygltf's parse of a .gltf or .glb held in memory. With no base directory, external files are
+// refused (the callbacks above). `error` is one line (tinygltf's error, an exception it threw, or
+// a generic reason) and is empty when `loaded`; `warnings` are "<name>: <warning>" lines.
+struct GltfParse {
+  bool loaded = false;
+  std::string error;
+  std::vector<std::string> warnings;
+};
+GltfParse parseGltf(std::span<const uint8_t> bytes, const std::string& name, bool binary,
+                    const std::optional<std::string>& baseDir, tinygltf::LoadImageDataFunction imageLoader,
+                    tinygltf::Model& model);
 
 }  // namespace cleave::assets::detail

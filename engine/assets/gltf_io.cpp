@@ -53,6 +53,43 @@ std::string oneLine(const std::string& text) {
   return out;
 }
 
+GltfParse parseGltf(std::span<const uint8_t> bytes, const std::string& name, bool binary,
+                    const std::optional<std::string>& baseDir, tinygltf::LoadImageDataFunction imageLoader,
+                    tinygltf::Model& model) {
+  GltfParse parse;
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(imageLoader, nullptr);
+  if (!baseDir) {
+    tinygltf::FsCallbacks callbacks{noFileExists, sameFilePath, noReadWholeFile, noWriteWholeFile,
+                                    nullptr};
+    loader.SetFsCallbacks(callbacks);
+  }
+  std::string err, warn;
+  try {
+    const std::string dir = baseDir.value_or("");
+    if (binary) {
+      parse.loaded = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                                 static_cast<unsigned int>(bytes.size()), dir);
+    } else {
+      parse.loaded = loader.LoadASCIIFromString(&model, &err, &warn,
+                                                reinterpret_cast<const char*>(bytes.data()),
+                                                static_cast<unsigned int>(bytes.size()), dir);
+    }
+  } catch (const std::exception& e) {
+    parse.error = std::string("glTF parse error: ") + e.what();
+    return parse;
+  } catch (...) {
+    parse.error = "glTF parse error";
+    return parse;
+  }
+  if (const std::string w = oneLine(warn); !w.empty()) parse.warnings.push_back(name + ": " + w);
+  if (!parse.loaded) {
+    parse.error = oneLine(err);
+    if (parse.error.empty()) parse.error = "tinygltf could not load the file";
+  }
+  return parse;
+}
+
 // Extensions that only change materials or textures: geometry can be read without understanding them.
 bool geometryNeutral(const std::string& extension) {
   return extension.starts_with("KHR_materials_") || extension.starts_with("KHR_texture_") ||
@@ -403,39 +440,14 @@ bool appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
 MeshReadResult readGltf(std::span<const uint8_t> bytes, const std::string& name, bool binary,
                         const std::optional<std::string>& baseDir) {
   if (bytes.size() > UINT32_MAX) return failure(name, "file too large for glTF");
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skipImage, nullptr);
-  if (!baseDir) {
-    tinygltf::FsCallbacks callbacks{noFileExists, sameFilePath, noReadWholeFile, noWriteWholeFile,
-                                    nullptr};
-    loader.SetFsCallbacks(callbacks);
-  }
   tinygltf::Model model;
-  std::string err, warn;
-  bool loaded = false;
-  try {
-    const std::string dir = baseDir.value_or("");
-    if (binary) {
-      loaded = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                           static_cast<unsigned int>(bytes.size()), dir);
-    } else {
-      loaded = loader.LoadASCIIFromString(&model, &err, &warn,
-                                          reinterpret_cast<const char*>(bytes.data()),
-                                          static_cast<unsigned int>(bytes.size()), dir);
-    }
-  } catch (const std::exception& e) {
-    return failure(name, std::string("glTF parse error: ") + e.what());
-  } catch (...) {
-    return failure(name, "glTF parse error");
-  }
-  std::vector<std::string> warnings;
-  if (const std::string w = oneLine(warn); !w.empty()) warnings.push_back(name + ": " + w);
-  if (!loaded) {
-    const std::string e = oneLine(err);
-    MeshReadResult result = failure(name, e.empty() ? "tinygltf could not load the file" : e);
-    result.warnings = std::move(warnings);
+  const GltfParse parse = parseGltf(bytes, name, binary, baseDir, skipImage, model);
+  if (!parse.loaded) {
+    MeshReadResult result = failure(name, parse.error);
+    result.warnings = parse.warnings;
     return result;
   }
+  std::vector<std::string> warnings = parse.warnings;
   for (const std::string& extension : model.extensionsRequired) {
     if (geometryNeutral(extension)) continue;
     return failure(name, "requires the glTF extension " + extension + ", which is not supported");

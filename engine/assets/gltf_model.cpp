@@ -724,37 +724,10 @@ ModelLoadResult readModel(std::span<const uint8_t> bytes, const std::string& nam
       return failed(name, "requires the glTF extension " + extension + ", which is not supported");
     }
   }
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(decodeImage, nullptr);
-  if (!baseDir) {
-    tinygltf::FsCallbacks callbacks{detail::noFileExists, detail::sameFilePath,
-                                    detail::noReadWholeFile, detail::noWriteWholeFile, nullptr};
-    loader.SetFsCallbacks(callbacks);
-  }
   tinygltf::Model gltf;
-  std::string err, warn;
-  bool loaded = false;
-  try {
-    const std::string dir = baseDir.value_or("");
-    if (binary) {
-      loaded = loader.LoadBinaryFromMemory(&gltf, &err, &warn, bytes.data(),
-                                           static_cast<unsigned int>(bytes.size()), dir);
-    } else {
-      loaded = loader.LoadASCIIFromString(&gltf, &err, &warn,
-                                          reinterpret_cast<const char*>(bytes.data()),
-                                          static_cast<unsigned int>(bytes.size()), dir);
-    }
-  } catch (const std::exception& e) {
-    return failed(name, std::string("glTF parse error: ") + e.what());
-  } catch (...) {
-    return failed(name, "glTF parse error");
-  }
-  std::vector<std::string> warnings;
-  if (const std::string w = detail::oneLine(warn); !w.empty()) warnings.push_back(name + ": " + w);
-  if (!loaded) {
-    const std::string e = detail::oneLine(err);
-    return failed(name, e.empty() ? "tinygltf could not load the file" : e, std::move(warnings));
-  }
+  detail::GltfParse parse = detail::parseGltf(bytes, name, binary, baseDir, decodeImage, gltf);
+  if (!parse.loaded) return failed(name, parse.error, std::move(parse.warnings));
+  std::vector<std::string> warnings = std::move(parse.warnings);
   ModelLoadResult result;
   result.warnings = std::move(warnings);
   Loader reader(gltf, name, bytes.size());
