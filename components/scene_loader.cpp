@@ -21,7 +21,6 @@ using nlohmann::json;
 
 namespace {
 
-uint64_t toUser(ecs::Entity e) { return (uint64_t(e.generation) << 32) | uint64_t(e.index); }
 
 // ---------------------------------------------------------------------------------------------
 // Lines of the source text. nlohmann::json keeps no positions, so a semantic error keeps the JSON
@@ -857,7 +856,7 @@ struct Builder {
     physics::BodyDef def;
     def.shape = shape.value();
     def.position = t.position;
-    def.userData = toUser(e);
+    def.userData = toUserData(e);
     auto body = ctx.physics.createBody(def);
     if (!body.ok()) {
       ctx.physics.destroyShape(shape.value());
@@ -944,7 +943,7 @@ struct Builder {
       def.shape = shape.value();
       def.position = t.position;
       def.rotation = t.rotation;
-      def.userData = toUser(e);
+      def.userData = toUserData(e);
       auto body = ctx.physics.createBody(def);
       if (!body.ok()) {
         ctx.physics.destroyShape(shape.value());
@@ -1002,32 +1001,12 @@ ecs::Entity SceneLoadResult::find(const std::string& name) const {
 }
 
 ecs::Entity createSplitterEntity(SplitWorld& w, const ScheduledSplitter& s) {
-  const ecs::Entity e = w.world.create();
-  ecs::Transform t;
-  t.position = s.position;
-  t.rotation = s.rotation;
-  w.world.add<ecs::Name>(e, ecs::Name{s.name});
-  w.world.add<ecs::Transform>(e, t);
-  w.world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
   Splitter splitter;
   splitter.lifetime =
       s.schedule == SplitterSchedule::Persistent ? SplitterLifetime::Persistent : SplitterLifetime::OneTick;
   splitter.playerCaused = s.playerCaused;
   splitter.halfExtents = s.halfExtents;
-  auto shape = w.physics.createShape(physics::ShapeDef::box(s.halfExtents));
-  if (shape.ok()) {
-    physics::TriggerDef def;
-    def.shape = shape.value();
-    def.position = s.position;
-    def.rotation = s.rotation;
-    def.persistent = s.schedule == SplitterSchedule::Persistent;
-    def.userData = toUser(e);
-    auto trigger = w.physics.createTrigger(def);
-    w.physics.destroyShape(shape.value());  // the trigger keeps its own reference
-    if (trigger.ok()) splitter.trigger = trigger.value();
-  }
-  w.world.add<Splitter>(e, splitter);
-  return e;
+  return createSplitter(w, s.name, physics::ShapeDef::box(s.halfExtents), s.position, s.rotation, splitter);
 }
 
 SceneLoadResult loadSceneFromString(const std::string& text, const std::string& name,

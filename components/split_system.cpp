@@ -28,13 +28,6 @@ double nowMs() {
   return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
 }
 
-uint64_t toUser(ecs::Entity e) { return (uint64_t(e.generation) << 32) | uint64_t(e.index); }
-ecs::Entity fromUser(uint64_t v) {
-  ecs::Entity e;
-  e.index = uint32_t(v & 0xffffffffu);
-  e.generation = uint32_t(v >> 32);
-  return e;
-}
 
 // The body frame of a piece: origin at the centre of mass, axes along the principal axes.
 struct BodyFrame {
@@ -218,6 +211,39 @@ void SplitSystem::registerHandler(const std::string& name, SplitHandler handler)
 }
 
 void SplitSystem::request(const SplitRequest& request) { budget_.enqueue(request); }
+
+uint64_t toUserData(ecs::Entity e) { return (uint64_t(e.generation) << 32) | uint64_t(e.index); }
+
+ecs::Entity fromUserData(uint64_t v) {
+  ecs::Entity e;
+  e.index = uint32_t(v & 0xffffffffu);
+  e.generation = uint32_t(v >> 32);
+  return e;
+}
+
+ecs::Entity createSplitter(SplitWorld& w, const std::string& name, const physics::ShapeDef& shape,
+                           const glm::vec3& position, const glm::quat& rotation, Splitter splitter) {
+  auto built = w.physics.createShape(shape);
+  if (!built.ok()) return ecs::kNullEntity;
+  const ecs::Entity e = w.world.create();
+  ecs::Transform t;
+  t.position = position;
+  t.rotation = rotation;
+  w.world.add<ecs::Name>(e, ecs::Name{name});
+  w.world.add<ecs::Transform>(e, t);
+  w.world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
+  physics::TriggerDef def;
+  def.shape = built.value();
+  def.position = position;
+  def.rotation = rotation;
+  def.persistent = splitter.lifetime == SplitterLifetime::Persistent;
+  def.userData = toUserData(e);
+  auto trigger = w.physics.createTrigger(def);
+  w.physics.destroyShape(built.value());  // the trigger keeps its own reference
+  splitter.trigger = trigger.ok() ? trigger.value() : physics::TriggerId{};
+  w.world.add<Splitter>(e, splitter);
+  return e;
+}
 
 void releaseEntityResources(SplitWorld& w, ecs::Entity e) {
   if (auto* ragdoll = w.world.tryGet<Ragdoll>(e)) releaseRagdoll(w.physics, *ragdoll);
@@ -412,7 +438,7 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
   def.position = glm::vec3(frame.position);
   def.rotation = glm::quat(frame.rotation);
   def.localInertia = glm::vec3(frame.moments);
-  def.userData = toUser(e);
+  def.userData = toUserData(e);
   auto body = w.physics.createBody(def);
   if (!body.ok()) {
     w.physics.destroyShape(shape);
@@ -451,8 +477,8 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
     const auto splitterUser = w.physics.triggerUserData(ev.trigger);
     const auto bodyUser = w.physics.bodyUserData(ev.body);
     if (!splitterUser || !bodyUser) continue;
-    const ecs::Entity splitterEntity = fromUser(*splitterUser);
-    const ecs::Entity target = fromUser(*bodyUser);
+    const ecs::Entity splitterEntity = fromUserData(*splitterUser);
+    const ecs::Entity target = fromUserData(*bodyUser);
     if (!w.world.alive(splitterEntity) || !w.world.alive(target)) continue;
     auto* splitter = w.world.tryGet<Splitter>(splitterEntity);
     if (!splitter) continue;
@@ -488,7 +514,7 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
   // One-tick splitters are gone after the step that reported their touches.
   ecs::CommandBuffer& commands = commandsFor(scratch_->commands, scratch_->commandsWorld, w.world);
   for (auto [e, splitter] : w.world.view<Splitter>()) {
-    std::erase_if(splitter.passing, [&](uint64_t id) { return !w.world.alive(fromUser(id)); });
+    std::erase_if(splitter.passing, [&](uint64_t id) { return !w.world.alive(fromUserData(id)); });
     if (splitter.lifetime == SplitterLifetime::OneTick && w.physics.isTriggerSpent(splitter.trigger)) {
       commands.destroy(e);
       scratch_->doomed.push_back(e);
@@ -697,7 +723,7 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
       std::string reason;
       const double colliderStart = nowMs();
       isRagdoll = buildRagdoll(w, piece.mesh, worldPositions, piece.joints, skin->asset->skeleton, globals,
-                               std::max(mass, 1e-6), v, omega, parentCom, toUser(e), toUser(e) | (1ull << 63),
+                               std::max(mass, 1e-6), v, omega, parentCom, toUserData(e), toUserData(e) | (1ull << 63),
                                ragdoll, &reason);
       ev.colliderMilliseconds += nowMs() - colliderStart;
       if (!isRagdoll) skinMode = SkinnedPieceMode::KeepAnimating;  // too few vertices for any bone
@@ -763,7 +789,7 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
       def.linearVelocity = glm::vec3(velocity);
       def.angularVelocity = glm::vec3(omega);
       def.localInertia = glm::vec3(frame.moments);
-      def.userData = toUser(e);
+      def.userData = toUserData(e);
       const bool awakeNow = s.activationsThisTick < budget_.settings().maxActivationsPerTick;
       def.startAwake = awakeNow;
       auto created = w.physics.createBody(def);
@@ -793,7 +819,7 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
     commands.add<MassInfo>(e, info);
     SplitOrigin so;
     so.parent = target;
-    so.parentId = toUser(target);
+    so.parentId = toUserData(target);
     so.generation = depth;
     commands.add<SplitOrigin>(e, so);
     if (choice) commands.add<MaterialChoice>(e, *choice);
@@ -845,8 +871,8 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   // A persistent splitter does not cut the pieces of its own cut again during this pass.
   if (auto* blade = w.world.tryGet<Splitter>(request.splitter);
       blade && blade->lifetime == SplitterLifetime::Persistent) {
-    std::erase(blade->passing, toUser(target));
-    for (ecs::Entity piece : ev.pieces) blade->passing.push_back(toUser(piece));
+    std::erase(blade->passing, toUserData(target));
+    for (ecs::Entity piece : ev.pieces) blade->passing.push_back(toUserData(piece));
   }
   if (hierarchy) {
     // The original subtree goes with its GPU meshes; the pieces carry copies of its parts.

@@ -99,6 +99,17 @@ class SplitSystem {
   std::string failureDumpDirectory_;
 };
 
+// The id an entity goes by in physics user data and in state dumps: generation << 32 | index.
+uint64_t toUserData(ecs::Entity e);
+ecs::Entity fromUserData(uint64_t v);
+
+// Creates a splitter entity (Name, Transform, WorldTransform and `splitter`, whose lifetime and
+// player flag are kept) with a trigger of `shape` at `position`/`rotation`: persistent for a
+// persistent splitter, one-shot otherwise. Its plane is the local +Y axis through `position`.
+// Returns kNullEntity, creating nothing, when the shape cannot be built.
+ecs::Entity createSplitter(SplitWorld& w, const std::string& name, const physics::ShapeDef& shape,
+                           const glm::vec3& position, const glm::quat& rotation, Splitter splitter);
+
 // Frees the GPU mesh and the physics body of an entity (to be followed by destroying the entity).
 void releaseEntityResources(SplitWorld& w, ecs::Entity e);
 

@@ -45,13 +45,6 @@ constexpr uint64_t kWaveGapTicks = 120;
 constexpr int kHitFreezeTicks = 60;         // a frozen enemy whose split never comes walks on
 constexpr double kCrumbVolume = 1.5e-3;     // m^3: pieces smaller than this are not cut again
 
-uint64_t toUser(ecs::Entity e) { return (uint64_t(e.generation) << 32) | e.index; }
-ecs::Entity fromUser(uint64_t v) {
-  ecs::Entity e;
-  e.index = uint32_t(v & 0xffffffffu);
-  e.generation = uint32_t(v >> 32);
-  return e;
-}
 
 // The shortest rotation taking +Y to the unit vector `to`.
 glm::quat rotationFromUp(const glm::vec3& to) {
@@ -136,7 +129,7 @@ ecs::Entity ArenaGame::addStatic(const std::string& name, geometry::MeshData mes
     if (shape.ok()) {
       physics::BodyDef def;
       def.shape = shape.value();
-      def.userData = toUser(e);
+      def.userData = components::toUserData(e);
       auto body = physics_->createBody(def);
       staticShapes_.push_back(shape.value());
       if (body.ok()) staticBodies_.push_back(body.value());
@@ -315,7 +308,7 @@ void ArenaGame::createPlayer() {
   def.mass = 80.f;
   def.position = t.position;
   def.allowSleep = false;
-  def.userData = toUser(player_);
+  def.userData = components::toUserData(player_);
   auto body = physics_->createBody(def);
   if (body.ok()) {
     world.add<components::RigidBody>(player_, components::RigidBody{body.value(), shape.value()});
@@ -424,30 +417,12 @@ void ArenaGame::updateCamera(float dt) {
 
 ecs::Entity ArenaGame::makeSplitter(const std::string& name, const physics::ShapeDef& shapeDef, glm::vec3 position,
                                     glm::quat rotation, bool persistent) {
-  ecs::World& world = app_->world();
-  auto shape = physics_->createShape(shapeDef);
-  if (!shape.ok()) return {};
-  const ecs::Entity e = world.create();
-  ecs::Transform t;
-  t.position = position;
-  t.rotation = rotation;
-  world.add<ecs::Name>(e, ecs::Name{name});
-  world.add<ecs::Transform>(e, t);
-  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
-  world.add<ArenaTag>(e, ArenaTag{ArenaTag::Weapon});
-  physics::TriggerDef def;
-  def.shape = shape.value();
-  def.position = position;
-  def.rotation = rotation;
-  def.persistent = persistent;
-  def.userData = toUser(e);
-  auto trigger = physics_->createTrigger(def);
-  physics_->destroyShape(shape.value());  // the trigger keeps its own reference
   components::Splitter splitter;
   splitter.lifetime = persistent ? components::SplitterLifetime::Persistent : components::SplitterLifetime::OneTick;
   splitter.playerCaused = true;
-  if (trigger.ok()) splitter.trigger = trigger.value();
-  world.add<components::Splitter>(e, splitter);
+  components::SplitWorld sw = splitWorld();
+  const ecs::Entity e = components::createSplitter(sw, name, shapeDef, position, rotation, splitter);
+  if (app_->world().alive(e)) app_->world().add<ArenaTag>(e, ArenaTag{ArenaTag::Weapon});
   return e;
 }
 
@@ -473,7 +448,7 @@ void ArenaGame::updateMenu(app::TickContext& c) {
   if (!hit) return;
   const auto user = physics_->bodyUserData(hit->body);
   if (!user) return;
-  const ecs::Entity target = fromUser(*user);
+  const ecs::Entity target = components::fromUserData(*user);
   if (!c.world.alive(target) || !c.world.has<components::Splitable>(target)) return;
   // A vertical plane along the click ray, leaning a little: the cube falls apart diagonally.
   glm::vec3 normal = glm::normalize(glm::cross(dir, glm::vec3(0, 1, 0)));
@@ -740,9 +715,9 @@ void ArenaGame::triggers(app::TickContext& c) {
     const auto splitterUser = physics_->triggerUserData(ev.trigger);
     const auto bodyUser = physics_->bodyUserData(ev.body);
     if (!splitterUser || !bodyUser) continue;
-    if (!c.world.has<components::Splitter>(fromUser(*splitterUser))) continue;
-    const ecs::Entity target = fromUser(*bodyUser);
-    const auto* splitterName = c.world.tryGet<ecs::Name>(fromUser(*splitterUser));
+    if (!c.world.has<components::Splitter>(components::fromUserData(*splitterUser))) continue;
+    const ecs::Entity target = components::fromUserData(*bodyUser);
+    const auto* splitterName = c.world.tryGet<ecs::Name>(components::fromUserData(*splitterUser));
     const uint8_t weapon = splitterName ? weaponIndex(splitterName->value) : 0;
     for (Enemy& e : enemies_) {
       if (e.entity == target && !e.hit) {

@@ -27,7 +27,6 @@ constexpr float kLookSensitivity = 0.0035f;  // rad per pixel
 constexpr float kPushImpulse = 6.f;        // N s per kg of the pushed body (a velocity change)
 constexpr float kCutReach = 60.f;          // metres a drag cut reaches from the camera
 
-uint64_t entityId(ecs::Entity e) { return (uint64_t(e.generation) << 32) | e.index; }
 
 // Object 6 walks a small circle: kWalkSeconds of walking, then kIdleSeconds standing, crossfading
 // between the clips. Its body is kinematic and set on the circle every tick.
@@ -177,7 +176,7 @@ void DemoGame::createFloor() {
   physics::BodyDef def;
   def.shape = shape.value();
   def.position = t.position;
-  def.userData = entityId(floor);
+  def.userData = components::toUserData(floor);
   auto body = physics_->createBody(def);
   world.add<components::RigidBody>(floor, components::RigidBody{body.value(), shape.value()});
 }
@@ -522,9 +521,7 @@ ecs::Entity DemoGame::entityUnderCrosshair(glm::vec3* hitPoint) {
   if (!hit) return {};
   const auto user = physics_->bodyUserData(hit->body);
   if (!user) return {};
-  ecs::Entity e;
-  e.index = uint32_t(*user & 0xffffffffu);
-  e.generation = uint32_t(*user >> 32);
+  const ecs::Entity e = components::fromUserData(*user);
   if (!app_->world().alive(e) || !app_->world().has<components::Splitable>(e)) return {};
   if (hitPoint) *hitPoint = hit->point;
   return e;
@@ -566,29 +563,11 @@ void DemoGame::dragCut(app::TickContext& c, glm::vec2 from, glm::vec2 to) {
   const glm::quat rotation = rotationFromUp(normal);
   const glm::quat inverse = glm::inverse(rotation);
   for (glm::vec3& p : points) p = inverse * (p - centre);
-  auto shape = physics_->createShape(physics::ShapeDef::convexHull(points));
-  if (!shape.ok()) return;
-  ecs::World& world = c.world;
-  const ecs::Entity e = world.create();
-  ecs::Transform t;
-  t.position = centre;
-  t.rotation = rotation;
-  world.add<ecs::Transform>(e, t);
-  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
-  world.add<ecs::Name>(e, ecs::Name{"drag cut"});
-  physics::TriggerDef def;
-  def.shape = shape.value();
-  def.position = centre;
-  def.rotation = rotation;
-  def.persistent = false;
-  def.userData = entityId(e);
-  auto trigger = physics_->createTrigger(def);
-  physics_->destroyShape(shape.value());  // the trigger keeps its own reference
   components::Splitter splitter;
   splitter.lifetime = components::SplitterLifetime::OneTick;
   splitter.playerCaused = true;
-  if (trigger.ok()) splitter.trigger = trigger.value();
-  world.add<components::Splitter>(e, splitter);
+  components::SplitWorld sw = splitWorld();
+  components::createSplitter(sw, "drag cut", physics::ShapeDef::convexHull(points), centre, rotation, splitter);
 }
 
 void DemoGame::gameplay(app::TickContext& c) {
