@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <span>
+#include <unordered_map>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -181,6 +182,30 @@ struct SplitSystem::Scratch {
   std::vector<ecs::Entity> doomed;  // entities the batch destroys: their resources go first
   std::vector<SplitRequest> pending;
   uint32_t activationsThisTick = 0;
+  // Welds of the meshes the system has cut or made, by mesh: a mesh cut again (every piece, and an
+  // authored mesh that many objects share) is not welded again. An entry is valid while its mesh
+  // lives (the weak pointer still points at it); dead entries are dropped when the table grows.
+  struct KnownWeld {
+    std::weak_ptr<const geometry::MeshData> mesh;
+    geometry::MeshWeld weld;
+  };
+  std::unordered_map<const geometry::MeshData*, KnownWeld> welds;
+  size_t weldsPruneAt = 256;
+
+  const geometry::MeshWeld* knownWeld(const std::shared_ptr<const geometry::MeshData>& mesh) const {
+    const auto it = welds.find(mesh.get());
+    if (it == welds.end() || it->second.mesh.lock() != mesh) return nullptr;
+    return &it->second.weld;
+  }
+  void keepWeld(const std::shared_ptr<const geometry::MeshData>& mesh, geometry::MeshWeld weld) {
+    if (welds.size() >= weldsPruneAt) {
+      std::erase_if(welds, [](const auto& entry) { return entry.second.mesh.expired(); });
+      weldsPruneAt = std::max<size_t>(256, 2 * welds.size());
+    }
+    KnownWeld& entry = welds[mesh.get()];
+    entry.mesh = mesh;
+    entry.weld = std::move(weld);
+  }
 };
 
 SplitSystem::SplitSystem(SplitBudgetSettings budget)
@@ -626,8 +651,17 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
 
   Scratch& s = *scratch_;
   std::string message;
-  if (s.container.setMesh(source, &message) != geometry::SplitStatus::Ok)
+  const double setupStart = nowMs();
+  const geometry::MeshWeld* known = hierarchy ? nullptr : s.knownWeld(mr->source);
+  ev.weldKnown = known != nullptr;
+  if ((known ? s.container.setMesh(source, *known, &message) : s.container.setMesh(source, &message)) !=
+      geometry::SplitStatus::Ok)
     return fail(geometry::SplitStatus::InvalidInput, message);
+  if (!known && !hierarchy) {
+    geometry::MeshWeld weld;
+    s.container.copyWeld(weld);
+    s.keepWeld(mr->source, std::move(weld));
+  }
   // A skinned target is cut in its current pose: the cut space is the skinned mesh in the world.
   const auto* skin = w.world.tryGet<SkinnedMesh>(target);
   if (skin && (hierarchy || skin->jointMatrices.empty() || source.joints.empty())) skin = nullptr;
@@ -637,6 +671,7 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   } else {
     s.container.setTransform(glm::mat4(model));
   }
+  ev.setupMilliseconds = nowMs() - setupStart;
   geometry::SplitOptions options;
   options.cap = sp->cap;
   options.capMaterialId = hierarchy ? kMergedCapId : sp->capMaterialId;
@@ -738,6 +773,9 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
     auto mesh = std::make_shared<geometry::MeshData>(keepSkin ? std::move(piece.mesh)
                                                               : skin ? std::move(posed) : std::move(piece.mesh));
     const geometry::MeshData& colliderMesh = hierarchy ? wholePiece : keepSkin ? posed : *mesh;
+    // The piece's weld comes with it, unless its vertices changed: hierarchy parts are extracted
+    // again, and a baked skin may pose two vertices of one bind position apart.
+    if (!hierarchy && (keepSkin || !skin)) s.keepWeld(mesh, std::move(piece.weld));
     MeshRenderer renderer;
     renderer.source = mesh;
     renderer.materials = materials;

@@ -49,6 +49,8 @@ struct SplitEvent {
   double parentMass = 0.0;
   double piecesMass = 0.0;      // sum over pieces kept with colliders and debris
   double milliseconds = 0.0;          // the whole split, pieces created
+  double setupMilliseconds = 0.0;     // of which: container set-up (copy, weld unless known, cut space)
+  bool weldKnown = false;             // the mesh's weld was known (a piece, or a mesh cut before)
   double geometryMilliseconds = 0.0;  // of which: cut, caps, islands, mass properties
   double colliderMilliseconds = 0.0;  // of which: collider shapes
   double uploadMilliseconds = 0.0;    // of which: GPU mesh upload

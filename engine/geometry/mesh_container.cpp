@@ -53,19 +53,24 @@ void fail(std::string* message, const std::string& text) {
 
 }  // namespace
 
-SplitStatus MeshContainer::setMesh(const MeshData& mesh, std::string* message) {
+void MeshContainer::clear() {
+  mesh_.positions.clear();
+  mesh_.indices.clear();
+  cutPositions_.clear();
+  positionIds_.clear();
+  representatives_.clear();
+  positionIdCount_ = 0;
+  boundsDiagonal_ = 0.0;
+  closed_ = false;
+  cutIsSource_ = false;
+}
+
+// Checks the mesh; on failure clears the container and writes the reason.
+bool MeshContainer::validate(const MeshData& mesh, std::string* message) {
   auto reject = [&](const std::string& text) {
     fail(message, "invalid mesh: " + text);
-    mesh_.positions.clear();
-    mesh_.indices.clear();
-    cutPositions_.clear();
-    positionIds_.clear();
-    representatives_.clear();
-    positionIdCount_ = 0;
-    boundsDiagonal_ = 0.0;
-    closed_ = false;
-    cutIsSource_ = false;
-    return SplitStatus::InvalidInput;
+    clear();
+    return false;
   };
   const size_t n = mesh.positions.size();
   if (mesh.indices.empty()) return reject("no triangle");
@@ -105,17 +110,62 @@ SplitStatus MeshContainer::setMesh(const MeshData& mesh, std::string* message) {
     return reject("submesh runs cover " + std::to_string(covered) + " of " + std::to_string(mesh.indices.size()) +
                   " indices");
   }
+  return true;
+}
 
+SplitStatus MeshContainer::setMesh(const MeshData& mesh, std::string* message) {
+  if (!validate(mesh, message)) return SplitStatus::InvalidInput;
   mesh_ = mesh;  // copy assignment keeps the capacity of our arrays
   model_ = glm::dmat4(1.0);
   jointMatrices_.clear();
   weld();  // also sets boundsDiagonal_: the cut space is the source space for now
+  const size_t n = mesh_.positions.size();
   cutPositions_.resize(n);
   for (size_t i = 0; i < n; ++i) cutPositions_[i] = glm::dvec3(mesh_.positions[i]);
   mirrored_ = false;
   cutIsSource_ = true;
   if (message) message->clear();
   return SplitStatus::Ok;
+}
+
+SplitStatus MeshContainer::setMesh(const MeshData& mesh, const MeshWeld& weld, std::string* message) {
+  if (!validate(mesh, message)) return SplitStatus::InvalidInput;
+  const size_t n = mesh.positions.size();
+  const size_t ids = weld.representatives.size();
+  // Consistent: one id per vertex, each id below the count, each representative a vertex carrying
+  // its own id, representatives ascending (ids numbered by first vertex).
+  bool consistent = weld.positionIds.size() == n && ids > 0 && ids <= n;
+  for (size_t v = 0; consistent && v < n; ++v) consistent = weld.positionIds[v] < ids;
+  for (size_t k = 0; consistent && k < ids; ++k) {
+    const uint32_t r = weld.representatives[k];
+    consistent = r < n && weld.positionIds[r] == k && (k == 0 || r > weld.representatives[k - 1]);
+  }
+  if (!consistent) {
+    fail(message, "invalid weld: it does not belong to this mesh (" + std::to_string(weld.positionIds.size()) +
+                      " ids for " + std::to_string(n) + " vertices, or ids and representatives disagree)");
+    clear();
+    return SplitStatus::InvalidInput;
+  }
+  mesh_ = mesh;
+  model_ = glm::dmat4(1.0);
+  jointMatrices_.clear();
+  positionIds_.assign(weld.positionIds.begin(), weld.positionIds.end());
+  representatives_.assign(weld.representatives.begin(), weld.representatives.end());
+  positionIdCount_ = static_cast<uint32_t>(ids);
+  closed_ = weld.closed;
+  cutPositions_.resize(n);
+  for (size_t i = 0; i < n; ++i) cutPositions_[i] = glm::dvec3(mesh_.positions[i]);
+  updateBounds();
+  mirrored_ = false;
+  cutIsSource_ = true;
+  if (message) message->clear();
+  return SplitStatus::Ok;
+}
+
+void MeshContainer::copyWeld(MeshWeld& out) const {
+  out.positionIds.assign(positionIds_.begin(), positionIds_.end());
+  out.representatives.assign(representatives_.begin(), representatives_.end());
+  out.closed = closed_;
 }
 
 void MeshContainer::weld() {

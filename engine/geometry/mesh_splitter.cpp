@@ -185,6 +185,7 @@ class Splitter final : public IMeshSplitter {
   uint32_t mergeCavities(int side, uint32_t pieces);
   void writePieces(const SplitOptions& options, SplitResult& result);
   void gatherVertices(MeshData& m);
+  void pieceWeld(MeshWeld& weld, bool closed);
 
   bool convexFastPath_;
   CapTriangulator triangulator_;
@@ -240,6 +241,8 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint32_t> pieceOf_;
   std::vector<uint32_t> order_;
   std::vector<uint64_t> stampRemap_;  // per vertex reference: stamp << 32 | index in the piece
+  std::vector<uint64_t> weldRemap_;   // per welded id: stamp << 32 | position id in the piece
+  std::vector<uint32_t> alias_;       // per welded cut edge: the welded id it was merged into
   uint32_t stampValue_ = 0;
   std::vector<glm::dvec3> pieceCut_;
   std::vector<uint32_t> flipped_;
@@ -692,6 +695,7 @@ void Splitter::buildLoops() {
 // A run never holds two source vertices: those cannot move.
 void Splitter::mergeNearPoints() {
   const double tolerance2 = mergeTolerance_ * mergeTolerance_;
+  alias_.clear();
   if (!(tolerance2 > 0.0)) return;
   auto distance2 = [&](uint32_t a, uint32_t b) {
     const glm::dvec3 d = sectionCut(a) - sectionCut(b);
@@ -730,7 +734,12 @@ void Splitter::mergeNearPoints() {
           const glm::vec3 source = rep < idCount_ ? mesh_->positions[reps_[rep]] : edgeSource_[rep - idCount_];
           for (uint32_t m = i; m < j; ++m) {
             const uint32_t id = loopIds_[loop.begin + (start + m) % n];
-            if (id == rep) continue;
+            if (id == rep || (!alias_.empty() && alias_[id - idCount_] != id)) continue;
+            if (alias_.empty()) {
+              alias_.resize(weldedEdges_.size());
+              std::iota(alias_.begin(), alias_.end(), idCount_);
+            }
+            alias_[id - idCount_] = rep;
             edgeCut_[id - idCount_] = cut;
             edgeSource_[id - idCount_] = source;
             moved = true;
@@ -1043,6 +1052,32 @@ void Splitter::gatherVertices(MeshData& m) {
   }
 }
 
+// The weld of the piece being written: its vertices' welded ids (merged cut points taken to the point
+// they were merged into) numbered in order of first vertex. A capped piece of a closed mesh is closed
+// on these ids: its side triangles and its cap meet along the section's welded ids.
+void Splitter::pieceWeld(MeshWeld& weld, bool closed) {
+  const size_t count = vertexRefs_.size();
+  const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
+  if (weldRemap_.size() < weldedCount) weldRemap_.resize(weldedCount, 0);
+  const uint64_t stamp = uint64_t(stampValue_) << 32;  // the piece's stamp, fresh for this piece
+  weld.positionIds.resize(count);
+  weld.representatives.clear();
+  weld.closed = closed;
+  for (size_t i = 0; i < count; ++i) {
+    uint32_t welded = weldedOfAny(vertexRefs_[i]);
+    // Aliases only ever point at a point that was not merged away when they were set, so chains
+    // (a pinch point in two loops) end.
+    while (!alias_.empty() && welded >= idCount_ && alias_[welded - idCount_] != welded)
+      welded = alias_[welded - idCount_];
+    uint64_t& entry = weldRemap_[welded];
+    if ((entry & ~uint64_t(0xffffffffu)) != stamp) {
+      entry = stamp | weld.representatives.size();
+      weld.representatives.push_back(static_cast<uint32_t>(i));
+    }
+    weld.positionIds[i] = static_cast<uint32_t>(entry);
+  }
+}
+
 void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
   const MeshData& mesh = *mesh_;
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
@@ -1145,6 +1180,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
       ++stampValue_;
       if (stampValue_ == 0) {  // wrapped: clear the stamps once
         std::fill(stampRemap_.begin(), stampRemap_.end(), uint64_t(0));
+        std::fill(weldRemap_.begin(), weldRemap_.end(), uint64_t(0));
         stampValue_ = 1;
       }
       vertexRefs_.clear();
@@ -1179,6 +1215,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
         if (slot == capSlot_) out.capTriangles += count / 3;
       }
       gatherVertices(m);
+      pieceWeld(out.weld, options.cap && container_->closed());
       for (size_t l = 0; l < loops_.size(); ++l) {
         if (loops_[l].capped && loopPiece_[2 * l + side] == p) ++out.capLoops;
       }

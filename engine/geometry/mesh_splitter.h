@@ -60,8 +60,21 @@ struct SplitOptions {
   bool computeMass = true;              // mass properties per piece (cut space)
 };
 
+// The weld of a mesh: what MeshContainer::setMesh works out from the positions (position ids and
+// closedness), kept with the mesh so that cutting it again does not weld it again. Every piece of a
+// split carries the weld of its mesh (see SplitPiece::weld), so re-cutting pieces never re-welds.
+struct MeshWeld {
+  std::vector<uint32_t> positionIds;      // per vertex
+  std::vector<uint32_t> representatives;  // per position id: its first vertex (ascending)
+  bool closed = false;                    // see MeshContainer::closed
+};
+
 struct SplitPiece {
   MeshData mesh;                // in the source space of the container
+  // The position ids of `mesh` as the split made them (vertices at one cut point or one source
+  // position share an id; merged near-coincident cut points too) and whether the piece is closed:
+  // give it to MeshContainer::setMesh with the mesh to cut the piece again without a weld.
+  MeshWeld weld;
   int side = 0;                 // +1 above the plane, -1 below
   uint32_t capTriangles = 0;     // triangles in the cap-material run (earlier cuts' caps included)
   uint32_t capLoops = 0;        // boundary loops capped on this piece (outer borders and holes)
@@ -89,6 +102,13 @@ class MeshContainer {
   // Takes a copy of the mesh (the arrays are reused between calls when sizes allow) and welds it.
   // Returns InvalidInput with a message for malformed data.
   SplitStatus setMesh(const MeshData& mesh, std::string* message = nullptr);
+  // The same with a weld worked out before for this mesh (by weld() of a container that held it, or
+  // a SplitPiece's weld): no welding and no closedness check, so only the copy is paid. The weld is
+  // checked for size and consistency (InvalidInput otherwise); that it matches the positions is the
+  // caller's promise.
+  SplitStatus setMesh(const MeshData& mesh, const MeshWeld& weld, std::string* message = nullptr);
+  // The weld of the mesh held, to keep with it.
+  void copyWeld(MeshWeld& out) const;
 
   // Cut space = model * source position. Non-uniform scale, shear and mirroring are allowed.
   void setTransform(const glm::mat4& model);
@@ -122,6 +142,8 @@ class MeshContainer {
 
  private:
   void weld();
+  bool validate(const MeshData& mesh, std::string* message);
+  void clear();
 
   MeshData mesh_;
   std::vector<glm::dvec3> cutPositions_;

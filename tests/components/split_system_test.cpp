@@ -81,6 +81,36 @@ TEST(SplitConservation, SpinningMovingSphereKeepsMassMomentumAndAngularMomentum)
   EXPECT_NEAR(events[0].piecesMass, events[0].parentMass, 1e-6 * events[0].parentMass);
 }
 
+// A piece carries the weld the split gave it, so cutting it again skips the weld; the cuts of the
+// pieces keep their mass like any other.
+TEST(SplitWelds, PiecesAreCutAgainWithTheWeldTheirSplitGaveThem) {
+  Sim sim;
+  ASSERT_TRUE(sim.load(scenePath("spinning_sphere.json"))) << sim.scene.error;
+  std::vector<SplitEvent> first;
+  while (sim.tick < 60 && first.empty()) first = okEvents(sim.runUntil(sim.tick + 1));
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_FALSE(first[0].weldKnown);  // an authored mesh cut for the first time is welded
+  ASSERT_EQ(first[0].pieces.size(), 2u);
+  for (ecs::Entity piece : first[0].pieces) {
+    ASSERT_TRUE(sim.world.alive(piece));
+    const glm::dvec3 at(sim.world.get<ecs::Transform>(piece).position);
+    SplitRequest r;
+    r.target = piece;
+    r.planeNormal = glm::normalize(glm::dvec3(1.0, 0.2, 0.1));
+    r.planeOffset = glm::dot(r.planeNormal, at);
+    sim.splits.request(r);
+  }
+  const std::vector<SplitEvent> second = okEvents(sim.runUntil(sim.tick + 3));
+  ASSERT_EQ(second.size(), 2u);
+  for (const SplitEvent& ev : second) {
+    EXPECT_TRUE(ev.weldKnown) << "piece " << ev.original.index << " was welded again";
+    EXPECT_GE(ev.pieces.size(), 2u);
+    EXPECT_NEAR(ev.piecesMass, ev.parentMass, 1e-6 * ev.parentMass);
+    EXPECT_GE(ev.setupMilliseconds, 0.0);
+    EXPECT_LE(ev.setupMilliseconds, ev.milliseconds);
+  }
+}
+
 TEST(SplitScenes, TorusCutHorizontallyGivesTwoAnnularCapsAndComesToRest) {
   Sim sim;
   ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;

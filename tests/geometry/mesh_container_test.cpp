@@ -1,6 +1,7 @@
 // MeshContainer: validation, welding, cut space (transform, mirroring, skinning), extraction.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -57,6 +58,56 @@ TEST(MeshContainer, AcceptsAValidMeshAndWeldsItsSeams) {
     EXPECT_LT(ids[v], next);
     EXPECT_EQ(c.mesh().positions[v], c.mesh().positions[c.positionRepresentatives()[ids[v]]]);
   }
+}
+
+TEST(MeshContainer, TakesAWeldWorkedOutBefore) {
+  MeshContainer welded;
+  ASSERT_EQ(welded.setMesh(seamCube()), SplitStatus::Ok);
+  MeshWeld weld;
+  welded.copyWeld(weld);
+  EXPECT_EQ(weld.positionIds.size(), 24u);
+  EXPECT_EQ(weld.representatives.size(), 8u);
+  EXPECT_TRUE(weld.closed);
+  MeshContainer c;
+  std::string why = "stale";
+  ASSERT_EQ(c.setMesh(seamCube(), weld, &why), SplitStatus::Ok);
+  EXPECT_TRUE(why.empty());
+  EXPECT_EQ(c.positionIdCount(), 8u);
+  EXPECT_TRUE(c.closed());
+  EXPECT_NEAR(c.boundsDiagonal(), welded.boundsDiagonal(), 0.0);
+  EXPECT_TRUE(std::equal(c.positionIds().begin(), c.positionIds().end(), welded.positionIds().begin()));
+  // The same split either way.
+  auto splitter = makeConcaveSplitter();
+  SplitResult a, b;
+  const Plane plane{glm::dvec3(0.2, 1.0, 0.1), 0.55};
+  ASSERT_EQ(splitter->split(welded, plane, SplitOptions{}, a), SplitStatus::Ok);
+  ASSERT_EQ(splitter->split(c, plane, SplitOptions{}, b), SplitStatus::Ok);
+  ASSERT_EQ(a.pieces.size(), b.pieces.size());
+  for (size_t k = 0; k < a.pieces.size(); ++k) {
+    EXPECT_EQ(a.pieces[k].mesh.indices, b.pieces[k].mesh.indices);
+    EXPECT_EQ(a.pieces[k].weld.positionIds, b.pieces[k].weld.positionIds);
+  }
+}
+
+TEST(MeshContainer, RejectsAWeldOfAnotherMesh) {
+  MeshWeld weld;
+  MeshContainer welded;
+  ASSERT_EQ(welded.setMesh(seamCube()), SplitStatus::Ok);
+  welded.copyWeld(weld);
+  MeshContainer c;
+  std::string why;
+  MeshWeld shorter = weld;
+  shorter.positionIds.pop_back();
+  EXPECT_EQ(c.setMesh(seamCube(), shorter, &why), SplitStatus::InvalidInput);
+  EXPECT_NE(why.find("weld"), std::string::npos) << why;
+  MeshWeld outOfRange = weld;
+  outOfRange.positionIds[5] = 8;
+  EXPECT_EQ(c.setMesh(seamCube(), outOfRange, &why), SplitStatus::InvalidInput);
+  MeshWeld wrongRepresentative = weld;
+  std::swap(wrongRepresentative.representatives[1], wrongRepresentative.representatives[2]);
+  EXPECT_EQ(c.setMesh(seamCube(), wrongRepresentative, &why), SplitStatus::InvalidInput);
+  EXPECT_EQ(c.positionIdCount(), 0u);  // nothing half set
+  EXPECT_TRUE(c.cutPositions().empty());
 }
 
 TEST(MeshContainer, WeldsWithinTheToleranceScaledToTheMesh) {

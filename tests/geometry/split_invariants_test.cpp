@@ -51,6 +51,7 @@ struct InvariantCase {
   std::vector<std::pair<uint32_t, uint32_t>> convexParts;
   uint32_t planeCount = 100;
   uint64_t seed = 1;
+  const MeshWeld* weld = nullptr;  // set: the container takes this weld instead of welding
 };
 
 std::vector<std::pair<uint32_t, uint32_t>> whole(const MeshData& m) {
@@ -173,7 +174,8 @@ struct Expected {
 };
 
 bool prepare(MeshContainer& container, const InvariantCase& c, std::string& why) {
-  if (container.setMesh(c.mesh, &why) != SplitStatus::Ok) return false;
+  const SplitStatus set = c.weld ? container.setMesh(c.mesh, *c.weld, &why) : container.setMesh(c.mesh, &why);
+  if (set != SplitStatus::Ok) return false;
   if (c.jointMatrices.empty()) {
     container.setTransform(c.model);
     return true;
@@ -277,6 +279,22 @@ std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer
     ::testing::AssertionResult closed = testing::closedAndOriented(src, m.indices, 1e-7 * testing::boundsDiagonal(src));
     if (!closed) problem(at + "not closed and oriented: " + closed.message());
     if (!piece.mass.closed) problem(at + "mass properties say the piece is open");
+    // The piece's own weld: accepted by a container, vertices of one id at one position, closed.
+    {
+      MeshContainer again;
+      std::string why;
+      if (again.setMesh(m, piece.weld, &why) != SplitStatus::Ok) {
+        problem(at + "the container refuses the piece's weld: " + why);
+      } else {
+        if (!again.closed()) problem(at + "the piece's weld says it is open");
+        for (size_t v = 0; v < nv; ++v) {
+          if (m.positions[v] != m.positions[piece.weld.representatives[piece.weld.positionIds[v]]]) {
+            problem(at + "vertex " + std::to_string(v) + " shares a position id with a vertex elsewhere");
+            break;
+          }
+        }
+      }
+    }
     if (!(piece.mass.volume > 0.0)) problem(at + "volume " + std::to_string(piece.mass.volume) + " is not positive");
     reportedVolume += piece.mass.volume;
 
@@ -595,15 +613,20 @@ RecutTotals runRecutGenerations(const std::string& name, const MeshData& base, u
   auto concave = makeConcaveSplitter();
   auto convex = makeConvexSplitter();
   RecutTotals totals;
+  // Pieces are cut again with the weld the split gave them (as the engine does), the base mesh with
+  // a weld of its own.
   std::vector<MeshData> generation{base};
+  std::vector<MeshWeld> welds(1);
   SplitResult result;
   for (int g = 0; g < kGenerations && !generation.empty(); ++g) {
     std::vector<MeshData> next;
+    std::vector<MeshWeld> nextWelds;
     for (size_t k = 0; k < generation.size(); ++k) {
       InvariantCase c;
       c.name = name + "_g" + std::to_string(g) + "_p" + std::to_string(k);
       c.mesh = std::move(generation[k]);
       c.model = randomRigid(rng);
+      c.weld = g > 0 ? &welds[k] : nullptr;
       MeshContainer container;
       std::string why;
       if (!prepare(container, c, why)) {
@@ -650,9 +673,11 @@ RecutTotals runRecutGenerations(const std::string& name, const MeshData& base, u
           for (glm::vec4& t : m.tangents) t = glm::vec4(glm::vec3(glm::normalize(glm::dmat3(model) * glm::dvec3(t))), t.w);
         }
         next.push_back(std::move(m));
+        nextWelds.push_back(std::move(piece.weld));
       }
     }
     generation = std::move(next);
+    welds = std::move(nextWelds);
   }
   std::cout << "[ checked  ] recut / " << name << ": " << totals.splits << " splits over " << kGenerations
             << " generations, " << totals.misses << " planes missing a thin piece, " << totals.failures
