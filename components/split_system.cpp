@@ -654,7 +654,8 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   const double setupStart = nowMs();
   const geometry::MeshWeld* known = hierarchy ? nullptr : s.knownWeld(mr->source);
   ev.weldKnown = known != nullptr;
-  if ((known ? s.container.setMesh(source, *known, &message) : s.container.setMesh(source, &message)) !=
+  // The container shares the renderer's mesh (no copy); a merged hierarchy mesh is copied.
+  if ((hierarchy ? s.container.setMesh(source, &message) : s.container.setMesh(mr->source, known, &message)) !=
       geometry::SplitStatus::Ok)
     return fail(geometry::SplitStatus::InvalidInput, message);
   if (!known && !hierarchy) {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <numeric>
 
 #include "engine/geometry/mesh_splitter.h"
@@ -54,6 +55,8 @@ void fail(std::string* message, const std::string& text) {
 }  // namespace
 
 void MeshContainer::clear() {
+  shared_.reset();
+  source_ = &mesh_;
   mesh_.positions.clear();
   mesh_.indices.clear();
   cutPositions_.clear();
@@ -78,14 +81,31 @@ bool MeshContainer::validate(const MeshData& mesh, std::string* message) {
     return reject("index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
   }
   if (n >= kNone) return reject("too many vertices");
-  for (size_t k = 0; k < mesh.indices.size(); ++k) {
-    if (mesh.indices[k] >= n) {
-      return reject("index " + std::to_string(mesh.indices[k]) + " at position " + std::to_string(k) +
-                    " is out of range (" + std::to_string(n) + " vertices)");
+  // The common case in one pass each that the compiler can vectorise (a maximum; exponent bits all
+  // set mark an infinity or a NaN), the culprit searched only when there is one.
+  uint32_t highest = 0;
+  for (uint32_t i : mesh.indices) highest = std::max(highest, i);
+  if (highest >= n) {
+    for (size_t k = 0; k < mesh.indices.size(); ++k) {
+      if (mesh.indices[k] >= n) {
+        return reject("index " + std::to_string(mesh.indices[k]) + " at position " + std::to_string(k) +
+                      " is out of range (" + std::to_string(n) + " vertices)");
+      }
     }
   }
-  for (size_t i = 0; i < n; ++i) {
-    if (!finite(mesh.positions[i])) return reject("vertex " + std::to_string(i) + " has a NaN or infinite position");
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(uint32_t));
+  uint32_t special = 0;
+  const size_t words = 3 * n;
+  const float* coordinates = n ? &mesh.positions[0].x : nullptr;
+  for (size_t k = 0; k < words; ++k) {
+    uint32_t bits;
+    std::memcpy(&bits, coordinates + k, sizeof bits);
+    special |= (bits & 0x7f800000u) == 0x7f800000u;
+  }
+  if (special) {
+    for (size_t i = 0; i < n; ++i) {
+      if (!finite(mesh.positions[i])) return reject("vertex " + std::to_string(i) + " has a NaN or infinite position");
+    }
   }
   auto badSize = [&](const char* name, size_t size) {
     return reject(std::string("attribute '") + name + "' has " + std::to_string(size) + " entries for " +
@@ -116,46 +136,72 @@ bool MeshContainer::validate(const MeshData& mesh, std::string* message) {
 SplitStatus MeshContainer::setMesh(const MeshData& mesh, std::string* message) {
   if (!validate(mesh, message)) return SplitStatus::InvalidInput;
   mesh_ = mesh;  // copy assignment keeps the capacity of our arrays
-  model_ = glm::dmat4(1.0);
-  jointMatrices_.clear();
-  weld();  // also sets boundsDiagonal_: the cut space is the source space for now
-  const size_t n = mesh_.positions.size();
-  cutPositions_.resize(n);
-  for (size_t i = 0; i < n; ++i) cutPositions_[i] = glm::dvec3(mesh_.positions[i]);
-  mirrored_ = false;
-  cutIsSource_ = true;
-  if (message) message->clear();
-  return SplitStatus::Ok;
+  shared_.reset();  // after the copy: `mesh` may be the shared one
+  source_ = &mesh_;
+  return take(nullptr, message);
 }
 
 SplitStatus MeshContainer::setMesh(const MeshData& mesh, const MeshWeld& weld, std::string* message) {
-  if (!validate(mesh, message)) return SplitStatus::InvalidInput;
-  const size_t n = mesh.positions.size();
-  const size_t ids = weld.representatives.size();
-  // Consistent: one id per vertex, each id below the count, each representative a vertex carrying
-  // its own id, representatives ascending (ids numbered by first vertex).
-  bool consistent = weld.positionIds.size() == n && ids > 0 && ids <= n;
-  for (size_t v = 0; consistent && v < n; ++v) consistent = weld.positionIds[v] < ids;
-  for (size_t k = 0; consistent && k < ids; ++k) {
-    const uint32_t r = weld.representatives[k];
-    consistent = r < n && weld.positionIds[r] == k && (k == 0 || r > weld.representatives[k - 1]);
-  }
-  if (!consistent) {
-    fail(message, "invalid weld: it does not belong to this mesh (" + std::to_string(weld.positionIds.size()) +
-                      " ids for " + std::to_string(n) + " vertices, or ids and representatives disagree)");
+  if (!validate(mesh, message) || !consistent(mesh, weld, message)) return SplitStatus::InvalidInput;
+  mesh_ = mesh;
+  shared_.reset();
+  source_ = &mesh_;
+  return take(&weld, message);
+}
+
+SplitStatus MeshContainer::setMesh(std::shared_ptr<const MeshData> mesh, const MeshWeld* weld, std::string* message) {
+  if (!mesh) {
+    fail(message, "invalid mesh: no mesh given");
     clear();
     return SplitStatus::InvalidInput;
   }
-  mesh_ = mesh;
+  if (!validate(*mesh, message) || (weld && !consistent(*mesh, *weld, message))) return SplitStatus::InvalidInput;
+  shared_ = std::move(mesh);
+  source_ = shared_.get();
+  return take(weld, message);
+}
+
+// A weld fits a mesh when there is one id per vertex, each id below the count, each representative
+// a vertex carrying its own id, representatives ascending (ids numbered by first vertex).
+bool MeshContainer::consistent(const MeshData& mesh, const MeshWeld& weld, std::string* message) {
+  const size_t n = mesh.positions.size();
+  const size_t ids = weld.representatives.size();
+  bool ok = weld.positionIds.size() == n && ids > 0 && ids <= n;
+  uint32_t highest = 0;
+  if (ok) {
+    for (uint32_t id : weld.positionIds) highest = std::max(highest, id);
+    ok = highest < ids;
+  }
+  for (size_t k = 0; ok && k < ids; ++k) {
+    const uint32_t r = weld.representatives[k];
+    ok = r < n && weld.positionIds[r] == k && (k == 0 || r > weld.representatives[k - 1]);
+  }
+  if (!ok) {
+    fail(message, "invalid weld: it does not belong to this mesh (" + std::to_string(weld.positionIds.size()) +
+                      " ids for " + std::to_string(n) + " vertices, or ids and representatives disagree)");
+    clear();
+  }
+  return ok;
+}
+
+// The rest of setMesh once source_ points at a valid mesh: the weld (taken or worked out), the cut
+// space (the source space for now) and its bounds.
+SplitStatus MeshContainer::take(const MeshWeld* weld, std::string* message) {
+  const MeshData& mesh = *source_;
   model_ = glm::dmat4(1.0);
   jointMatrices_.clear();
-  positionIds_.assign(weld.positionIds.begin(), weld.positionIds.end());
-  representatives_.assign(weld.representatives.begin(), weld.representatives.end());
-  positionIdCount_ = static_cast<uint32_t>(ids);
-  closed_ = weld.closed;
+  const size_t n = mesh.positions.size();
   cutPositions_.resize(n);
-  for (size_t i = 0; i < n; ++i) cutPositions_[i] = glm::dvec3(mesh_.positions[i]);
-  updateBounds();
+  for (size_t i = 0; i < n; ++i) cutPositions_[i] = glm::dvec3(mesh.positions[i]);
+  if (weld) {
+    positionIds_.assign(weld->positionIds.begin(), weld->positionIds.end());
+    representatives_.assign(weld->representatives.begin(), weld->representatives.end());
+    positionIdCount_ = static_cast<uint32_t>(representatives_.size());
+    closed_ = weld->closed;
+    updateBounds();
+  } else {
+    this->weld();  // also sets boundsDiagonal_
+  }
   mirrored_ = false;
   cutIsSource_ = true;
   if (message) message->clear();
@@ -170,11 +216,11 @@ void MeshContainer::copyWeld(MeshWeld& out) const {
 
 void MeshContainer::weld() {
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (const glm::vec3& p : mesh_.positions) {
+  for (const glm::vec3& p : source_->positions) {
     lo = glm::min(lo, glm::dvec3(p));
     hi = glm::max(hi, glm::dvec3(p));
   }
-  boundsDiagonal_ = mesh_.positions.empty() ? 0.0 : glm::length(hi - lo);
+  boundsDiagonal_ = source_->positions.empty() ? 0.0 : glm::length(hi - lo);
   const double tolerance = kWeldRelative * boundsDiagonal_;
   if (!weldHashed(tolerance, lo, hi)) weldSorted(tolerance, lo);
   positionIdCount_ = static_cast<uint32_t>(representatives_.size());
@@ -192,7 +238,7 @@ void MeshContainer::weld() {
 bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi) {
   std::vector<uint64_t>& cellKeys_ = weldScratch().cellKeys;
   std::vector<uint32_t>& cellNext_ = weldScratch().cellNext;
-  const size_t n = mesh_.positions.size();
+  const size_t n = source_->positions.size();
   const glm::dvec3 extent = hi - lo;
   const double largest = std::max(extent.x, std::max(extent.y, extent.z));
   // About sqrt(n) / 4 cells along the largest side: a surface of n vertices puts a few in each cell.
@@ -226,7 +272,7 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
   const double reach = tolerance * 1.001;  // generous: the distance test below decides
   uint64_t budget = 64 * uint64_t(n) + 4096;
   for (uint32_t v = 0; v < n; ++v) {
-    const glm::dvec3 p(mesh_.positions[v]);
+    const glm::dvec3 p(source_->positions[v]);
     int64_t c[3];
     int lowSide[3], highSide[3];
     bool near = false;
@@ -246,7 +292,7 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
       if (record == kEmpty) return true;
       for (uint32_t w = static_cast<uint32_t>(record); w != kNone && w < best; w = cellNext_[w]) {
         if (budget-- == 0) return false;
-        const glm::dvec3 d = glm::dvec3(mesh_.positions[w]) - p;
+        const glm::dvec3 d = glm::dvec3(source_->positions[w]) - p;
         if (glm::dot(d, d) <= tolerance2) {
           best = w;
           break;
@@ -291,7 +337,7 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
 void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
   std::vector<uint64_t>& weldScratch_ = weldScratch().sortKeys;
   std::vector<uint32_t>& weldOrder_ = weldScratch().sortOrder;
-  const size_t n = mesh_.positions.size();
+  const size_t n = source_->positions.size();
   const double cell = 2.0 * tolerance;
   auto cellOf = [&](const glm::vec3& p, int axis, double* fraction) -> int64_t {
     if (!(cell > 0.0)) {
@@ -308,7 +354,7 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
   };
   weldScratch_.resize(n);
   for (size_t i = 0; i < n; ++i) {
-    const glm::vec3& p = mesh_.positions[i];
+    const glm::vec3& p = source_->positions[i];
     weldScratch_[i] = key(cellOf(p, 0, nullptr), cellOf(p, 1, nullptr), cellOf(p, 2, nullptr));
   }
   weldOrder_.resize(n);
@@ -321,7 +367,7 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
   representatives_.reserve(n);
   const double tolerance2 = tolerance * tolerance;
   for (uint32_t v = 0; v < n; ++v) {
-    const glm::vec3& p = mesh_.positions[v];
+    const glm::vec3& p = source_->positions[v];
     const glm::dvec3 pd(p);
     int64_t c[3], side[3];
     for (int a = 0; a < 3; ++a) {
@@ -343,7 +389,7 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
                                     [&](uint32_t i, uint64_t value) { return weldScratch_[i] < value; });
       for (auto it = first; it != weldOrder_.end() && weldScratch_[*it] == k && *it < v; ++it) {
         if (*it >= best) break;
-        const glm::dvec3 d = glm::dvec3(mesh_.positions[*it]) - pd;
+        const glm::dvec3 d = glm::dvec3(source_->positions[*it]) - pd;
         if (glm::dot(d, d) <= tolerance2) {
           best = *it;
           break;
@@ -370,11 +416,11 @@ void MeshContainer::computeClosed() {
   std::vector<uint32_t>& cellNext_ = weldScratch().cellNext;
   const uint32_t ids = positionIdCount_;
   edgeStart_.assign(size_t(ids) + 1, 0u);
-  const size_t indexCount = mesh_.indices.size();
+  const size_t indexCount = source_->indices.size();
   auto corners = [&](size_t t, uint32_t (&out)[3]) {
-    out[0] = positionIds_[mesh_.indices[t]];
-    out[1] = positionIds_[mesh_.indices[t + 1]];
-    out[2] = positionIds_[mesh_.indices[t + 2]];
+    out[0] = positionIds_[source_->indices[t]];
+    out[1] = positionIds_[source_->indices[t + 1]];
+    out[2] = positionIds_[source_->indices[t + 2]];
     return out[0] != out[1] && out[1] != out[2] && out[2] != out[0];
   };
   size_t edges = 0;
@@ -450,9 +496,9 @@ void MeshContainer::setTransform(const glm::mat4& model) {
   const bool identity = model == glm::mat4(1.f);
   if (identity && cutIsSource_) return;  // the cut positions, bounds and winding are those already set
   cutIsSource_ = identity;
-  cutPositions_.resize(mesh_.positions.size());
+  cutPositions_.resize(source_->positions.size());
   for (size_t i = 0; i < cutPositions_.size(); ++i) {
-    cutPositions_[i] = glm::dvec3(model_ * glm::dvec4(glm::dvec3(mesh_.positions[i]), 1.0));
+    cutPositions_[i] = glm::dvec3(model_ * glm::dvec4(glm::dvec3(source_->positions[i]), 1.0));
   }
   mirrored_ = glm::determinant(glm::dmat3(model_)) < 0.0;
   updateBounds();
@@ -460,11 +506,11 @@ void MeshContainer::setTransform(const glm::mat4& model) {
 
 SplitStatus MeshContainer::setSkinningPose(std::span<const glm::mat4> jointMatrices, const glm::mat4& model,
                                            std::string* message) {
-  if (mesh_.positions.empty()) {
+  if (source_->positions.empty()) {
     fail(message, "skinning pose: the container holds no mesh");
     return SplitStatus::InvalidInput;
   }
-  if (mesh_.joints.empty() || mesh_.weights.size() != mesh_.joints.size()) {
+  if (source_->joints.empty() || source_->weights.size() != source_->joints.size()) {
     fail(message, "skinning pose: the mesh has no joints and weights");
     return SplitStatus::InvalidInput;
   }
@@ -478,12 +524,12 @@ SplitStatus MeshContainer::setSkinningPose(std::span<const glm::mat4> jointMatri
       }
     }
   }
-  const size_t n = mesh_.positions.size();
+  const size_t n = source_->positions.size();
   for (size_t i = 0; i < n; ++i) {
     for (int k = 0; k < 4; ++k) {
-      if (mesh_.weights[i][k] != 0.f && mesh_.joints[i][k] >= jointMatrices.size()) {
+      if (source_->weights[i][k] != 0.f && source_->joints[i][k] >= jointMatrices.size()) {
         fail(message, "skinning pose: vertex " + std::to_string(i) + " uses joint " +
-                          std::to_string(mesh_.joints[i][k]) + " of " + std::to_string(jointMatrices.size()));
+                          std::to_string(source_->joints[i][k]) + " of " + std::to_string(jointMatrices.size()));
         return SplitStatus::InvalidInput;
       }
     }
@@ -520,10 +566,10 @@ SplitStatus MeshContainer::setSkinningPose(std::span<const glm::mat4> jointMatri
   cutPositions_.resize(n);
   size_t negative = 0;
   for (size_t i = 0; i < n; ++i) {
-    const glm::vec4& w = mesh_.weights[i];
-    const glm::u16vec4& jt = mesh_.joints[i];
+    const glm::vec4& w = source_->weights[i];
+    const glm::u16vec4& jt = source_->joints[i];
     const double total = double(w[0]) + double(w[1]) + double(w[2]) + double(w[3]);
-    const glm::dvec4 p(glm::dvec3(mesh_.positions[i]), 1.0);
+    const glm::dvec4 p(glm::dvec3(source_->positions[i]), 1.0);
     glm::dmat4x3 blend;
     if (total > 0.0) {
       blend = glm::dmat4x3(0.0);
@@ -554,14 +600,14 @@ void MeshContainer::extractTriangles(std::span<const uint32_t> triangles, MeshDa
   out.weights.clear();
   out.indices.clear();
   out.submeshes.clear();
-  const size_t triangleCount = mesh_.indices.size() / 3;
+  const size_t triangleCount = source_->indices.size() / 3;
   // Group the triangles by their run (runs in source order), keeping the given order inside a run.
   auto runOf = [&](uint32_t t) -> uint32_t {
-    if (mesh_.submeshes.empty()) return 0;
+    if (source_->submeshes.empty()) return 0;
     const uint32_t index = t * 3;
-    auto it = std::upper_bound(mesh_.submeshes.begin(), mesh_.submeshes.end(), index,
+    auto it = std::upper_bound(source_->submeshes.begin(), source_->submeshes.end(), index,
                                [](uint32_t value, const SubMesh& run) { return value < run.firstIndex; });
-    return static_cast<uint32_t>(it - mesh_.submeshes.begin()) - 1;
+    return static_cast<uint32_t>(it - source_->submeshes.begin()) - 1;
   };
   std::vector<std::pair<uint64_t, uint32_t>> order;  // (run << 32 | position in list, triangle)
   order.reserve(triangles.size());
@@ -570,26 +616,26 @@ void MeshContainer::extractTriangles(std::span<const uint32_t> triangles, MeshDa
     order.push_back({(uint64_t(runOf(triangles[k])) << 32) | uint64_t(k), triangles[k]});
   }
   std::sort(order.begin(), order.end());
-  std::vector<uint32_t> remap(mesh_.positions.size(), kNone);
+  std::vector<uint32_t> remap(source_->positions.size(), kNone);
   auto copyVertex = [&](uint32_t v) {
-    out.positions.push_back(mesh_.positions[v]);
-    if (!mesh_.normals.empty()) out.normals.push_back(mesh_.normals[v]);
-    if (!mesh_.tangents.empty()) out.tangents.push_back(mesh_.tangents[v]);
-    if (!mesh_.uv0.empty()) out.uv0.push_back(mesh_.uv0[v]);
-    if (!mesh_.uv1.empty()) out.uv1.push_back(mesh_.uv1[v]);
-    if (!mesh_.colors.empty()) out.colors.push_back(mesh_.colors[v]);
-    if (!mesh_.joints.empty()) out.joints.push_back(mesh_.joints[v]);
-    if (!mesh_.weights.empty()) out.weights.push_back(mesh_.weights[v]);
+    out.positions.push_back(source_->positions[v]);
+    if (!source_->normals.empty()) out.normals.push_back(source_->normals[v]);
+    if (!source_->tangents.empty()) out.tangents.push_back(source_->tangents[v]);
+    if (!source_->uv0.empty()) out.uv0.push_back(source_->uv0[v]);
+    if (!source_->uv1.empty()) out.uv1.push_back(source_->uv1[v]);
+    if (!source_->colors.empty()) out.colors.push_back(source_->colors[v]);
+    if (!source_->joints.empty()) out.joints.push_back(source_->joints[v]);
+    if (!source_->weights.empty()) out.weights.push_back(source_->weights[v]);
   };
   uint32_t currentRun = kNone;
   for (const auto& [runKey, t] : order) {
     const uint32_t run = static_cast<uint32_t>(runKey >> 32);
-    if (!mesh_.submeshes.empty() && run != currentRun) {
-      out.submeshes.push_back({static_cast<uint32_t>(out.indices.size()), 0u, mesh_.submeshes[run].materialId});
+    if (!source_->submeshes.empty() && run != currentRun) {
+      out.submeshes.push_back({static_cast<uint32_t>(out.indices.size()), 0u, source_->submeshes[run].materialId});
       currentRun = run;
     }
     for (int c = 0; c < 3; ++c) {
-      const uint32_t v = mesh_.indices[3 * size_t(t) + c];
+      const uint32_t v = source_->indices[3 * size_t(t) + c];
       if (remap[v] == kNone) {
         remap[v] = static_cast<uint32_t>(out.positions.size());
         copyVertex(v);

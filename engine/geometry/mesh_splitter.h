@@ -98,6 +98,8 @@ struct SplitResult {
 class MeshContainer {
  public:
   MeshContainer() = default;
+  MeshContainer(const MeshContainer&) = delete;  // source_ may point into the container itself
+  MeshContainer& operator=(const MeshContainer&) = delete;
 
   // Takes a copy of the mesh (the arrays are reused between calls when sizes allow) and welds it.
   // Returns InvalidInput with a message for malformed data.
@@ -107,6 +109,9 @@ class MeshContainer {
   // checked for size and consistency (InvalidInput otherwise); that it matches the positions is the
   // caller's promise.
   SplitStatus setMesh(const MeshData& mesh, const MeshWeld& weld, std::string* message = nullptr);
+  // The same without a copy: the container shares the mesh (which must not change while it is held).
+  // `weld` may be null (the mesh is welded) or a weld worked out before, as above.
+  SplitStatus setMesh(std::shared_ptr<const MeshData> mesh, const MeshWeld* weld, std::string* message = nullptr);
   // The weld of the mesh held, to keep with it.
   void copyWeld(MeshWeld& out) const;
 
@@ -119,7 +124,7 @@ class MeshContainer {
   SplitStatus setSkinningPose(std::span<const glm::mat4> jointMatrices, const glm::mat4& model,
                               std::string* message = nullptr);
 
-  const MeshData& mesh() const { return mesh_; }
+  const MeshData& mesh() const { return *source_; }
   std::span<const glm::dvec3> cutPositions() const { return cutPositions_; }
   // Position id per vertex: vertices at the same position (within the weld tolerance) share an id.
   std::span<const uint32_t> positionIds() const { return positionIds_; }
@@ -143,9 +148,13 @@ class MeshContainer {
  private:
   void weld();
   bool validate(const MeshData& mesh, std::string* message);
+  bool consistent(const MeshData& mesh, const MeshWeld& weld, std::string* message);
+  SplitStatus take(const MeshWeld* weld, std::string* message);
   void clear();
 
-  MeshData mesh_;
+  MeshData mesh_;                          // the copy, when the mesh was given by reference
+  std::shared_ptr<const MeshData> shared_;  // the mesh, when shared
+  const MeshData* source_ = &mesh_;         // the mesh held: mesh_ or *shared_
   std::vector<glm::dvec3> cutPositions_;
   std::vector<uint32_t> positionIds_;
   uint32_t positionIdCount_ = 0;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -87,6 +88,27 @@ TEST(MeshContainer, TakesAWeldWorkedOutBefore) {
     EXPECT_EQ(a.pieces[k].mesh.indices, b.pieces[k].mesh.indices);
     EXPECT_EQ(a.pieces[k].weld.positionIds, b.pieces[k].weld.positionIds);
   }
+}
+
+TEST(MeshContainer, SharesAMeshWithoutCopyingIt) {
+  auto shared = std::make_shared<const MeshData>(seamCube());
+  MeshContainer c;
+  std::string why;
+  ASSERT_EQ(c.setMesh(shared, nullptr, &why), SplitStatus::Ok) << why;
+  EXPECT_EQ(&c.mesh(), shared.get());
+  EXPECT_EQ(c.positionIdCount(), 8u);
+  EXPECT_TRUE(c.closed());
+  MeshWeld weld;
+  c.copyWeld(weld);
+  MeshContainer d;
+  ASSERT_EQ(d.setMesh(shared, &weld, &why), SplitStatus::Ok) << why;
+  EXPECT_EQ(d.positionIdCount(), 8u);
+  // Taking a copy afterwards (even of the shared mesh itself) stops sharing.
+  ASSERT_EQ(d.setMesh(*shared, &why), SplitStatus::Ok);
+  EXPECT_NE(&d.mesh(), shared.get());
+  EXPECT_EQ(d.mesh().positions, shared->positions);
+  EXPECT_EQ(c.setMesh(std::shared_ptr<const MeshData>(), nullptr, &why), SplitStatus::InvalidInput);
+  EXPECT_FALSE(why.empty());
 }
 
 TEST(MeshContainer, RejectsAWeldOfAnotherMesh) {
