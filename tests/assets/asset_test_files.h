@@ -1,5 +1,6 @@
-// Test helpers for the mesh readers: a temporary folder, and the unit cube [0,1]^3 written in every
-// format the engine reads (built here byte by byte, so the tests need no files from elsewhere).
+// Test helpers for the mesh readers: a temporary folder, the unit cube [0,1]^3 written in every
+// format the engine reads (built here byte by byte, so the tests need no files from elsewhere), and
+// where the set-up puts the npm packages that some tests use when they are there.
 #pragma once
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -52,6 +54,13 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// The folder whose node_modules/ holds the npm packages tools/install-deps.sh installs for the tests
+// (gltf-validator, bunny): CLEAVE_NPM_DIR, else <build>/npm, where ./cleave test and sanitize put them.
+inline std::filesystem::path npmDir() {
+  if (const char* env = std::getenv("CLEAVE_NPM_DIR"); env != nullptr && *env != '\0') return env;
+  return std::filesystem::path(CLEAVE_BINARY_DIR) / "npm";
+}
 
 // The unit cube: 8 corners and 6 quads, counter-clockwise seen from outside.
 inline const float kCubeCorners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},

@@ -1,7 +1,8 @@
 // The skinned GLB writer and `cleave-split --pose`: a skinned mesh with its skeleton and clips
 // written as GLB reads back through loadModel with the same joints, clips, triangles and skin, and
 // poses the same; pieces cut in a pose keep their skin and animations; the Khronos validator (when
-// node and the npm package gltf-validator are there) reports no error for them.
+// node and the npm package gltf-validator are there: ./cleave test installs it into <build>/npm)
+// reports no error for them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -218,16 +219,23 @@ int run(const std::string& command, std::string& output) {
 std::string quote(const std::string& text) { return "'" + text + "'"; }
 std::string splitTool() { return std::string(CLEAVE_BINARY_DIR) + "/bin/cleave-split"; }
 
-// The folder holding node_modules/gltf-validator: CLEAVE_GLTF_VALIDATOR_DIR, else
-// <build>/gltf-validator; empty when neither has it or node is missing.
-std::string validatorDir() {
+// The folder holding node_modules/gltf-validator: CLEAVE_GLTF_VALIDATOR_DIR, else the npm folder of
+// the set-up (test::npmDir(), <build>/npm). Empty, with the reason in `why`, when the package is not
+// there or node is missing.
+std::string validatorDir(std::string& why) {
   const char* env = std::getenv("CLEAVE_GLTF_VALIDATOR_DIR");
-  const std::filesystem::path dir = env ? std::filesystem::path(env)
-                                        : std::filesystem::path(CLEAVE_BINARY_DIR) / "gltf-validator";
+  const std::filesystem::path dir = env != nullptr && *env != '\0' ? std::filesystem::path(env) : test::npmDir();
   std::error_code ec;
-  if (!std::filesystem::exists(dir / "node_modules" / "gltf-validator" / "package.json", ec)) return {};
+  if (!std::filesystem::exists(dir / "node_modules" / "gltf-validator" / "package.json", ec)) {
+    why = "npm package gltf-validator not installed (no " + (dir / "node_modules" / "gltf-validator").string() +
+          "; tools/install-deps.sh installs it, see docs/cleave-split.md)";
+    return {};
+  }
   std::string output;
-  if (run("node --version 2>/dev/null", output) != 0) return {};
+  if (run("node --version 2>/dev/null", output) != 0) {
+    why = "node not found on the path";
+    return {};
+  }
   return std::filesystem::absolute(dir, ec).string();
 }
 
@@ -282,8 +290,9 @@ TEST(CleaveSplitTool, PoseCutsASkinnedGlbIntoSkinnedAnimatedPieces) {
   EXPECT_EQ(indexReport["pose"]["clip"], "walk");
   EXPECT_EQ(indexReport["pieces"].size(), report["pieces"].size());
 
-  const std::string validator = validatorDir();
-  if (validator.empty()) GTEST_SKIP() << "node or gltf-validator not installed (see docs/cleave-split.md)";
+  std::string why;
+  const std::string validator = validatorDir(why);
+  if (validator.empty()) GTEST_SKIP() << why;
   std::string command = "CLEAVE_GLTF_VALIDATOR_DIR=" + quote(validator) + " node " +
                         quote(std::string(CLEAVE_SOURCE_DIR) + "/tools/gltf-validate/validate.cjs") + ' ' +
                         quote(input);

@@ -1,8 +1,8 @@
 // Runs the Khronos glTF validator (npm package gltf-validator) on .gltf/.glb files and prints one
 // JSON line per file: {file, errors, warnings, infos, messages}. Exit status 1 when any file has an
 // error. The package is looked up in CLEAVE_GLTF_VALIDATOR_DIR (a folder where
-// `npm install gltf-validator` was run, for example the build folder's gltf-validator/), else in the
-// usual places. See docs/cleave-split.md.
+// `npm install gltf-validator` was run, for example the build folder's npm/, where the set-up puts
+// it), else in the usual places. See docs/cleave-split.md.
 'use strict';
 const fs = require('fs');
 const path = require('path');
