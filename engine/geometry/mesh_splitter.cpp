@@ -243,6 +243,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint64_t> stampRemap_;  // per vertex reference: stamp << 32 | index in the piece
   std::vector<uint64_t> weldRemap_;   // per welded id: stamp << 32 | position id in the piece
   std::vector<uint32_t> alias_;       // per welded cut edge: the welded id it was merged into
+  std::vector<uint32_t> extraWelded_;  // per vertex reference past the source: its welded id
   uint32_t stampValue_ = 0;
   std::vector<glm::dvec3> pieceCut_;
   std::vector<uint32_t> flipped_;
@@ -1064,7 +1065,8 @@ void Splitter::pieceWeld(MeshWeld& weld, bool closed) {
   weld.representatives.clear();
   weld.closed = closed;
   for (size_t i = 0; i < count; ++i) {
-    uint32_t welded = weldedOfAny(vertexRefs_[i]);
+    const uint32_t ref = vertexRefs_[i];
+    uint32_t welded = ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_];
     // Aliases only ever point at a point that was not merged away when they were set, so chains
     // (a pinch point in two loops) end.
     while (!alias_.empty() && welded >= idCount_ && alias_[welded - idCount_] != welded)
@@ -1083,7 +1085,15 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
   const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
   const uint32_t refCount = capBase_ + 2 * loopVertices;
-  auto weldedRef = [&](uint32_t ref) { return weldedOfAny(ref); };
+  // Welded ids by vertex reference: the container's ids for source vertices, a table for the rest.
+  extraWelded_.resize(refCount - sourceCount_);
+  for (uint32_t ref = sourceCount_; ref < refCount; ++ref) extraWelded_[ref - sourceCount_] = weldedOfAny(ref);
+  const uint32_t* sourceWelded = ids_.data();
+  const uint32_t* extraWelded = extraWelded_.data();
+  const uint32_t sourceCount = sourceCount_;
+  auto weldedRef = [&](uint32_t ref) {
+    return ref < sourceCount ? sourceWelded[ref] : extraWelded[ref - sourceCount];
+  };
   if (stampRemap_.size() < refCount) stampRemap_.resize(refCount, 0);
   label_.resize(weldedCount);
 
