@@ -154,6 +154,20 @@ std::string_view LineScanner::rest() {
   return r;
 }
 
+void PolygonTriangulator::append(std::span<const uint32_t> polygon,
+                                 std::span<const glm::vec3> corners,
+                                 std::vector<uint32_t>& indices) {
+  if (polygon.size() == 3 || corners.size() != polygon.size()) {
+    for (size_t k = 1; k + 1 < polygon.size(); ++k) {
+      indices.insert(indices.end(), {polygon[0], polygon[k], polygon[k + 1]});
+    }
+    return;
+  }
+  triangles_.clear();
+  triangulator_.triangulateFace(corners, triangles_);
+  for (uint32_t k : triangles_) indices.push_back(polygon[k]);
+}
+
 std::string quoted(std::string_view token) {
   constexpr size_t kMax = 32;
   std::string out = "'";

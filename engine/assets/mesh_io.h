@@ -6,7 +6,8 @@
 // Units: whatever the file uses (the engine reads them as metres); no rescaling, no axis change.
 // Winding: files are read as counter-clockwise seen from outside (the convention of all five formats)
 // and written the same way. Polygons with more than three corners are fan-triangulated from their
-// first corner.
+// first corner when convex, ear-clipped in their plane otherwise (a concave face's fan folds over
+// itself and leaves the mesh self-intersecting).
 //
 // Ownership: every result owns its mesh; nothing points into the input bytes or the file.
 //

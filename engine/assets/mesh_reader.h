@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/assets/mesh_io.h"
+#include "engine/geometry/cap_triangulator.h"
 
 namespace cleave::assets::detail {
 
@@ -70,6 +71,23 @@ bool writeBytes(const std::string& path, const void* data, size_t size, std::str
 // result names the file.
 MeshWriteResult saveSerialised(const std::string& path, MeshWriteResult serialised,
                                const std::vector<uint8_t>& bytes);
+
+// Triangulates the polygon faces of a file. A convex face is fanned from its first corner; any
+// other face is ear-clipped in its plane, because the fan of a concave face folds over itself and
+// makes the mesh intersect itself (see geometry::CapTriangulator::triangulateFace). Scratch memory
+// is kept between faces.
+class PolygonTriangulator {
+ public:
+  // Appends the triangles of the face whose vertices are `polygon` to `indices`; corners[k] is the
+  // position of polygon[k]. Without corners (a PLY file may list its faces before its vertices) the
+  // face is fanned.
+  void append(std::span<const uint32_t> polygon, std::span<const glm::vec3> corners,
+              std::vector<uint32_t>& indices);
+
+ private:
+  geometry::CapTriangulator triangulator_;
+  std::vector<uint32_t> triangles_;
+};
 
 // Short printable rendering of a token for messages ("..." when cut).
 std::string quoted(std::string_view token);

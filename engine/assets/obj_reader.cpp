@@ -1,4 +1,4 @@
-// Wavefront OBJ reader: v (optionally with r g b), vt, vn, f with any polygon size (fan-triangulated)
+// Wavefront OBJ reader: v (optionally with r g b), vt, vn, f with any polygon size (triangulated)
 // and 1-based or negative (relative) indices, usemtl as material runs. Corners with the same
 // v/vt/vn triple become one vertex, so a closed OBJ stays closed by index where its seams allow.
 #include <cmath>
@@ -72,6 +72,8 @@ MeshReadResult readObj(std::span<const uint8_t> bytes, const std::string& name) 
   bool anyUv = false;
   bool allNormals = true;
   std::vector<uint32_t> face;
+  std::vector<glm::vec3> facePositions;
+  PolygonTriangulator faces;
 
   auto materialId = [&](std::string_view materialName) {
     for (size_t i = 0; i < materials.size(); ++i) {
@@ -126,6 +128,7 @@ MeshReadResult readObj(std::span<const uint8_t> bytes, const std::string& name) 
       normals.emplace_back(n[0], n[1], n[2]);
     } else if (keyword == "f" || keyword == "fo") {
       face.clear();
+      facePositions.clear();
       for (std::string_view token = scanner.nextToken(); !token.empty();
            token = scanner.nextToken()) {
         Corner corner;
@@ -154,6 +157,7 @@ MeshReadResult readObj(std::span<const uint8_t> bytes, const std::string& name) 
         auto [it, inserted] = cornerIds.try_emplace(corner, static_cast<uint32_t>(vertices.size()));
         if (inserted) vertices.push_back(corner);
         face.push_back(it->second);
+        facePositions.push_back(positions[corner.v]);
       }
       if (face.size() < 3) {
         return failureAt(name, scanner.lineNumber(), "a face needs at least 3 corners");
@@ -164,11 +168,7 @@ MeshReadResult readObj(std::span<const uint8_t> bytes, const std::string& name) 
         mesh.submeshes.push_back(
             geometry::SubMesh{static_cast<uint32_t>(mesh.indices.size()), 0, material});
       }
-      for (size_t k = 1; k + 1 < face.size(); ++k) {
-        mesh.indices.push_back(face[0]);
-        mesh.indices.push_back(face[k]);
-        mesh.indices.push_back(face[k + 1]);
-      }
+      faces.append(face, facePositions, mesh.indices);
       mesh.submeshes.back().indexCount =
           static_cast<uint32_t>(mesh.indices.size()) - mesh.submeshes.back().firstIndex;
     } else if (keyword == "usemtl") {

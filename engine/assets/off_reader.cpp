@@ -152,6 +152,9 @@ MeshReadResult readOff(std::span<const uint8_t> bytes, const std::string& name) 
     }
   }
 
+  PolygonTriangulator faces;
+  std::vector<uint32_t> polygon;
+  std::vector<glm::vec3> cornerPositions;
   for (int64_t f = 0; f < faceCount; ++f) {
     if (!nextDataLine()) {
       return failure(name, "file ends after " + std::to_string(f) + " of " +
@@ -165,7 +168,8 @@ MeshReadResult readOff(std::span<const uint8_t> bytes, const std::string& name) 
     if (corners < 3) {
       return failureAt(name, scanner.lineNumber(), "a face needs at least 3 corners");
     }
-    uint32_t first = 0, previous = 0;
+    polygon.clear();
+    cornerPositions.clear();
     for (int64_t k = 0; k < corners; ++k) {
       const std::string_view t = scanner.nextToken();
       int64_t index = 0;
@@ -179,15 +183,10 @@ MeshReadResult readOff(std::span<const uint8_t> bytes, const std::string& name) 
                          "index " + std::to_string(index) + " out of range (" +
                              std::to_string(vertexCount) + " vertices)");
       }
-      const uint32_t current = static_cast<uint32_t>(index);
-      if (k == 0) first = current;
-      if (k >= 2) {
-        mesh.indices.push_back(first);
-        mesh.indices.push_back(previous);
-        mesh.indices.push_back(current);
-      }
-      previous = current;
+      polygon.push_back(static_cast<uint32_t>(index));
+      cornerPositions.push_back(mesh.positions[polygon.back()]);
     }
+    faces.append(polygon, cornerPositions, mesh.indices);
   }
   if (mesh.normals.size() == mesh.positions.size()) {
     bool degenerate = false;

@@ -1,7 +1,7 @@
 // Stanford PLY reader: ascii, binary_little_endian and binary_big_endian. Reads the `vertex` element
 // (x y z; nx ny nz; u v, s t, texture_u texture_v or texture_s texture_t; red green blue [alpha])
 // and the `face` element's vertex_indices (or vertex_index) list with any count and index types,
-// fan-triangulating polygons. Every other element and property is parsed and skipped. Each
+// triangulating polygons. Every other element and property is parsed and skipped. Each
 // element's declared count is checked against the bytes that remain before anything is allocated.
 #include <array>
 #include <cmath>
@@ -239,6 +239,8 @@ MeshReadResult readPly(std::span<const uint8_t> bytes, const std::string& name) 
   std::array<bool, kRoleCount> present{};
   std::array<double, kRoleCount> colorScale{};
   std::vector<uint32_t> polygon;
+  std::vector<glm::vec3> polygonPositions;
+  PolygonTriangulator faces;
   std::string reason;
   auto bodyError = [&](const Element& element, uint64_t index) {
     const std::string where = "in " + element.name + " " + std::to_string(index) + ": " + reason;
@@ -330,11 +332,13 @@ MeshReadResult readPly(std::span<const uint8_t> bytes, const std::string& name) 
             reason = "a face needs at least 3 corners";
             return bodyError(element, e);
           }
-          for (size_t k = 1; k + 1 < polygon.size(); ++k) {
-            mesh.indices.push_back(polygon[0]);
-            mesh.indices.push_back(polygon[k]);
-            mesh.indices.push_back(polygon[k + 1]);
+          // A file may list its faces before its vertices: such a face has no positions yet and
+          // is fanned.
+          polygonPositions.clear();
+          for (uint32_t id : polygon) {
+            if (id < mesh.positions.size()) polygonPositions.push_back(mesh.positions[id]);
           }
+          faces.append(polygon, polygonPositions, mesh.indices);
         }
       }
       if (isVertex) {

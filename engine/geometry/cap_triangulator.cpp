@@ -631,6 +631,63 @@ bool CapTriangulator::triangulateConvex(std::span<const glm::dvec2> points, CapR
   return finish(points, std::span<const CapRing>(&ring, 1), triangles, outputStart);
 }
 
+bool CapTriangulator::triangulateFace(std::span<const glm::vec3> corners,
+                                      std::vector<uint32_t>& triangles) {
+  const uint32_t n = static_cast<uint32_t>(corners.size());
+  auto fan = [&] {
+    for (uint32_t k = 1; k + 1 < n; ++k) triangles.insert(triangles.end(), {0u, k, k + 1});
+  };
+  if (n <= 3) {
+    fan();
+    return n == 3;
+  }
+  // The Newell normal: twice the vector area, whatever the face's small departures from a plane.
+  // Summed about the first corner so the terms stay small next to the coordinates.
+  const glm::dvec3 origin(corners[0]);
+  glm::dvec3 normal(0.0);
+  for (uint32_t k = 1; k + 1 < n; ++k) {
+    normal += glm::cross(glm::dvec3(corners[k]) - origin, glm::dvec3(corners[k + 1]) - origin);
+  }
+  const double length = glm::length(normal);
+  if (!(length > 0.0) || !std::isfinite(length)) {
+    fan();
+    return false;
+  }
+  normal /= length;
+  // Any unit u across the normal with v = normal x u makes u x v = normal, so the face projects
+  // counter-clockwise (positive area) and the triangles keep its winding.
+  const glm::dvec3 an = glm::abs(normal);
+  glm::dvec3 axis(0.0);
+  axis[an.x <= an.y && an.x <= an.z ? 0 : (an.y <= an.z ? 1 : 2)] = 1.0;
+  const glm::dvec3 u = glm::normalize(glm::cross(axis, normal));
+  const glm::dvec3 v = glm::cross(normal, u);
+  facePoints_.resize(n);
+  for (uint32_t k = 0; k < n; ++k) {
+    const glm::dvec3 d = glm::dvec3(corners[k]) - origin;
+    facePoints_[k] = {glm::dot(d, u), glm::dot(d, v)};
+  }
+  // Strictly convex with one turn: the fan is right, and it is what every reader made before, so a
+  // convex face (nearly all of them) triangulates exactly as it always did.
+  double turning = 0.0;
+  bool convex = true;
+  for (uint32_t k = 0; k < n && convex; ++k) {
+    const glm::dvec2 a = facePoints_[k == 0 ? n - 1 : k - 1], b = facePoints_[k],
+                     c = facePoints_[(k + 1) % n];
+    const glm::dvec2 e = b - a, f = c - b;
+    const double cross = e.x * f.y - e.y * f.x;
+    convex = cross > 0.0;
+    turning += std::atan2(cross, glm::dot(e, f));
+  }
+  if (convex && turning < 3.0 * 3.14159265358979323846) {
+    fan();
+    return true;
+  }
+  const CapRing ring{0, n};
+  if (triangulate(facePoints_, std::span<const CapRing>(&ring, 1), triangles)) return true;
+  fan();
+  return false;
+}
+
 // Fans the collinear points back in, then checks areas: the unsigned triangle areas must add up to
 // the polygon area (no overlap, no gap).
 bool CapTriangulator::finish(std::span<const glm::dvec2> points, std::span<const CapRing> rings,

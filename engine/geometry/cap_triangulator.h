@@ -1,4 +1,5 @@
 // Triangulation of the cap polygons of a split: planar polygons with holes, in 2D cap coordinates.
+// (Also of the polygon faces of mesh files, for the readers: see triangulateFace.)
 //
 // Input: points (2D, metres in the cap plane) and rings as [begin, end) ranges of those points. The
 // first ring of a polygon is its outer border, counter-clockwise (positive signed area); the others
@@ -44,6 +45,16 @@ class CapTriangulator {
   // once collinear points are removed, or when fanning them back in inverts a triangle.
   bool triangulateConvex(std::span<const glm::dvec2> points, CapRing ring,
                          std::vector<uint32_t>& triangles, double tolerance = 0.0);
+
+  // One polygon face of a mesh file (OBJ, OFF and PLY faces of more than three corners):
+  // `corners` in the face's order, nearly planar. Appends corners.size() - 2 triangles of corner
+  // numbers (0 .. corners.size() - 1), wound like the face. A strictly convex face is fanned from
+  // its first corner, the usual reader triangulation; any other face is projected on its plane
+  // (the Newell normal) and ear-clipped, so that a concave face does not fold over itself as its
+  // fan would (a fan from a corner that does not see the whole face has inverted triangles: the
+  // mesh intersects itself and no cut through the fold can be capped). When the projected face is
+  // degenerate or crosses itself, the fan is appended all the same and false is returned.
+  bool triangulateFace(std::span<const glm::vec3> corners, std::vector<uint32_t>& triangles);
 
   // Twice the signed area of a ring (positive counter-clockwise).
   static double twiceSignedArea(std::span<const glm::dvec2> points, CapRing ring);
@@ -103,6 +114,7 @@ class CapTriangulator {
   bool hashed_ = false;
   double tolerance_ = 0.0;  // of the current call
   bool strict_ = false;     // no inverted sliver accepted (triangulateConvex)
+  std::vector<glm::dvec2> facePoints_;  // triangulateFace: the corners in the face's plane
 };
 
 }  // namespace cleave::geometry

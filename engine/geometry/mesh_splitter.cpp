@@ -1064,6 +1064,7 @@ void Splitter::pieceWeld(MeshWeld& weld, bool closed) {
   weld.positionIds.resize(count);
   weld.representatives.clear();
   weld.closed = closed;
+  weld.inverted = closed && container_->inverted();  // pieces keep the winding of the mesh
   for (size_t i = 0; i < count; ++i) {
     const uint32_t ref = vertexRefs_[i];
     uint32_t welded = ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_];

@@ -8,7 +8,8 @@
 // attributes with the same edge parameter, so UVs, normals, tangents and skin data stay exact.
 //
 // Winding: input and output triangles are counter-clockwise seen from outside. A mirroring model
-// matrix (negative determinant) is detected and the winding in cut space is flipped accordingly.
+// matrix (negative determinant) is detected and the winding in cut space is flipped accordingly; so
+// is a closed mesh wound inwards (negative signed volume), whose pieces keep its winding.
 //
 // Failure: split() returns a status; on anything but Ok the result holds no pieces and the caller
 // keeps its original object. No exceptions.
@@ -67,6 +68,7 @@ struct MeshWeld {
   std::vector<uint32_t> positionIds;      // per vertex
   std::vector<uint32_t> representatives;  // per position id: its first vertex (ascending)
   bool closed = false;                    // see MeshContainer::closed
+  bool inverted = false;                  // closed and wound inwards: see MeshContainer::inverted
 };
 
 struct SplitPiece {
@@ -129,7 +131,13 @@ class MeshContainer {
   // Position id per vertex: vertices at the same position (within the weld tolerance) share an id.
   std::span<const uint32_t> positionIds() const { return positionIds_; }
   uint32_t positionIdCount() const { return positionIdCount_; }
+  // True when the cut-space winding is clockwise seen from outside: a mirroring transform or pose,
+  // or else a closed mesh wound inwards (exclusive or). The splitter then flips every triangle for
+  // its work, so loops and caps follow the mesh's own winding, and flips back on output.
   bool mirrored() const { return mirrored_; }
+  // True for a closed mesh whose source triangles are wound inwards (negative signed volume). It is
+  // split as if mirrored: its pieces keep that winding (caps included) and report positive volumes.
+  bool inverted() const { return inverted_; }
   double boundsDiagonal() const { return boundsDiagonal_; }
   // The model matrix given to setTransform or setSkinningPose (identity after setMesh).
   const glm::dmat4& model() const { return model_; }
@@ -159,6 +167,7 @@ class MeshContainer {
   std::vector<uint32_t> positionIds_;
   uint32_t positionIdCount_ = 0;
   bool mirrored_ = false;
+  bool inverted_ = false;  // closed and wound inwards in source space
   double boundsDiagonal_ = 0.0;
   // Additions (private): see mesh_container.cpp.
   bool weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi);

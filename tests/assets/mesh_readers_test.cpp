@@ -53,6 +53,36 @@ TEST(ObjReader, PentagonIsFanTriangulatedFromItsFirstCorner) {
   EXPECT_EQ(result.materialNames, std::vector<std::string>{"default"});
 }
 
+// An L whose first corner does not see the far corner (CGAL's corner_poly.off has this face): its
+// fan folds, an inverted triangle over the others, so the mesh intersects itself and no cut
+// through it can be capped. Read in every text format, it must come out without a fold.
+void expectUnfoldedL(const MeshReadResult& result) {
+  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_EQ(result.mesh.indices.size(), 12u);
+  double area = 0.0;
+  for (size_t t = 0; t < result.mesh.indices.size(); t += 3) {
+    const glm::vec3 a = result.mesh.positions[result.mesh.indices[t]];
+    const glm::vec3 b = result.mesh.positions[result.mesh.indices[t + 1]];
+    const glm::vec3 c = result.mesh.positions[result.mesh.indices[t + 2]];
+    const float z = glm::cross(b - a, c - a).z;
+    EXPECT_GT(z, 0.f) << "triangle " << t / 3 << " is inverted or flat";
+    area += 0.5 * z;
+  }
+  EXPECT_DOUBLE_EQ(area, 3.0);
+}
+
+TEST(MeshReaders, ConcavePolygonFacesDoNotFold) {
+  TempDir dir;
+  const std::string corners = "0 1 1\n1 1 1\n1 0 1\n2 0 1\n2 2 1\n0 2 1\n";
+  const std::string obj = "v 0 1 1\nv 1 1 1\nv 1 0 1\nv 2 0 1\nv 2 2 1\nv 0 2 1\nf 1 2 3 4 5 6\n";
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  expectUnfoldedL(loadMesh(dir.write("l.obj", obj)));
+  expectUnfoldedL(loadMesh(dir.write("l.off", "OFF\n6 1 0\n" + corners + "6 0 1 2 3 4 5\n")));
+  expectUnfoldedL(loadMesh(dir.write("l.ply", ply + corners + "6 0 1 2 3 4 5\n")));
+}
+
 TEST(ObjReader, NegativeIndicesCountFromTheLatestVertex) {
   TempDir dir;
   const std::string obj =

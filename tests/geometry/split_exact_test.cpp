@@ -142,15 +142,6 @@ MeshData squareRing(float R, float r, float h) {
   return m;
 }
 
-// Tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1); every face listed starting at the origin when it
-// holds it, so the first vertex of three faces lies on a plane through the origin.
-MeshData cornerTetrahedron() {
-  MeshData m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  m.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
-  return m;
-}
-
 struct Split {
   SplitStatus status;
   SplitResult result;
@@ -292,7 +283,7 @@ TEST(ConcaveSplitter, CubeCutThroughAVertexAndTheOppositeEdge) {
 
 // Thesis failure case 2: the first vertex of a triangle lies on the plane.
 TEST(ConcaveSplitter, FirstTriangleVertexOnThePlane) {
-  const MeshData tetra = cornerTetrahedron();
+  const MeshData tetra = testing::cornerTetrahedron();
   Split s = run(tetra, planeOf({1, -1, 0}, 0.0));  // x = y: through (0,0,0) and (0,0,1)
   ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
   ASSERT_EQ(s.result.pieces.size(), 2u);
@@ -332,7 +323,7 @@ TEST(ConcaveSplitter, PlaneMissingTheMesh) {
 }
 
 TEST(ConcaveSplitter, TetrahedronCutAcross) {
-  Split s = run(cornerTetrahedron(), planeOf({0, 0, 1}, 0.5));
+  Split s = run(testing::cornerTetrahedron(), planeOf({0, 0, 1}, 0.5));
   ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
   ASSERT_EQ(s.result.pieces.size(), 2u);
   EXPECT_NEAR(s.result.pieces[0].mass.volume, 1.0 / 48.0, 1e-12);

@@ -48,6 +48,15 @@ class SeededRandom {
   uint64_t state_;
 };
 
+// Tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1), wound outwards; every face listed starting at the
+// origin when it holds it, so the first vertex of three faces lies on a plane through the origin.
+inline MeshData cornerTetrahedron() {
+  MeshData m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  return m;
+}
+
 inline std::vector<glm::dvec3> toCutSpace(const MeshData& mesh, const glm::dmat4& model) {
   std::vector<glm::dvec3> out(mesh.positions.size());
   for (size_t i = 0; i < out.size(); ++i) {
