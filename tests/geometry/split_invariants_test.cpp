@@ -52,6 +52,7 @@ struct InvariantCase {
   uint32_t planeCount = 100;
   uint64_t seed = 1;
   const MeshWeld* weld = nullptr;  // set: the container takes this weld instead of welding
+  bool recut = false;              // a piece of an earlier split (see SplitRecutStress)
 };
 
 std::vector<std::pair<uint32_t, uint32_t>> whole(const MeshData& m) {
@@ -182,6 +183,24 @@ bool prepare(MeshContainer& container, const InvariantCase& c, std::string& why)
   }
   return container.setSkinningPose(c.jointMatrices, c.model, &why) == SplitStatus::Ok;
 }
+
+// The largest relative difference between cap area and section area over every checked split, and
+// how many splits it covers: printed when the binary ends, as the figure the slack below allows for.
+struct CapAreaRecord {
+  double worst = 0.0;
+  size_t splits = 0;
+};
+CapAreaRecord gCapArea[2];  // [0] generated meshes, [1] re-cut pieces
+
+class CapAreaReport : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::printf("[ checked  ] cap area vs section area, worst relative difference: %.3g over %zu splits of "
+                "generated meshes, %.3g over %zu splits of re-cut pieces\n",
+                gCapArea[0].worst, gCapArea[0].splits, gCapArea[1].worst, gCapArea[1].splits);
+  }
+};
+const ::testing::Environment* const kCapAreaReport = ::testing::AddGlobalTestEnvironment(new CapAreaReport);
 
 // Checks one split; returns the problems found (empty when every invariant holds).
 std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer& container,
@@ -351,6 +370,12 @@ std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer
     // the exact section by at most the tolerance times twice the perimeter (bounded by 4 diagonals).
     const double merging = 1e-6 * diagonal * 2.0 * 4.0 * diagonal;
     const double areaSlack = 1e-6 * std::abs(section) + 1e-10 * diagonal * diagonal + rounding + merging;
+    if (std::abs(section) > 0.0) {
+      const double worst = std::max(std::abs(capAbove - section), std::abs(capBelow - section)) / std::abs(section);
+      CapAreaRecord& record = gCapArea[c.recut ? 1 : 0];
+      record.worst = std::max(record.worst, worst);
+      ++record.splits;
+    }
     if (std::abs(capAbove - section) > areaSlack || std::abs(capBelow - section) > areaSlack) {
       char text[200];
       std::snprintf(text, sizeof text, "cap areas above %.12g and below %.12g, section area %.12g", capAbove,
@@ -627,6 +652,7 @@ RecutTotals runRecutGenerations(const std::string& name, const MeshData& base, u
       c.mesh = std::move(generation[k]);
       c.model = randomRigid(rng);
       c.weld = g > 0 ? &welds[k] : nullptr;
+      c.recut = g > 0;
       MeshContainer container;
       std::string why;
       if (!prepare(container, c, why)) {
