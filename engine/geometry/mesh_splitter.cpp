@@ -1107,10 +1107,13 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
       parent_.resize(weldedCount);
       std::iota(parent_.begin(), parent_.end(), 0u);
       for (const SideTriangle& tri : tris) {
-        const uint32_t a = find(weldedRef(tri.v[0]));
+        // Only roots are linked: `a` stays the root of the triangle's set as it grows.
+        uint32_t a = find(weldedRef(tri.v[0]));
         for (int c = 1; c < 3; ++c) {
           const uint32_t b = find(weldedRef(tri.v[c]));
-          if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+          if (a == b) continue;
+          parent_[std::max(a, b)] = std::min(a, b);
+          a = std::min(a, b);
         }
       }
       // A parent always has a lower id than its child, so one ascending pass points every id at

@@ -527,6 +527,24 @@ TEST(ConcaveSplitter, HollowModeMakesNoCapsAndAllowsOpenSections) {
   EXPECT_EQ(s.result.pieces.size(), 2u);
 }
 
+// Islands of an open sheet (hollow mode): triangles joined only at a vertex are one island. The
+// first triangle lists its corners with ids 2, 0, 1, so its union links 2 to 0 and then 2 to 1; the
+// second shares only vertex 0 with it. Linking a vertex that is no longer a root would drop the link
+// 2 -> 0 and part the two triangles.
+TEST(ConcaveSplitter, HollowSheetJoinedAtOneVertexStaysOneIsland) {
+  MeshData m;
+  m.positions = {{0, 1, 0}, {-1, 2, 0}, {-1, 1.5f, 0}, {1, 0.5f, 0}, {1, 2, 0}, {0.5f, -1, 0}, {1.5f, -1, 0}};
+  m.indices = {2, 0, 1, /**/ 0, 3, 4, /**/ 3, 5, 6};
+  SplitOptions options;
+  options.cap = false;
+  const Split s = run(m, planeOf({0, 1, 0}, 0.0), options);
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  int above = 0, below = 0;
+  for (const SplitPiece& piece : s.result.pieces) (piece.side > 0 ? above : below)++;
+  EXPECT_EQ(above, 1);
+  EXPECT_EQ(below, 1);
+}
+
 TEST(ConcaveSplitter, NewVerticesInterpolateAttributesAndMergeSkinWeights) {
   MeshData cube = seamCube();
   for (const glm::vec3& p : cube.positions) {
