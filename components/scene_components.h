@@ -18,6 +18,8 @@ namespace cleave::components {
 // A mesh drawn at the entity's world transform times `meshOffset`. `source` is the CPU copy the
 // splitter cuts; it is shared (immutable) between the entity and the renderer upload.
 struct MeshRenderer {
+  // Immutable once shared: the split system keeps derived data (the weld) per mesh. To change a
+  // mesh, make a new one.
   std::shared_ptr<const geometry::MeshData> source;
   render::MeshHandle gpu;
   std::vector<render::Material> materials;  // indexed by submesh material id

@@ -190,7 +190,7 @@ struct SplitSystem::Scratch {
     geometry::MeshWeld weld;
   };
   std::unordered_map<const geometry::MeshData*, KnownWeld> welds;
-  size_t weldsPruneAt = 256;
+  size_t weldsPruneAt = 64;
 
   const geometry::MeshWeld* knownWeld(const std::shared_ptr<const geometry::MeshData>& mesh) const {
     const auto it = welds.find(mesh.get());
@@ -200,7 +200,7 @@ struct SplitSystem::Scratch {
   void keepWeld(const std::shared_ptr<const geometry::MeshData>& mesh, geometry::MeshWeld weld) {
     if (welds.size() >= weldsPruneAt) {
       std::erase_if(welds, [](const auto& entry) { return entry.second.mesh.expired(); });
-      weldsPruneAt = std::max<size_t>(256, 2 * welds.size());
+      weldsPruneAt = std::max<size_t>(64, 2 * welds.size());
     }
     KnownWeld& entry = welds[mesh.get()];
     entry.mesh = mesh;
@@ -579,6 +579,7 @@ void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& came
       },
       [&](const SplitRequest& r) {
         SplitEvent ev = splitOne(w, r.target, r, tick);
+        scratch_->container.release();  // do not keep the (doomed) target's mesh alive
         const bool ok = ev.status == geometry::SplitStatus::Ok ||
                         ev.status == geometry::SplitStatus::PlaneMissesMesh;
         events_.push_back(std::move(ev));
@@ -593,6 +594,7 @@ void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& came
 SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitRequest& request,
                                  uint64_t tick) {
   SplitEvent ev = splitOne(w, target, request, tick);
+  scratch_->container.release();
   flush(w);
   return ev;
 }
@@ -652,12 +654,20 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   Scratch& s = *scratch_;
   std::string message;
   const double setupStart = nowMs();
-  const geometry::MeshWeld* known = hierarchy ? nullptr : s.knownWeld(mr->source);
+  const geometry::MeshWeld* known = hierarchy ? nullptr : s.knownWeld(mr->source);  // reset below if stale
   ev.weldKnown = known != nullptr;
-  // The container shares the renderer's mesh (no copy); a merged hierarchy mesh is copied.
-  if ((hierarchy ? s.container.setMesh(source, &message) : s.container.setMesh(mr->source, known, &message)) !=
-      geometry::SplitStatus::Ok)
-    return fail(geometry::SplitStatus::InvalidInput, message);
+  // The container shares the renderer's mesh (no copy); a merged hierarchy mesh is copied. A kept
+  // weld that no longer fits the mesh (its arrays were changed in place, which meshes must not be)
+  // is dropped and the mesh welded anew.
+  geometry::SplitStatus set = hierarchy ? s.container.setMesh(source, &message)
+                                        : s.container.setMesh(mr->source, known, &message);
+  if (set != geometry::SplitStatus::Ok && known) {
+    s.welds.erase(mr->source.get());
+    known = nullptr;
+    ev.weldKnown = false;
+    set = s.container.setMesh(mr->source, nullptr, &message);
+  }
+  if (set != geometry::SplitStatus::Ok) return fail(geometry::SplitStatus::InvalidInput, message);
   if (!known && !hierarchy) {
     geometry::MeshWeld weld;
     s.container.copyWeld(weld);
@@ -774,9 +784,10 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
     auto mesh = std::make_shared<geometry::MeshData>(keepSkin ? std::move(piece.mesh)
                                                               : skin ? std::move(posed) : std::move(piece.mesh));
     const geometry::MeshData& colliderMesh = hierarchy ? wholePiece : keepSkin ? posed : *mesh;
-    // The piece's weld comes with it, unless its vertices changed: hierarchy parts are extracted
-    // again, and a baked skin may pose two vertices of one bind position apart.
-    if (!hierarchy && (keepSkin || !skin)) s.keepWeld(mesh, std::move(piece.weld));
+    // The piece's weld comes with it (kept below if the piece can be cut again), unless its vertices
+    // changed: hierarchy parts are extracted again, and a baked skin may pose two vertices of one
+    // bind position apart; or the split left it unknown.
+    const bool weldKnown = !hierarchy && (keepSkin || !skin) && !piece.weld.positionIds.empty();
     MeshRenderer renderer;
     renderer.source = mesh;
     renderer.materials = materials;
@@ -871,7 +882,10 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
       commands.add<Debris>(e, d);
     } else {
       commands.add<RigidBody>(e, RigidBody{body, shape});
-      if (depth < sp->maxDepth) commands.add<Splitable>(e, pieceSplitable);
+      if (depth < sp->maxDepth) {
+        commands.add<Splitable>(e, pieceSplitable);
+        if (weldKnown) s.keepWeld(mesh, std::move(piece.weld));
+      }
     }
     if (hierarchy) {
       std::vector<ecs::Entity> children;

@@ -80,6 +80,9 @@ bool woundInwards(std::span<const glm::vec3> positions, std::span<const uint32_t
 void MeshContainer::clear() {
   shared_.reset();
   source_ = &mesh_;
+  model_ = glm::dmat4(1.0);
+  jointMatrices_.clear();
+  mirrored_ = false;
   mesh_.positions.clear();
   mesh_.indices.clear();
   cutPositions_.clear();
@@ -120,10 +123,10 @@ bool MeshContainer::validate(const MeshData& mesh, std::string* message) {
   static_assert(sizeof(glm::vec3) == 3 * sizeof(uint32_t));
   uint32_t special = 0;
   const size_t words = 3 * n;
-  const float* coordinates = n ? &mesh.positions[0].x : nullptr;
+  const unsigned char* bytes = reinterpret_cast<const unsigned char*>(mesh.positions.data());
   for (size_t k = 0; k < words; ++k) {
     uint32_t bits;
-    std::memcpy(&bits, coordinates + k, sizeof bits);
+    std::memcpy(&bits, bytes + 4 * k, sizeof bits);
     special |= (bits & 0x7f800000u) == 0x7f800000u;
   }
   if (special) {

@@ -186,6 +186,11 @@ class Splitter final : public IMeshSplitter {
   void writePieces(const SplitOptions& options, SplitResult& result);
   void gatherVertices(MeshData& m);
   void pieceWeld(MeshWeld& weld, bool closed);
+  uint32_t aliasRoot(uint32_t welded) const {
+    while (welded >= idCount_ && welded - idCount_ < alias_.size() && alias_[welded - idCount_] != welded)
+      welded = alias_[welded - idCount_];
+    return welded;
+  }
 
   bool convexFastPath_;
   CapTriangulator triangulator_;
@@ -696,7 +701,10 @@ void Splitter::buildLoops() {
 // A run never holds two source vertices: those cannot move.
 void Splitter::mergeNearPoints() {
   const double tolerance2 = mergeTolerance_ * mergeTolerance_;
-  alias_.clear();
+  // Every cut point starts as its own alias (sized on every call, so that a warm splitter does not
+  // allocate when a later split of the same size merges points and an earlier one did not).
+  alias_.resize(weldedEdges_.size());
+  std::iota(alias_.begin(), alias_.end(), idCount_);
   if (!(tolerance2 > 0.0)) return;
   auto distance2 = [&](uint32_t a, uint32_t b) {
     const glm::dvec3 d = sectionCut(a) - sectionCut(b);
@@ -735,12 +743,18 @@ void Splitter::mergeNearPoints() {
           const glm::vec3 source = rep < idCount_ ? mesh_->positions[reps_[rep]] : edgeSource_[rep - idCount_];
           for (uint32_t m = i; m < j; ++m) {
             const uint32_t id = loopIds_[loop.begin + (start + m) % n];
-            if (id == rep || (!alias_.empty() && alias_[id - idCount_] != id)) continue;
-            if (alias_.empty()) {
-              alias_.resize(weldedEdges_.size());
-              std::iota(alias_.begin(), alias_.end(), idCount_);
+            if (id == rep) continue;
+            // The aliases form a forest: the root of the point is linked to the root of the run's
+            // representative (a point can sit in two loops where the section touches itself, so
+            // either may have been merged already). A source vertex is always a root.
+            const uint32_t from = aliasRoot(id), to = aliasRoot(rep);
+            if (from != to) {
+              if (from >= idCount_) {
+                alias_[from - idCount_] = to;
+              } else if (to >= idCount_) {
+                alias_[to - idCount_] = from;
+              }  // two source vertices stay apart
             }
-            alias_[id - idCount_] = rep;
             edgeCut_[id - idCount_] = cut;
             edgeSource_[id - idCount_] = source;
             moved = true;
@@ -1068,10 +1082,7 @@ void Splitter::pieceWeld(MeshWeld& weld, bool closed) {
   for (size_t i = 0; i < count; ++i) {
     const uint32_t ref = vertexRefs_[i];
     uint32_t welded = ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_];
-    // Aliases only ever point at a point that was not merged away when they were set, so chains
-    // (a pinch point in two loops) end.
-    while (!alias_.empty() && welded >= idCount_ && alias_[welded - idCount_] != welded)
-      welded = alias_[welded - idCount_];
+    welded = aliasRoot(welded);
     uint64_t& entry = weldRemap_[welded];
     if ((entry & ~uint64_t(0xffffffffu)) != stamp) {
       entry = stamp | weld.representatives.size();
@@ -1097,6 +1108,11 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
   };
   if (stampRemap_.size() < refCount) stampRemap_.resize(refCount, 0);
   label_.resize(weldedCount);
+  // A degenerate section loop (no area) is left uncapped: the pieces along it may then be open on
+  // their ids, which the split does not work out. Their weld is left unknown (empty), so a next cut
+  // welds them from nothing.
+  bool weldKnown = true;
+  for (const LoopInfo& loop : loops_) weldKnown = weldKnown && (!options.cap || loop.capped);
 
   size_t totalPieces = 0;
   uint32_t firstPiece[2] = {0, 0};
@@ -1229,7 +1245,13 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
         if (slot == capSlot_) out.capTriangles += count / 3;
       }
       gatherVertices(m);
-      pieceWeld(out.weld, options.cap && container_->closed());
+      if (weldKnown) {
+        pieceWeld(out.weld, options.cap && container_->closed());
+      } else {
+        out.weld.positionIds.clear();
+        out.weld.representatives.clear();
+        out.weld.closed = out.weld.inverted = false;
+      }
       for (size_t l = 0; l < loops_.size(); ++l) {
         if (loops_[l].capped && loopPiece_[2 * l + side] == p) ++out.capLoops;
       }
@@ -1245,6 +1267,11 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
             indices = flipped_;
           }
           out.mass = computeMassProperties(std::span<const glm::dvec3>(pieceCut_), indices);
+        }
+        // A closed piece is wound like its source unless its volume says otherwise (a shell of a
+        // mesh whose other shells outweigh it in the other direction).
+        if (out.weld.closed) {
+          out.weld.inverted = container_->inverted() ? out.mass.volume > 0.0 : out.mass.volume < 0.0;
         }
       }
     }

@@ -61,9 +61,10 @@ struct SplitOptions {
   bool computeMass = true;              // mass properties per piece (cut space)
 };
 
-// The weld of a mesh: what MeshContainer::setMesh works out from the positions (position ids and
-// closedness), kept with the mesh so that cutting it again does not weld it again. Every piece of a
-// split carries the weld of its mesh (see SplitPiece::weld), so re-cutting pieces never re-welds.
+// The weld of a mesh: position ids (vertices at one point share an id), closedness and winding,
+// kept with the mesh so that cutting it again does not weld it again. MeshContainer::setMesh works
+// it out from the positions (copyWeld gives it); a split gives each piece the weld of its own
+// topology (SplitPiece::weld), so re-cutting pieces never re-welds.
 struct MeshWeld {
   std::vector<uint32_t> positionIds;      // per vertex
   std::vector<uint32_t> representatives;  // per position id: its first vertex (ascending)
@@ -75,7 +76,8 @@ struct SplitPiece {
   MeshData mesh;                // in the source space of the container
   // The position ids of `mesh` as the split made them (vertices at one cut point or one source
   // position share an id; merged near-coincident cut points too) and whether the piece is closed:
-  // give it to MeshContainer::setMesh with the mesh to cut the piece again without a weld.
+  // give it to MeshContainer::setMesh with the mesh to cut the piece again without a weld. Empty
+  // (unknown) when a degenerate section loop was left uncapped; the piece is then welded anew.
   MeshWeld weld;
   int side = 0;                 // +1 above the plane, -1 below
   uint32_t capTriangles = 0;     // triangles in the cap-material run (earlier cuts' caps included)
@@ -106,14 +108,16 @@ class MeshContainer {
   // Takes a copy of the mesh (the arrays are reused between calls when sizes allow) and welds it.
   // Returns InvalidInput with a message for malformed data.
   SplitStatus setMesh(const MeshData& mesh, std::string* message = nullptr);
-  // The same with a weld worked out before for this mesh (by weld() of a container that held it, or
-  // a SplitPiece's weld): no welding and no closedness check, so only the copy is paid. The weld is
-  // checked for size and consistency (InvalidInput otherwise); that it matches the positions is the
-  // caller's promise.
+  // The same with a weld worked out before for this mesh (copyWeld of a container that held it, or
+  // a SplitPiece's weld): no welding, no closedness or winding check; the mesh checks, the copy and
+  // the cut-space positions remain. The weld is checked for size and consistency (InvalidInput
+  // otherwise); that it matches the positions is the caller's promise.
   SplitStatus setMesh(const MeshData& mesh, const MeshWeld& weld, std::string* message = nullptr);
   // The same without a copy: the container shares the mesh (which must not change while it is held).
   // `weld` may be null (the mesh is welded) or a weld worked out before, as above.
   SplitStatus setMesh(std::shared_ptr<const MeshData> mesh, const MeshWeld* weld, std::string* message = nullptr);
+  // Drops the mesh (a shared one is no longer held); the arrays keep their memory for the next one.
+  void release() { clear(); }
   // The weld of the mesh held, to keep with it.
   void copyWeld(MeshWeld& out) const;
 

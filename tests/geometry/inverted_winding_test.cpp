@@ -61,6 +61,28 @@ void expectSplitKeepsWinding(const MeshData& mesh, const glm::mat4& model, const
       EXPECT_NEAR(testing::capArea(piece.mesh, options.capMaterialId, glm::dmat4(model)), section,
                   1e-6 * section);
       volume += piece.mass.volume;
+      // The piece's weld says it is closed and wound inwards, and it cuts again with it: the
+      // pieces of the piece keep the winding and positive volumes.
+      EXPECT_TRUE(piece.weld.closed);
+      EXPECT_TRUE(piece.weld.inverted);
+      MeshContainer again;
+      ASSERT_EQ(again.setMesh(piece.mesh, piece.weld), SplitStatus::Ok);
+      EXPECT_TRUE(again.inverted());
+      again.setTransform(model);
+      glm::dvec3 lo, hi;
+      testing::bounds(again.cutPositions(), lo, hi);
+      const glm::dvec3 middle = 0.5 * (lo + hi);
+      const Plane across{{0.2, 1.0, 0.3}, glm::dot(glm::dvec3(0.2, 1.0, 0.3), middle)};
+      SplitResult twice;
+      ASSERT_EQ(splitter->split(again, across, options, twice), SplitStatus::Ok) << twice.message;
+      double twiceVolume = 0.0;
+      for (const SplitPiece& small : twice.pieces) {
+        EXPECT_GT(small.mass.volume, 0.0);
+        EXPECT_TRUE(small.weld.inverted);
+        twiceVolume += small.mass.volume;
+      }
+      // The piece was written as float (its mass integrated on double positions): float rounding.
+      EXPECT_NEAR(twiceVolume, piece.mass.volume, 1e-6 * piece.mass.volume);
     }
     EXPECT_NEAR(volume, -inputVolume, 1e-12 * std::abs(inputVolume));
   }

@@ -613,6 +613,11 @@ bool sameBytes(const SplitResult& a, const SplitResult& b) {
         a.pieces[k].capTriangles != b.pieces[k].capTriangles || a.pieces[k].side != b.pieces[k].side) {
       return false;
     }
+    const MeshWeld &u = a.pieces[k].weld, &v = b.pieces[k].weld;
+    if (!same(u.positionIds, v.positionIds) || !same(u.representatives, v.representatives) ||
+        u.closed != v.closed || u.inverted != v.inverted) {
+      return false;
+    }
   }
   return true;
 }

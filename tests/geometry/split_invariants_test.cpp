@@ -298,20 +298,36 @@ std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer
     ::testing::AssertionResult closed = testing::closedAndOriented(src, m.indices, 1e-7 * testing::boundsDiagonal(src));
     if (!closed) problem(at + "not closed and oriented: " + closed.message());
     if (!piece.mass.closed) problem(at + "mass properties say the piece is open");
-    // The piece's own weld: accepted by a container, vertices of one id at one position, closed.
-    {
+    // The piece's own weld (empty means unknown, allowed): accepted by a container, vertices of one
+    // id at one position, and closed on its ids (each directed edge once, and its reverse once).
+    if (!piece.weld.positionIds.empty()) {
       MeshContainer again;
       std::string why;
       if (again.setMesh(m, piece.weld, &why) != SplitStatus::Ok) {
         problem(at + "the container refuses the piece's weld: " + why);
       } else {
         if (!again.closed()) problem(at + "the piece's weld says it is open");
+        if (again.inverted() != container.inverted()) problem(at + "the piece's weld has the wrong winding flag");
         for (size_t v = 0; v < nv; ++v) {
           if (m.positions[v] != m.positions[piece.weld.representatives[piece.weld.positionIds[v]]]) {
             problem(at + "vertex " + std::to_string(v) + " shares a position id with a vertex elsewhere");
             break;
           }
         }
+        std::vector<uint64_t> edges;
+        const std::vector<uint32_t>& id = piece.weld.positionIds;
+        for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+          const uint32_t c[3] = {id[m.indices[t]], id[m.indices[t + 1]], id[m.indices[t + 2]]};
+          if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
+          for (int e = 0; e < 3; ++e) edges.push_back((uint64_t(c[e]) << 32) | c[(e + 1) % 3]);
+        }
+        std::sort(edges.begin(), edges.end());
+        bool closedOnIds = std::adjacent_find(edges.begin(), edges.end()) == edges.end();
+        for (size_t k = 0; closedOnIds && k < edges.size(); ++k) {
+          const uint64_t reverse = (edges[k] << 32) | (edges[k] >> 32);
+          closedOnIds = std::binary_search(edges.begin(), edges.end(), reverse);
+        }
+        if (!closedOnIds) problem(at + "not closed on the ids of its weld");
       }
     }
     if (!(piece.mass.volume > 0.0)) problem(at + "volume " + std::to_string(piece.mass.volume) + " is not positive");
