@@ -1,7 +1,8 @@
 // glTF 2.0 through tinygltf: the static-mesh reader (default scene, node transforms applied, every
 // triangle primitive merged into one MeshData with one material run per primitive) and the GLB
-// writer. tinygltf parses the JSON and the GLB container; every index, offset, stride and count it
-// hands over is checked here again before any read, because a file can claim anything.
+// writer (the GLB writing core of glb_builder.h without a skin). tinygltf parses the JSON and the
+// GLB container; every index, offset, stride and count it hands over is checked here again before
+// any read, because a file can claim anything.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,6 +14,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
+#include "engine/assets/glb_builder.h"
 #include "engine/assets/gltf_access.h"
 #include "engine/assets/mesh_reader.h"
 
@@ -550,150 +552,26 @@ MeshReadResult readGltf(std::span<const uint8_t> bytes, const std::string& name,
 namespace cleave::assets {
 
 // ------------------------------------------------------------------------------------------------
-// GLB writer
-
-namespace {
-
-template <typename T>
-size_t appendToBuffer(std::vector<unsigned char>& buffer, const std::vector<T>& values) {
-  // Every block starts 4-byte aligned, as glTF requires for float and uint32 data.
-  while (buffer.size() % 4 != 0) buffer.push_back(0);
-  const size_t offset = buffer.size();
-  buffer.resize(offset + values.size() * sizeof(T));
-  if (!values.empty()) std::memcpy(buffer.data() + offset, values.data(), values.size() * sizeof(T));
-  return offset;
-}
-
-int addView(tinygltf::Model& model, size_t offset, size_t length, int target) {
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = offset;
-  view.byteLength = length;
-  view.target = target;
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size() - 1);
-}
-
-int addAccessor(tinygltf::Model& model, int view, size_t byteOffset, int componentType, int type,
-                size_t count) {
-  tinygltf::Accessor accessor;
-  accessor.bufferView = view;
-  accessor.byteOffset = byteOffset;
-  accessor.componentType = componentType;
-  accessor.type = type;
-  accessor.count = count;
-  model.accessors.push_back(accessor);
-  return static_cast<int>(model.accessors.size() - 1);
-}
-
-}  // namespace
+// GLB writer: the skin-less case of the GLB writing core (glb_builder.h) that the skinned writer
+// uses too.
 
 MeshWriteResult writeGlbToMemory(const geometry::MeshData& mesh, const MeshWriteOptions& options,
                                  std::vector<uint8_t>& out) {
   MeshWriteResult result;
   std::vector<geometry::SubMesh> runs;
   std::string reason;
-  if (!detail::writableRuns(mesh, runs, reason)) {
+  if (!detail::glbRuns(mesh, runs, reason)) {
     result.error = "GLB: " + reason;
     return result;
   }
-  if (mesh.indices.empty()) {
-    result.error = "GLB: the mesh has no triangles";
-    return result;
-  }
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "Cleave";
-  model.buffers.emplace_back();
-  std::vector<unsigned char>& data = model.buffers[0].data;
-
-  const size_t positionOffset = appendToBuffer(data, mesh.positions);
-  const int positionView = addView(model, positionOffset, mesh.positions.size() * sizeof(glm::vec3),
-                                   TINYGLTF_TARGET_ARRAY_BUFFER);
-  const int positionAccessor = addAccessor(model, positionView, 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                           TINYGLTF_TYPE_VEC3, mesh.positions.size());
-  glm::vec3 lo(0.f), hi(0.f);
-  if (!mesh.positions.empty()) lo = hi = mesh.positions[0];
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  model.accessors[static_cast<size_t>(positionAccessor)].minValues = {lo.x, lo.y, lo.z};
-  model.accessors[static_cast<size_t>(positionAccessor)].maxValues = {hi.x, hi.y, hi.z};
-
-  int normalAccessor = -1;
-  if (options.writeNormals && !mesh.normals.empty()) {
-    const size_t offset = appendToBuffer(data, mesh.normals);
-    const int view = addView(model, offset, mesh.normals.size() * sizeof(glm::vec3),
-                             TINYGLTF_TARGET_ARRAY_BUFFER);
-    normalAccessor = addAccessor(model, view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
-                                 mesh.normals.size());
-  }
-  int uvAccessor = -1;
-  if (options.writeUvs && !mesh.uv0.empty()) {
-    const size_t offset = appendToBuffer(data, mesh.uv0);
-    const int view = addView(model, offset, mesh.uv0.size() * sizeof(glm::vec2),
-                             TINYGLTF_TARGET_ARRAY_BUFFER);
-    uvAccessor = addAccessor(model, view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2,
-                             mesh.uv0.size());
-  }
-  const size_t indexOffset = appendToBuffer(data, mesh.indices);
-  const int indexView = addView(model, indexOffset, mesh.indices.size() * sizeof(uint32_t),
-                                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  model.buffers[0].data.resize((data.size() + 3) / 4 * 4, 0);
-
-  tinygltf::Mesh gltfMesh;
-  gltfMesh.name = "mesh";
-  std::vector<uint32_t> materialIds;  // material index -> our material id, in order of first use
-  for (const geometry::SubMesh& run : runs) {
-    if (run.indexCount == 0) continue;
-    int material = -1;
-    for (size_t i = 0; i < materialIds.size(); ++i) {
-      if (materialIds[i] == run.materialId) material = static_cast<int>(i);
-    }
-    if (material < 0) {
-      materialIds.push_back(run.materialId);
-      tinygltf::Material gltfMaterial;
-      gltfMaterial.name = materialName(options, run.materialId);
-      gltfMaterial.doubleSided = false;
-      model.materials.push_back(gltfMaterial);
-      material = static_cast<int>(model.materials.size() - 1);
-    }
-    tinygltf::Primitive primitive;
-    primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    primitive.material = material;
-    primitive.attributes["POSITION"] = positionAccessor;
-    if (normalAccessor >= 0) primitive.attributes["NORMAL"] = normalAccessor;
-    if (uvAccessor >= 0) primitive.attributes["TEXCOORD_0"] = uvAccessor;
-    primitive.indices = addAccessor(model, indexView, size_t{run.firstIndex} * sizeof(uint32_t),
-                                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
-                                    run.indexCount);
-    gltfMesh.primitives.push_back(primitive);
-  }
-  model.meshes.push_back(gltfMesh);
-  tinygltf::Node node;
-  node.mesh = 0;
-  node.name = "piece";
-  model.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes = {0};
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
-
-  std::ostringstream stream;
-  tinygltf::TinyGLTF writer;
-  bool written = false;
-  try {
-    written = writer.WriteGltfSceneToStream(&model, stream, false, true);
-  } catch (...) {
-    written = false;
-  }
-  if (!written) {
+  tinygltf::Model model = detail::newGlbModel();
+  const detail::GlbAttributes attributes = detail::addVertexAttributes(model, mesh, options);
+  detail::addMesh(model, mesh, runs, attributes, options, detail::GlbColors::Omit);
+  detail::addMeshScene(model, {}, -1);
+  if (!detail::serialiseGlb(model, out)) {
     result.error = "GLB: tinygltf could not serialise the mesh";
     return result;
   }
-  const std::string bytes = stream.str();
-  out.assign(bytes.begin(), bytes.end());
   result.ok = true;
   return result;
 }

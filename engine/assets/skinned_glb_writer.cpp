@@ -11,48 +11,21 @@
 // clip becomes one animation with a sampler and a channel per clip channel (times with their
 // bounds, values as vec3 for translation and scale, xyzw quaternions for rotation; cubic spline
 // keys keep their in-tangent, value, out-tangent triples).
-#include <algorithm>
+//
+// The buffer, the vertex data, the materials, the primitives and the serialisation are the GLB
+// writing core (glb_builder.h) that the static writer uses too; this file adds the skin to it.
 #include <cmath>
-#include <cstring>
-#include <sstream>
+#include <utility>
 
 #include <tiny_gltf.h>
 
+#include "engine/assets/glb_builder.h"
 #include "engine/assets/mesh_reader.h"
 #include "engine/assets/model.h"
 
 namespace cleave::assets {
 
 namespace {
-
-template <typename T>
-size_t appendBlock(std::vector<unsigned char>& buffer, const T* values, size_t count) {
-  while (buffer.size() % 4 != 0) buffer.push_back(0);  // glTF wants 4-byte aligned accessors
-  const size_t offset = buffer.size();
-  buffer.resize(offset + count * sizeof(T));
-  if (count > 0) std::memcpy(buffer.data() + offset, values, count * sizeof(T));
-  return offset;
-}
-
-// A buffer view of its own and an accessor over all of it. `target` 0 leaves the view without a
-// target (inverse bind matrices, animation data).
-int addData(tinygltf::Model& model, size_t offset, size_t length, int target, int componentType, int type,
-            size_t count) {
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = offset;
-  view.byteLength = length;
-  view.target = target;
-  model.bufferViews.push_back(view);
-  tinygltf::Accessor accessor;
-  accessor.bufferView = static_cast<int>(model.bufferViews.size() - 1);
-  accessor.byteOffset = 0;
-  accessor.componentType = componentType;
-  accessor.type = type;
-  accessor.count = count;
-  model.accessors.push_back(accessor);
-  return static_cast<int>(model.accessors.size() - 1);
-}
 
 bool finiteMatrix(const glm::mat4& m) {
   for (int c = 0; c < 4; ++c) {
@@ -93,8 +66,7 @@ MeshWriteResult writeSkinnedGlbToMemory(const geometry::MeshData& mesh, const an
   };
   std::vector<geometry::SubMesh> runs;
   std::string reason;
-  if (!detail::writableRuns(mesh, runs, reason)) return fail(reason);
-  if (mesh.indices.empty()) return fail("the mesh has no triangles");
+  if (!detail::glbRuns(mesh, runs, reason)) return fail(reason);
   if (skeleton.size() == 0) return fail("the skeleton has no joints");
   if (skeleton.size() > 65535) return fail("the skeleton has more than 65535 joints");
   if (!anim::validateSkeleton(skeleton, &reason)) return fail(reason);
@@ -116,93 +88,23 @@ MeshWriteResult writeSkinnedGlbToMemory(const geometry::MeshData& mesh, const an
     }
   }
 
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "Cleave";
-  model.buffers.emplace_back();
-  std::vector<unsigned char>& data = model.buffers[0].data;
+  tinygltf::Model model = detail::newGlbModel();
 
-  // Vertex data.
+  // Vertex data: the core's attributes, then JOINTS_0 and WEIGHTS_0; addMesh puts the indices after
+  // them and gives every primitive all of them.
   const size_t n = mesh.positions.size();
-  const int positionAccessor =
-      addData(model, appendBlock(data, mesh.positions.data(), n), n * sizeof(glm::vec3),
-              TINYGLTF_TARGET_ARRAY_BUFFER, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
-  glm::vec3 lo = mesh.positions[0], hi = mesh.positions[0];
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  model.accessors[static_cast<size_t>(positionAccessor)].minValues = {lo.x, lo.y, lo.z};
-  model.accessors[static_cast<size_t>(positionAccessor)].maxValues = {hi.x, hi.y, hi.z};
-  int normalAccessor = -1;
-  if (options.writeNormals && mesh.normals.size() == n) {
-    normalAccessor = addData(model, appendBlock(data, mesh.normals.data(), n), n * sizeof(glm::vec3),
-                             TINYGLTF_TARGET_ARRAY_BUFFER, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
-  }
-  int uvAccessor = -1;
-  if (options.writeUvs && mesh.uv0.size() == n) {
-    uvAccessor = addData(model, appendBlock(data, mesh.uv0.data(), n), n * sizeof(glm::vec2),
-                         TINYGLTF_TARGET_ARRAY_BUFFER, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, n);
-  }
+  detail::GlbAttributes attributes = detail::addVertexAttributes(model, mesh, options);
   // Unused influence slots are written as joint 0 with weight 0, which glTF allows.
   std::vector<glm::u16vec4> joints(n);
   for (size_t v = 0; v < n; ++v) {
     for (int k = 0; k < 4; ++k) joints[v][k] = mesh.weights[v][k] != 0.f ? mesh.joints[v][k] : uint16_t(0);
   }
-  const int jointAccessor =
-      addData(model, appendBlock(data, joints.data(), n), n * sizeof(glm::u16vec4), TINYGLTF_TARGET_ARRAY_BUFFER,
-              TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, n);
-  const int weightAccessor =
-      addData(model, appendBlock(data, mesh.weights.data(), n), n * sizeof(glm::vec4), TINYGLTF_TARGET_ARRAY_BUFFER,
-              TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, n);
-  tinygltf::BufferView indexView;
-  indexView.buffer = 0;
-  indexView.byteOffset = appendBlock(data, mesh.indices.data(), mesh.indices.size());
-  indexView.byteLength = mesh.indices.size() * sizeof(uint32_t);
-  indexView.target = TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER;
-  model.bufferViews.push_back(indexView);
-  const int indexViewId = static_cast<int>(model.bufferViews.size() - 1);
-
-  // Materials and primitives.
-  tinygltf::Mesh gltfMesh;
-  gltfMesh.name = "mesh";
-  std::vector<uint32_t> materialIds;  // glTF material index -> our material id, in order of first use
-  for (const geometry::SubMesh& run : runs) {
-    if (run.indexCount == 0) continue;
-    int material = -1;
-    for (size_t i = 0; i < materialIds.size(); ++i) {
-      if (materialIds[i] == run.materialId) material = static_cast<int>(i);
-    }
-    if (material < 0) {
-      materialIds.push_back(run.materialId);
-      tinygltf::Material gltfMaterial;
-      gltfMaterial.name = materialName(options, run.materialId);
-      if (run.materialId < options.materialColors.size()) {
-        const glm::vec4 c = glm::clamp(options.materialColors[run.materialId], glm::vec4(0.f), glm::vec4(1.f));
-        gltfMaterial.pbrMetallicRoughness.baseColorFactor = {c.r, c.g, c.b, c.a};
-      }
-      model.materials.push_back(gltfMaterial);
-      material = static_cast<int>(model.materials.size() - 1);
-    }
-    tinygltf::Primitive primitive;
-    primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    primitive.material = material;
-    primitive.attributes["POSITION"] = positionAccessor;
-    if (normalAccessor >= 0) primitive.attributes["NORMAL"] = normalAccessor;
-    if (uvAccessor >= 0) primitive.attributes["TEXCOORD_0"] = uvAccessor;
-    primitive.attributes["JOINTS_0"] = jointAccessor;
-    primitive.attributes["WEIGHTS_0"] = weightAccessor;
-    tinygltf::Accessor indices;
-    indices.bufferView = indexViewId;
-    indices.byteOffset = size_t{run.firstIndex} * sizeof(uint32_t);
-    indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    indices.type = TINYGLTF_TYPE_SCALAR;
-    indices.count = run.indexCount;
-    model.accessors.push_back(indices);
-    primitive.indices = static_cast<int>(model.accessors.size() - 1);
-    gltfMesh.primitives.push_back(primitive);
-  }
-  model.meshes.push_back(gltfMesh);
+  attributes["JOINTS_0"] =
+      detail::addData(model, joints, TINYGLTF_TARGET_ARRAY_BUFFER,
+                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4);
+  attributes["WEIGHTS_0"] = detail::addData(model, mesh.weights, TINYGLTF_TARGET_ARRAY_BUFFER,
+                                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4);
+  detail::addMesh(model, mesh, runs, attributes, options, detail::GlbColors::Write);
 
   // Joint nodes (and offset nodes above joints with a fixed offset), then the hierarchy.
   const size_t jointCount = skeleton.size();
@@ -236,23 +138,16 @@ MeshWriteResult writeSkinnedGlbToMemory(const geometry::MeshData& mesh, const an
       topNode[j] = jointNode[j];
     }
   }
-  tinygltf::Scene scene;
+  std::vector<int> roots;
   for (size_t j = 0; j < jointCount; ++j) {
     const int32_t parent = skeleton.joints[j].parent;
     if (parent >= 0) {
       model.nodes[static_cast<size_t>(jointNode[static_cast<size_t>(parent)])].children.push_back(topNode[j]);
     } else {
-      scene.nodes.push_back(topNode[j]);
+      roots.push_back(topNode[j]);
     }
   }
-  tinygltf::Node meshNode;
-  meshNode.name = "piece";
-  meshNode.mesh = 0;
-  meshNode.skin = 0;
-  model.nodes.push_back(meshNode);
-  scene.nodes.push_back(static_cast<int>(model.nodes.size() - 1));
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
+  detail::addMeshScene(model, std::move(roots), 0);
 
   // The skin.
   std::vector<glm::mat4> inverseBind(jointCount);
@@ -261,8 +156,7 @@ MeshWriteResult writeSkinnedGlbToMemory(const geometry::MeshData& mesh, const an
   skin.name = "skin";
   skin.joints = jointNode;
   skin.inverseBindMatrices =
-      addData(model, appendBlock(data, inverseBind.data(), jointCount), jointCount * sizeof(glm::mat4), 0,
-              TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, jointCount);
+      detail::addData(model, inverseBind, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4);
   model.skins.push_back(skin);
 
   // Animations: channels that are malformed or name a joint outside the skeleton are left out, and
@@ -279,8 +173,8 @@ MeshWriteResult writeSkinnedGlbToMemory(const geometry::MeshData& mesh, const an
       for (size_t k = 1; k < keys && valid; ++k) valid = channel.times[k] > channel.times[k - 1];
       for (const glm::vec4& value : channel.values) valid = valid && std::isfinite(glm::dot(value, value));
       if (!valid) continue;
-      const int input = addData(model, appendBlock(data, channel.times.data(), keys), keys * sizeof(float), 0,
-                                TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, keys);
+      const int input = detail::addData(model, channel.times, 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                        TINYGLTF_TYPE_SCALAR);
       model.accessors[static_cast<size_t>(input)].minValues = {channel.times.front()};
       model.accessors[static_cast<size_t>(input)].maxValues = {channel.times.back()};
       int output = -1;
@@ -293,13 +187,13 @@ MeshWriteResult writeSkinnedGlbToMemory(const geometry::MeshData& mesh, const an
             if (length > 0.f) r /= length;
           }
         }
-        output = addData(model, appendBlock(data, rotations.data(), values), values * sizeof(glm::vec4), 0,
-                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, values);
+        output = detail::addData(model, rotations, 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                 TINYGLTF_TYPE_VEC4);
       } else {
         std::vector<glm::vec3> vectors(values);
         for (size_t k = 0; k < values; ++k) vectors[k] = glm::vec3(channel.values[k]);
-        output = addData(model, appendBlock(data, vectors.data(), values), values * sizeof(glm::vec3), 0,
-                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, values);
+        output = detail::addData(model, vectors, 0, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                 TINYGLTF_TYPE_VEC3);
       }
       tinygltf::AnimationSampler sampler;
       sampler.input = input;
@@ -314,19 +208,7 @@ MeshWriteResult writeSkinnedGlbToMemory(const geometry::MeshData& mesh, const an
     }
     if (!animation.channels.empty()) model.animations.push_back(animation);
   }
-  data.resize((data.size() + 3) / 4 * 4, 0);
-
-  std::ostringstream stream;
-  tinygltf::TinyGLTF writer;
-  bool written = false;
-  try {
-    written = writer.WriteGltfSceneToStream(&model, stream, false, true);
-  } catch (...) {
-    written = false;
-  }
-  if (!written) return fail("tinygltf could not serialise the model");
-  const std::string bytes = stream.str();
-  out.assign(bytes.begin(), bytes.end());
+  if (!detail::serialiseGlb(model, out)) return fail("tinygltf could not serialise the model");
   result.ok = true;
   return result;
 }
