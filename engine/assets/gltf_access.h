@@ -31,6 +31,11 @@ bool viewAccessor(const tinygltf::Model& model, int index, AccessorView& view, s
 double component(const AccessorView& view, size_t i, int c);
 // A node's local matrix (matrix, or T * R * S); a zero-length rotation gives NaNs.
 glm::dmat4 localMatrix(const tinygltf::Node& node);
+// The triangle list of a primitive's corners for mode TRIANGLES, TRIANGLE_STRIP (every other
+// triangle reversed, so all keep the strip's winding) or TRIANGLE_FAN (around the first corner).
+// A list whose length is not a multiple of 3 loses its last partial triangle: false then, so the
+// caller can warn.
+bool trianglesOfPrimitive(int mode, std::span<const uint32_t> corners, std::vector<uint32_t>& triangles);
 // One line out of tinygltf's multi-line messages.
 std::string oneLine(const std::string& text);
 // Extensions that only change materials or textures: geometry can be read without them.

@@ -41,6 +41,23 @@ bool noWriteWholeFile(std::string* err, const std::string&, const std::vector<un
   return false;
 }
 
+bool trianglesOfPrimitive(int mode, std::span<const uint32_t> corners, std::vector<uint32_t>& triangles) {
+  triangles.clear();
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    triangles.assign(corners.begin(), corners.begin() + static_cast<std::ptrdiff_t>(corners.size() / 3 * 3));
+    return corners.size() % 3 == 0;
+  }
+  for (size_t i = 0; i + 2 < corners.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      const bool odd = (i % 2) == 1;
+      triangles.insert(triangles.end(), {corners[i], corners[odd ? i + 2 : i + 1], corners[odd ? i + 1 : i + 2]});
+    } else {
+      triangles.insert(triangles.end(), {corners[i + 1], corners[i + 2], corners[0]});
+    }
+  }
+  return true;
+}
+
 // One line out of tinygltf's multi-line messages.
 std::string oneLine(const std::string& text) {
   std::string out;
@@ -351,22 +368,9 @@ bool appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
 
   // Triangles from the corner list.
   std::vector<uint32_t> triangles;
-  if (mode == TINYGLTF_MODE_TRIANGLES) {
-    if (corners.size() % 3 != 0) {
-      state.warnings.push_back(state.name + ": " + where +
-                               "index count not a multiple of 3; the last partial triangle is ignored");
-    }
-    triangles.assign(corners.begin(), corners.begin() + static_cast<std::ptrdiff_t>(corners.size() / 3 * 3));
-  } else if (corners.size() >= 3) {
-    for (size_t i = 0; i + 2 < corners.size(); ++i) {
-      if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-        const bool odd = (i % 2) == 1;
-        triangles.insert(triangles.end(), {corners[i], corners[odd ? i + 2 : i + 1],
-                                           corners[odd ? i + 1 : i + 2]});
-      } else {
-        triangles.insert(triangles.end(), {corners[i + 1], corners[i + 2], corners[0]});
-      }
-    }
+  if (!trianglesOfPrimitive(mode, corners, triangles)) {
+    state.warnings.push_back(state.name + ": " + where +
+                             "index count not a multiple of 3; the last partial triangle is ignored");
   }
   if (triangles.empty()) return true;
 

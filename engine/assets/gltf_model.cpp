@@ -547,22 +547,8 @@ class Loader {
       for (size_t i = 0; i < n; ++i) corners[i] = static_cast<uint32_t>(i);
     }
     std::vector<uint32_t> triangles;
-    if (mode == TINYGLTF_MODE_TRIANGLES) {
-      if (corners.size() % 3 != 0)
-        warn(where + "index count not a multiple of 3; the last partial triangle is ignored");
-      triangles.assign(corners.begin(),
-                       corners.begin() + static_cast<std::ptrdiff_t>(corners.size() / 3 * 3));
-    } else {
-      for (size_t i = 0; i + 2 < corners.size(); ++i) {
-        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-          const bool odd = (i % 2) == 1;
-          triangles.insert(triangles.end(), {corners[i], corners[odd ? i + 2 : i + 1],
-                                             corners[odd ? i + 1 : i + 2]});
-        } else {
-          triangles.insert(triangles.end(), {corners[i + 1], corners[i + 2], corners[0]});
-        }
-      }
-    }
+    if (!detail::trianglesOfPrimitive(mode, corners, triangles))
+      warn(where + "index count not a multiple of 3; the last partial triangle is ignored");
     if (triangles.empty()) return true;
     const uint64_t elements = uint64_t{n} + triangles.size();
     if (elements > budget_)
