@@ -123,20 +123,15 @@ bool makeSkinnedBody(SplitWorld& w, ecs::Entity e, double density, bool kinemati
     return false;
   }
   const double mass = density * props.volume;
-  glm::dquat rotation(t->rotation);
-  glm::dvec3 moments(0.0);
-  if (!kinematic) {
-    const geometry::PrincipalInertia principal = geometry::principalInertia(props.inertia * density);
-    rotation = glm::normalize(glm::quat_cast(principal.axes));
-    const double largest = std::max({principal.moments.x, principal.moments.y, principal.moments.z, 1e-12});
-    moments = glm::max(principal.moments, glm::dvec3(largest * 1e-3));
+  BodyFrame frame = bodyFrameFor(props, mass, model);
+  if (kinematic) {  // the entity's own rotation, and no inertia: the game moves the body
+    frame.rotation = glm::dquat(t->rotation);
+    frame.moments = glm::dvec3(0.0);
+    const glm::dmat4 bodyToWorld =
+        glm::translate(glm::dmat4(1.0), frame.position) * glm::mat4_cast(frame.rotation);
+    frame.meshOffset = glm::inverse(bodyToWorld) * model;
   }
-  const glm::dmat4 bodyToWorld = glm::translate(glm::dmat4(1.0), props.centerOfMass) * glm::mat4_cast(rotation);
-  const glm::dmat4 meshOffset = glm::inverse(bodyToWorld) * model;
-  std::vector<glm::vec3> points;
-  points.reserve(posed.positions.size());
-  for (const glm::vec3& p : posed.positions) points.push_back(glm::vec3(meshOffset * glm::dvec4(glm::dvec3(p), 1.0)));
-  physics::ShapeDef hull = physics::ShapeDef::convexHull(points);
+  physics::ShapeDef hull = physics::ShapeDef::convexHull(transformedPoints(posed, frame.meshOffset));
   hull.maxHullVertices = 48;
   const auto shape = w.physics.createShape(hull);
   if (!shape.ok()) {
@@ -147,27 +142,18 @@ bool makeSkinnedBody(SplitWorld& w, ecs::Entity e, double density, bool kinemati
   def.shape = shape.value();
   def.kinematic = kinematic;
   def.mass = kinematic ? 0.f : float(mass);
-  if (!kinematic) def.localInertia = glm::vec3(moments);
-  def.position = glm::vec3(props.centerOfMass);
-  def.rotation = glm::quat(rotation);
-  def.userData = (uint64_t(e.generation) << 32) | uint64_t(e.index);
+  if (!kinematic) def.localInertia = glm::vec3(frame.moments);
+  def.position = glm::vec3(frame.position);
+  def.rotation = glm::quat(frame.rotation);
+  def.userData = toUserData(e);
   const auto body = w.physics.createBody(def);
   if (!body.ok()) {
     w.physics.destroyShape(shape.value());
     if (error) *error = body.reason();
     return false;
   }
-  mr->meshOffset = glm::mat4(meshOffset);
-  t->position = def.position;
-  t->rotation = def.rotation;
-  t->scale = glm::vec3(1.f);
-  w.world.add<RigidBody>(e, RigidBody{body.value(), shape.value()});
-  MassInfo info;
-  info.mass = mass;
-  info.volume = props.volume;
-  info.density = density;
-  info.closed = props.closed;
-  w.world.add<MassInfo>(e, info);
+  mr->meshOffset = glm::mat4(frame.meshOffset);
+  placeOnBody(w, e, def, body.value(), shape.value(), mass, props, density);
   return true;
 }
 

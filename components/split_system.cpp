@@ -29,14 +29,7 @@ double nowMs() {
   return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
 }
 
-
-// The body frame of a piece: origin at the centre of mass, axes along the principal axes.
-struct BodyFrame {
-  glm::dvec3 position{0.0};
-  glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
-  glm::dvec3 moments{0.0};  // principal inertia, kg m^2
-  glm::dmat4 meshOffset{1.0};  // mesh space -> body frame
-};
+}  // namespace
 
 BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const glm::dmat4& model) {
   BodyFrame f;
@@ -52,12 +45,30 @@ BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const
   return f;
 }
 
+void placeOnBody(SplitWorld& w, ecs::Entity e, const physics::BodyDef& def, physics::BodyId body,
+                 physics::ShapeId shape, double mass, const geometry::MassProperties& props, double density) {
+  if (auto* t = w.world.tryGet<ecs::Transform>(e)) {
+    t->position = def.position;
+    t->rotation = def.rotation;
+    t->scale = glm::vec3(1.f);
+  }
+  w.world.add<RigidBody>(e, RigidBody{body, shape});
+  MassInfo info;
+  info.mass = mass;
+  info.volume = props.volume;
+  info.density = density;
+  info.closed = props.closed;
+  w.world.add<MassInfo>(e, info);
+}
+
 std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const glm::dmat4& m) {
   std::vector<glm::vec3> points;
   points.reserve(mesh.positions.size());
   for (const glm::vec3& p : mesh.positions) points.push_back(glm::vec3(m * glm::dvec4(p, 1.0)));
   return points;
 }
+
+namespace {
 
 // Collider choice: is the closed mesh convex enough that its convex hull is a faithful collider?
 // The hull of the points extreme along 64 spread directions lies inside the true hull; when even
@@ -483,16 +494,7 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
   } else {
     mr->meshOffset = glm::mat4(frame.meshOffset);
   }
-  t->position = def.position;
-  t->rotation = def.rotation;
-  t->scale = glm::vec3(1.f);
-  w.world.add<RigidBody>(e, RigidBody{body.value(), shape});
-  MassInfo info;
-  info.mass = mass;
-  info.volume = props.volume;
-  info.density = density;
-  info.closed = props.closed;
-  w.world.add<MassInfo>(e, info);
+  placeOnBody(w, e, def, body.value(), shape, mass, props, density);
   return true;
 }
 

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/quaternion.hpp>
+
 #include "components/scene_components.h"
 #include "components/split_budget.h"
 #include "components/splitable.h"
@@ -120,6 +122,27 @@ void releaseEntityResources(SplitWorld& w, ecs::Entity e);
 // mesh offset so the body origin is the centre of mass. Returns false with a reason on failure.
 bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode collider,
                      std::string* error);
+
+// The body frame of a mesh of mass properties `props` (cut space = model x mesh space) and `mass`:
+// origin at the centre of mass, axes along the principal axes of inertia, the principal moments
+// (each floored at a small share of the largest, so that a sliver never gets zero inertia), and
+// the mesh offset (mesh space -> body frame).
+struct BodyFrame {
+  glm::dvec3 position{0.0};
+  glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
+  glm::dvec3 moments{0.0};     // principal inertia, kg m^2
+  glm::dmat4 meshOffset{1.0};  // mesh space -> body frame
+};
+BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const glm::dmat4& model);
+
+// The mesh's positions mapped by `m` (for example a body frame's mesh offset), as collider points.
+std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const glm::dmat4& m);
+
+// Puts an authored entity on the body just made for it: its Transform moves to the body's pose
+// (unit scale) and it gets RigidBody and MassInfo (mass, volume, density, closed from `props`).
+// The mesh offset is the caller's.
+void placeOnBody(SplitWorld& w, ecs::Entity e, const physics::BodyDef& def, physics::BodyId body,
+                 physics::ShapeId shape, double mass, const geometry::MassProperties& props, double density);
 
 // Physics sync (PhysicsSync phase): entity transforms follow their bodies.
 void syncTransformsFromBodies(SplitWorld& w);
