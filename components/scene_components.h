@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/ecs/entity.h"
+#include "engine/geometry/collider_parts.h"
 #include "engine/geometry/mesh_data.h"
 #include "engine/physics/physics_ids.h"
 #include "engine/render/renderer.h"
@@ -32,6 +33,13 @@ struct MeshRenderer {
 struct RigidBody {
   physics::BodyId body;
   physics::ShapeId shape;
+};
+
+// The convex parts the entity's collider is made of, in the mesh space of its MeshRenderer::source
+// (shared, immutable). A cut clips them by its plane into the pieces (geometry/collider_parts.h), so
+// the pieces' colliders are never decomposed again.
+struct ColliderParts {
+  geometry::SharedColliderParts parts;
 };
 
 // Mass properties as the split system computed them (world units at the time of creation).

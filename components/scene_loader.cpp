@@ -750,8 +750,9 @@ bool readScene(Reader& rd, const json& root, const std::string& baseDirectory, S
   if (n.has("budget")) {
     const Node b = n.child("budget");
     if (!rd.expectObject(b, {"milliseconds_per_tick", "max_splits_per_tick", "max_activations_per_tick",
-                             "max_queue_length", "deterministic", "estimated_ms_per_split",
-                             "estimated_ms_per_triangle"}))
+                             "max_queue_length", "deterministic", "threads", "commit_delay_ticks",
+                             "worker_milliseconds_per_tick", "estimated_main_ms",
+                             "estimated_worker_ms_per_triangle"}))
       return false;
     scene.budgetGiven = true;
     SplitBudgetSettings& s = scene.budget;
@@ -760,8 +761,11 @@ bool readScene(Reader& rd, const json& root, const std::string& baseDirectory, S
         !rd.integer32(b, "max_activations_per_tick", s.maxActivationsPerTick, 1) ||
         !rd.integer32(b, "max_queue_length", s.maxQueueLength, 1) ||
         !rd.boolean(b, "deterministic", s.deterministic) ||
-        !rd.nonNegative(b, "estimated_ms_per_split", s.estimatedMillisecondsPerSplit) ||
-        !rd.nonNegative(b, "estimated_ms_per_triangle", s.estimatedMillisecondsPerTriangle))
+        !rd.integer32(b, "threads", s.threads, 0) ||
+        !rd.integer32(b, "commit_delay_ticks", s.commitDelayTicks, 0) ||
+        !rd.nonNegative(b, "worker_milliseconds_per_tick", s.workerMillisecondsPerTick) ||
+        !rd.nonNegative(b, "estimated_main_ms", s.estimatedMainMilliseconds) ||
+        !rd.nonNegative(b, "estimated_worker_ms_per_triangle", s.estimatedWorkerMillisecondsPerTriangle))
       return false;
   }
   if (n.has("camera")) {

@@ -157,18 +157,21 @@ bool makeSkinnedBody(SplitWorld& w, ecs::Entity e, double density, bool kinemati
   return true;
 }
 
-bool buildRagdoll(SplitWorld& w, const geometry::MeshData& bindPiece, std::span<const glm::vec3> posed,
-                  std::span<const uint16_t> keptJoints, const anim::Skeleton& skeleton,
-                  std::span<const glm::dmat4> globals, double mass, const glm::dvec3& v,
-                  const glm::dvec3& omega, const glm::dvec3& parentCentre, uint64_t userData,
-                  uint64_t group, Ragdoll& out, std::string* error) {
-  out = Ragdoll{};
+namespace {
+
+struct BoneFit {
+  uint16_t joint;
+  glm::dvec3 centre;
+  glm::dquat rotation;
+  double radius, halfHeight, influence;
+};
+
+// Capsules for the kept joints that dominate enough vertices, each along its bone. `influence`
+// gets the sum of weights per joint.
+std::vector<BoneFit> fitBones(const geometry::MeshData& bindPiece, std::span<const glm::vec3> posed,
+                              std::span<const uint16_t> keptJoints, const anim::Skeleton& skeleton,
+                              std::span<const glm::dmat4> globals) {
   const size_t jointCount = skeleton.size();
-  if (bindPiece.joints.empty() || posed.size() != bindPiece.positions.size() || globals.size() != jointCount) {
-    if (error) *error = "ragdoll: the piece has no skin or the pose does not match it";
-    return false;
-  }
-  // Influence per joint (sum of weights) and the vertices each joint dominates.
   std::vector<double> influence(jointCount, 0.0);
   std::vector<std::vector<uint32_t>> dominated(jointCount);
   for (size_t i = 0; i < bindPiece.positions.size(); ++i) {
@@ -187,15 +190,7 @@ bool buildRagdoll(SplitWorld& w, const geometry::MeshData& bindPiece, std::span<
     if (best >= 0) dominated[size_t(best)].push_back(uint32_t(i));
   }
   auto origin = [&](size_t j) { return glm::dvec3(globals[j][3]); };
-
-  // Bones: the kept joints that dominate enough vertices, each with a capsule along its bone.
-  struct Fit {
-    uint16_t joint;
-    glm::dvec3 centre;
-    glm::dquat rotation;
-    double radius, halfHeight, influence;
-  };
-  std::vector<Fit> fits;
+  std::vector<BoneFit> fits;
   for (uint16_t j : keptJoints) {
     if (j >= jointCount || dominated[j].size() < kMinBoneVertices) continue;
     const std::vector<uint32_t>& verts = dominated[j];
@@ -227,7 +222,7 @@ bool buildRagdoll(SplitWorld& w, const geometry::MeshData& bindPiece, std::span<
       radial += glm::length(d - axis * t);
     }
     radial /= double(verts.size());
-    Fit fit;
+    BoneFit fit;
     fit.joint = j;
     // Radius a little inside the mean surface distance, so capsules stay inside the flesh.
     fit.radius = std::max(double(kMinBoneRadius), 0.85 * radial);
@@ -238,126 +233,178 @@ bool buildRagdoll(SplitWorld& w, const geometry::MeshData& bindPiece, std::span<
     fit.influence = influence[j];
     fits.push_back(fit);
   }
-  if (fits.empty()) {
+  return fits;
+}
+
+// The nearest ancestor joint of `j` that has a bone, or -1.
+int32_t boneAncestor(const anim::Skeleton& skeleton, const std::vector<int32_t>& boneOfJoint, size_t j) {
+  int32_t p = skeleton.joints[j].parent;
+  for (size_t guard = 0; p >= 0 && guard < skeleton.size(); ++guard) {
+    if (boneOfJoint[size_t(p)] >= 0) return boneOfJoint[size_t(p)];
+    p = skeleton.joints[size_t(p)].parent;
+  }
+  return -1;
+}
+
+// The joint of bone `b` to its parent bone: pivot at the bone's joint origin; hinges at elbows and
+// knees, cone-twist elsewhere. Frames are in the two bodies' frames at their spec poses.
+RagdollJointSpec jointFor(const RagdollSpec& spec, size_t b, size_t parentBone, const anim::Skeleton& skeleton,
+                          std::span<const glm::dmat4> globals) {
+  const uint16_t j = spec.bones[b].joint;
+  const glm::dvec3 pivot(globals[j][3]);
+  const RagdollBoneSpec& child = spec.bones[b];
+  glm::dvec3 along = child.centre - pivot;
+  along = glm::length(along) > 1e-6 ? glm::normalize(along) : glm::dvec3(child.rotation * glm::dvec3(0, 1, 0));
+  RagdollJointSpec out;
+  out.parentBone = uint16_t(parentBone);
+  out.childBone = uint16_t(b);
+  out.skeletonJoint = j;
+  physics::JointDef& def = out.def;
+  glm::dmat3 frame;
+  if (hasName(skeleton, j, "forearm") || hasName(skeleton, j, "shin")) {
+    // Elbows and knees turn about the joint's own x axis (the character's left-right axis).
+    glm::dvec3 z = glm::dvec3(globals[j] * glm::dvec4(1, 0, 0, 0));
+    z = z - along * glm::dot(z, along);
+    z = glm::length(z) > 1e-6 ? glm::normalize(z) : perpendicular(along);
+    const glm::dvec3 x = glm::normalize(glm::cross(glm::cross(z, along), z));
+    frame = glm::dmat3(x, glm::cross(z, x), z);
+    def.type = physics::JointType::Hinge;
+    def.lowerLimit = -1.3f;
+    def.upperLimit = 1.3f;
+  } else {
+    const glm::dvec3 y = perpendicular(along);
+    frame = glm::dmat3(along, y, glm::cross(along, y));
+    def.type = physics::JointType::ConeTwist;
+    const bool spine = hasName(skeleton, j, "spine") || hasName(skeleton, j, "chest") ||
+                       hasName(skeleton, j, "neck") || hasName(skeleton, j, "head");
+    def.swingSpan1 = def.swingSpan2 = spine ? 0.45f : 0.8f;
+    def.twistSpan = spine ? 0.3f : 0.5f;
+  }
+  const glm::dquat frameRotation = glm::normalize(glm::quat_cast(frame));
+  auto local = [&](const RagdollBoneSpec& bone) {
+    const glm::dquat inv = glm::inverse(bone.rotation);
+    return physics::BodyTransform{glm::vec3(inv * (pivot - bone.centre)), glm::quat(inv * frameRotation)};
+  };
+  def.frameA = local(spec.bones[parentBone]);
+  def.frameB = local(child);
+  return out;
+}
+
+glm::dmat4 boneMatrix(const RagdollBoneSpec& bone) {
+  return glm::translate(glm::dmat4(1.0), bone.centre) * glm::mat4_cast(bone.rotation);
+}
+
+}  // namespace
+
+bool planRagdoll(const geometry::MeshData& bindPiece, std::span<const glm::vec3> posed,
+                 std::span<const uint16_t> keptJoints, const anim::Skeleton& skeleton,
+                 std::span<const glm::dmat4> globals, double mass, RagdollSpec& out, std::string* error) {
+  out = RagdollSpec{};
+  const size_t jointCount = skeleton.size();
+  if (bindPiece.joints.empty() || posed.size() != bindPiece.positions.size() || globals.size() != jointCount) {
+    if (error) *error = "ragdoll: the piece has no skin or the pose does not match it";
+    return false;
+  }
+  const std::vector<BoneFit> fits = fitBones(bindPiece, posed, keptJoints, skeleton, globals);
+  double totalInfluence = 0.0;
+  for (const BoneFit& f : fits) totalInfluence += f.influence;
+  std::vector<int32_t> boneOfJoint(jointCount, -1);
+  for (const BoneFit& f : fits) {
+    if (!(f.radius > 0.0) || !std::isfinite(f.halfHeight) || !std::isfinite(f.centre.x)) continue;
+    RagdollBoneSpec bone;
+    bone.joint = f.joint;
+    // The pose the body will have (the bridge stores floats): joint frames and carried transforms
+    // are worked out against it.
+    bone.centre = glm::dvec3(glm::vec3(f.centre));
+    bone.rotation = glm::dquat(glm::normalize(glm::quat(f.rotation)));
+    bone.radius = float(f.radius);
+    bone.halfHeight = float(f.halfHeight);
+    bone.mass = float(std::max(mass * f.influence / totalInfluence, 1e-6));
+    boneOfJoint[f.joint] = int32_t(out.bones.size());
+    out.bones.push_back(bone);
+  }
+  if (out.bones.empty()) {
     if (error) *error = "ragdoll: no bone of the piece has enough vertices for a capsule";
     return false;
   }
-  double totalInfluence = 0.0;
-  for (const Fit& f : fits) totalInfluence += f.influence;
+  out.anchor = 0;
+  for (size_t b = 1; b < out.bones.size(); ++b)
+    if (out.bones[b].mass > out.bones[out.anchor].mass) out.anchor = b;
+  for (size_t b = 0; b < out.bones.size(); ++b) {
+    const int32_t parentBone = boneAncestor(skeleton, boneOfJoint, out.bones[b].joint);
+    if (parentBone >= 0) out.joints.push_back(jointFor(out, b, size_t(parentBone), skeleton, globals));
+  }
+  // Every skeleton joint rides on a body: its own bone, the nearest ancestor's, else the anchor.
+  out.carrier.assign(jointCount, uint16_t(out.anchor));
+  out.carried.assign(jointCount, glm::mat4(1.f));
+  for (size_t j = 0; j < jointCount; ++j) {
+    int32_t bone = boneOfJoint[j];
+    if (bone < 0) bone = boneAncestor(skeleton, boneOfJoint, j);
+    if (bone < 0) bone = int32_t(out.anchor);
+    out.carrier[j] = uint16_t(bone);
+    out.carried[j] = glm::mat4(glm::inverse(boneMatrix(out.bones[size_t(bone)])) * globals[j]);
+  }
+  return true;
+}
 
-  std::vector<int32_t> boneOfJoint(jointCount, -1);
-  for (const Fit& f : fits) {
-    physics::ShapeDef shapeDef = physics::ShapeDef::capsule(float(f.radius), float(f.halfHeight));
-    const auto shape = w.physics.createShape(shapeDef);
+bool createRagdoll(physics::PhysicsWorld& physics, const RagdollSpec& spec, const glm::dmat4& motion,
+                   const glm::dvec3& v, const glm::dvec3& omega, const glm::dvec3& parentCentre,
+                   uint64_t userData, uint64_t group, Ragdoll& out) {
+  out = Ragdoll{};
+  const glm::dquat turn = glm::normalize(glm::quat_cast(glm::dmat3(motion)));
+  std::vector<int32_t> created(spec.bones.size(), -1);
+  for (size_t b = 0; b < spec.bones.size(); ++b) {
+    const RagdollBoneSpec& s = spec.bones[b];
+    const auto shape = physics.createShape(physics::ShapeDef::capsule(s.radius, s.halfHeight));
     if (!shape.ok()) continue;
+    const glm::dvec3 centre(motion * glm::dvec4(s.centre, 1.0));
     physics::BodyDef def;
     def.shape = shape.value();
-    def.mass = float(std::max(mass * f.influence / totalInfluence, 1e-6));
-    def.position = glm::vec3(f.centre);
-    def.rotation = glm::quat(f.rotation);
-    def.linearVelocity = glm::vec3(v + glm::cross(omega, f.centre - parentCentre));
+    def.mass = s.mass;
+    def.position = glm::vec3(centre);
+    def.rotation = glm::quat(glm::normalize(turn * s.rotation));
+    def.linearVelocity = glm::vec3(v + glm::cross(omega, centre - parentCentre));
     def.angularVelocity = glm::vec3(omega);
     def.userData = userData;
     def.collisionGroup = group;
     def.linearDamping = 0.05f;
     def.angularDamping = 0.2f;
     def.friction = 0.8f;
-    const auto body = w.physics.createBody(def);
+    const auto body = physics.createBody(def);
     if (!body.ok()) {
-      w.physics.destroyShape(shape.value());
+      physics.destroyShape(shape.value());
       continue;
     }
-    RagdollBone bone;
-    bone.joint = f.joint;
-    bone.body = body.value();
-    bone.shape = shape.value();
-    bone.radius = float(f.radius);
-    bone.halfHeight = float(f.halfHeight);
-    bone.mass = def.mass;
-    boneOfJoint[f.joint] = int32_t(out.bones.size());
-    out.bones.push_back(bone);
+    created[b] = int32_t(out.bones.size());
+    out.bones.push_back(RagdollBone{s.joint, body.value(), shape.value(), s.radius, s.halfHeight, s.mass});
   }
-  if (out.bones.empty()) {
-    if (error) *error = "ragdoll: no capsule could be created";
+  if (out.bones.empty() || created[spec.anchor] < 0) {
+    releaseRagdoll(physics, out);
+    out = Ragdoll{};
     return false;
   }
-  out.anchor = 0;
-  for (size_t b = 1; b < out.bones.size(); ++b)
-    if (out.bones[b].mass > out.bones[out.anchor].mass) out.anchor = b;
-
-  auto bodyMatrix = [&](size_t bone) { return rigid(*w.physics.bodyTransform(out.bones[bone].body)); };
-  // The nearest ancestor joint that has a bone, or -1.
-  auto boneAncestor = [&](size_t j) {
-    int32_t p = skeleton.joints[j].parent;
-    for (size_t guard = 0; p >= 0 && guard < jointCount; ++guard) {
-      if (boneOfJoint[size_t(p)] >= 0) return boneOfJoint[size_t(p)];
-      p = skeleton.joints[size_t(p)].parent;
-    }
-    return int32_t(-1);
-  };
-
-  // Joints: each bone to the bone of its nearest ancestor, pivot at the bone's joint origin.
-  for (size_t b = 0; b < out.bones.size(); ++b) {
-    const uint16_t j = out.bones[b].joint;
-    const int32_t parentBone = boneAncestor(j);
-    if (parentBone < 0) continue;
-    const glm::dvec3 pivot = origin(j);
-    const physics::BodyTransform childT = *w.physics.bodyTransform(out.bones[b].body);
-    glm::dvec3 along = glm::dvec3(childT.position) - pivot;
-    along = glm::length(along) > 1e-6 ? glm::normalize(along) : glm::dvec3(glm::dquat(childT.rotation) * glm::dvec3(0, 1, 0));
-    physics::JointDef def;
-    def.bodyA = out.bones[size_t(parentBone)].body;
-    def.bodyB = out.bones[b].body;
-    glm::dmat3 frame;
-    const bool hinge = hasName(skeleton, j, "forearm") || hasName(skeleton, j, "shin");
-    if (hinge) {
-      // Elbows and knees turn about the joint's own x axis (the character's left-right axis).
-      glm::dvec3 z = glm::dvec3(globals[j] * glm::dvec4(1, 0, 0, 0));
-      z = z - along * glm::dot(z, along);
-      z = glm::length(z) > 1e-6 ? glm::normalize(z) : perpendicular(along);
-      const glm::dvec3 x = glm::normalize(glm::cross(glm::cross(z, along), z));
-      frame = glm::dmat3(x, glm::cross(z, x), z);
-      def.type = physics::JointType::Hinge;
-      def.lowerLimit = -1.3f;
-      def.upperLimit = 1.3f;
-    } else {
-      const glm::dvec3 y = perpendicular(along);
-      frame = glm::dmat3(along, y, glm::cross(along, y));
-      def.type = physics::JointType::ConeTwist;
-      const bool spine = hasName(skeleton, j, "spine") || hasName(skeleton, j, "chest") ||
-                         hasName(skeleton, j, "neck") || hasName(skeleton, j, "head");
-      def.swingSpan1 = def.swingSpan2 = spine ? 0.45f : 0.8f;
-      def.twistSpan = spine ? 0.3f : 0.5f;
-    }
-    const glm::dquat frameRotation = glm::normalize(glm::quat_cast(frame));
-    auto local = [&](physics::BodyId body) {
-      const physics::BodyTransform t = *w.physics.bodyTransform(body);
-      const glm::dquat inv = glm::inverse(glm::dquat(t.rotation));
-      return physics::BodyTransform{glm::vec3(inv * (pivot - glm::dvec3(t.position))),
-                                    glm::quat(inv * frameRotation)};
-    };
-    def.frameA = local(def.bodyA);
-    def.frameB = local(def.bodyB);
-    const auto joint = w.physics.createJoint(def);
+  out.anchor = size_t(created[spec.anchor]);
+  for (const RagdollJointSpec& j : spec.joints) {
+    if (created[j.parentBone] < 0 || created[j.childBone] < 0) continue;
+    physics::JointDef def = j.def;
+    def.bodyA = out.bones[size_t(created[j.parentBone])].body;
+    def.bodyB = out.bones[size_t(created[j.childBone])].body;
+    const auto joint = physics.createJoint(def);
     if (!joint.ok()) continue;
-    RagdollJoint rj;
-    rj.joint = joint.value();
-    rj.parentBone = uint16_t(parentBone);
-    rj.childBone = uint16_t(b);
-    rj.skeletonJoint = j;
-    rj.type = def.type;
-    out.joints.push_back(rj);
+    out.joints.push_back(RagdollJoint{joint.value(), uint16_t(created[j.parentBone]),
+                                      uint16_t(created[j.childBone]), j.skeletonJoint, def.type});
   }
-
-  // Every skeleton joint rides on a body: its own bone, the nearest ancestor's, else the anchor.
-  out.carrier.assign(jointCount, uint16_t(out.anchor));
-  out.carried.assign(jointCount, glm::mat4(1.f));
-  for (size_t j = 0; j < jointCount; ++j) {
-    int32_t bone = boneOfJoint[j];
-    if (bone < 0) bone = boneAncestor(j);
-    if (bone < 0) bone = int32_t(out.anchor);
-    out.carrier[j] = uint16_t(bone);
-    out.carried[j] = glm::mat4(glm::inverse(bodyMatrix(size_t(bone))) * globals[j]);
+  out.carrier.resize(spec.carrier.size());
+  out.carried = spec.carried;
+  for (size_t k = 0; k < spec.carrier.size(); ++k) {
+    const int32_t bone = created[spec.carrier[k]];
+    if (bone >= 0) {
+      out.carrier[k] = uint16_t(bone);
+    } else {  // its bone could not be made: ride on the anchor where the anchor is now
+      out.carrier[k] = uint16_t(out.anchor);
+      out.carried[k] = glm::mat4(glm::inverse(boneMatrix(spec.bones[spec.anchor])) *
+                                 boneMatrix(spec.bones[spec.carrier[k]]) * glm::dmat4(spec.carried[k]));
+    }
   }
   return true;
 }

@@ -18,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include "components/split_job.h"
 #include "components/split_system.h"
 #include "engine/anim/animation_clip.h"
 #include "engine/anim/skeleton.h"
@@ -102,18 +103,23 @@ void posedJointGlobals(const anim::Skeleton& skeleton, std::span<const glm::mat4
 // into; its MassInfo still holds the mass that its pieces share. Returns false with a reason.
 bool makeSkinnedBody(SplitWorld& w, ecs::Entity e, double density, bool kinematic, std::string* error);
 
-// Builds the ragdoll of one skinned piece. `bindPiece` is the piece in bind space with skin,
-// `posed` the same vertices in world space (the pose at the cut), `keptJoints` the joints it uses
-// (SplitPiece::joints), `globals` the world transforms of every skeleton joint in that pose. Bones
-// get capsules fitted to the vertices each joint dominates and a share of `mass` by vertex
-// influence (shares sum to `mass`); every body starts with the velocity of the point it occupies,
-// v + omega x (c - parentCentre). Bodies carry `userData` and share collision group `group`.
-// Returns false (and creates nothing) if no bone has enough vertices for a capsule.
-bool buildRagdoll(SplitWorld& w, const geometry::MeshData& bindPiece, std::span<const glm::vec3> posed,
-                  std::span<const uint16_t> keptJoints, const anim::Skeleton& skeleton,
-                  std::span<const glm::dmat4> globals, double mass, const glm::dvec3& v,
-                  const glm::dvec3& omega, const glm::dvec3& parentCentre, uint64_t userData,
-                  uint64_t group, Ragdoll& out, std::string* error);
+// Plans the ragdoll of one skinned piece (pure: no physics). `bindPiece` is the piece in bind space
+// with skin, `posed` the same vertices in world space (the pose at the cut), `keptJoints` the joints
+// it uses (SplitPiece::joints), `globals` the world transforms of every skeleton joint in that pose.
+// Bones get capsules fitted to the vertices each joint dominates and a share of `mass` by vertex
+// influence (shares sum to `mass`); joints join each bone to its nearest ancestor bone (hinges at
+// elbows and knees). Returns false if no bone has enough vertices for a capsule.
+bool planRagdoll(const geometry::MeshData& bindPiece, std::span<const glm::vec3> posed,
+                 std::span<const uint16_t> keptJoints, const anim::Skeleton& skeleton,
+                 std::span<const glm::dmat4> globals, double mass, RagdollSpec& out, std::string* error);
+
+// Creates a planned ragdoll: bodies at `motion` x their planned poses (`motion` is the rigid motion
+// of the parent since the plan, identity if it did not move), each with the velocity of the point it
+// occupies, v + omega x (c - parentCentre), carrying `userData` in collision group `group`; then the
+// joints. Returns false (and creates nothing) if the anchor bone cannot be created.
+bool createRagdoll(physics::PhysicsWorld& physics, const RagdollSpec& spec, const glm::dmat4& motion,
+                   const glm::dvec3& v, const glm::dvec3& omega, const glm::dvec3& parentCentre,
+                   uint64_t userData, uint64_t group, Ragdoll& out);
 
 // Joint matrices of a ragdoll now, relative to its anchor body's frame (the entity frame).
 void ragdollJointMatrices(const physics::PhysicsWorld& physics, const Ragdoll& ragdoll,

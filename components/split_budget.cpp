@@ -1,8 +1,14 @@
 #include "components/split_budget.h"
 
 #include <algorithm>
+#include <thread>
 
 namespace cleave::components {
+
+uint32_t defaultSplitThreads() {
+  const unsigned hardware = std::thread::hardware_concurrency();
+  return hardware > 1 ? uint32_t(hardware - 1) : 0u;
+}
 
 void SplitBudget::enqueue(SplitRequest request) {
   request.sequence = nextSequence_++;
@@ -34,6 +40,7 @@ void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition
   stats_.failed = 0;
   stats_.millisecondsUsed = 0.0;
   stats_.millisecondsCharged = 0.0;
+  stats_.workerMillisecondsCharged = 0.0;
 
   // Stale requests (the entity is gone, e.g. already split or destroyed by gameplay) are dropped.
   const size_t before = queue_.size();
@@ -73,19 +80,20 @@ void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition
     const SplitRequest& r = queue_[k.index];
     if (r.requestedTick >= currentTick) continue;  // gathered this tick: runs from the next one
     if (stats_.executed >= settings_.maxSplitsPerTick) break;
-    if (stats_.executed > 0 && stats_.millisecondsCharged >= settings_.millisecondsPerTick) break;
+    if (stats_.executed > 0 && (stats_.millisecondsCharged >= settings_.millisecondsPerTick ||
+                                stats_.workerMillisecondsCharged >= settings_.workerMillisecondsPerTick))
+      break;
     // A second request for a target split this tick waits; next tick its target is gone and the
     // request is dropped as stale (the pieces are new entities).
     if (std::find(splitThisTick.begin(), splitThisTick.end(), r.target) != splitThisTick.end()) continue;
-    const double estimate =
-        settings_.deterministic ? (estimator_ ? std::max(0.0, estimator_(r)) : settings_.millisecondsPerTick)
-                                : 0.0;
+    const SplitCost estimate = estimator_ ? estimator_(r) : SplitCost{settings_.millisecondsPerTick, 0.0};
     const double start = nowMilliseconds();
     const bool ok = execute(r);
     const double spent = nowMilliseconds() - start;
     stats_.millisecondsUsed += spent;
+    stats_.workerMillisecondsCharged += std::max(0.0, estimate.worker);
     if (settings_.deterministic) {
-      stats_.millisecondsCharged += estimate;
+      stats_.millisecondsCharged += std::max(0.0, estimate.main);
     } else {
       stats_.millisecondsCharged += spent;
     }

@@ -28,21 +28,43 @@ struct SplitRequest {
   uint64_t sequence = 0;              // arrival order, filled by the budget
 };
 
+// Worker threads by default: the hardware threads but one (the main thread's), at least 0.
+uint32_t defaultSplitThreads();
+
+// The estimated cost of one split per stage, in milliseconds: main thread (prepare + commit) and
+// worker (compute).
+struct SplitCost {
+  double main = 0.0;
+  double worker = 0.0;
+};
+
 struct SplitBudgetSettings {
-  double millisecondsPerTick = 4.0;   // split work allowed per tick (at least one split always runs)
+  double millisecondsPerTick = 4.0;   // main-thread split work allowed per tick (at least one split runs)
+  double workerMillisecondsPerTick = 16.0;  // compute work started per tick, summed over workers
   uint32_t maxSplitsPerTick = 8;
   uint32_t maxActivationsPerTick = 16;
   uint32_t maxQueueLength = 1024;     // beyond this the lowest-priority requests are dropped
-  // Deterministic scheduling: each split is charged its estimated cost (from the cost estimator,
-  // e.g. triangles x a per-triangle cost) instead of the measured time, so the same input splits in
-  // the same ticks on every run and machine (replays stay exact). The measured time is still
-  // reported in the stats. False: charge the measured wall time (adapts to the machine, but the
-  // schedule, and so the simulation, depends on timing).
+  // Deterministic scheduling: each split is charged its estimated cost (from the cost estimator)
+  // instead of the measured time, so the same input splits in the same ticks on every run, machine
+  // and thread count (replays stay exact). The measured times are still reported in the stats.
+  // False: charge the measured main-thread time (adapts to the machine, but the schedule, and so the
+  // simulation, depends on timing).
   bool deterministic = true;
-  // The split system's estimate of one split: a fixed part plus a part per triangle of the target
-  // (collider building dominates; measured on the demo objects).
-  double estimatedMillisecondsPerSplit = 0.3;
-  double estimatedMillisecondsPerTriangle = 0.004;
+  // Worker threads for the compute stage (0: computed inline on the main thread). The results, and
+  // so the replays, are the same for any number.
+  uint32_t threads = defaultSplitThreads();
+  // A split prepared in tick T commits in tick T + commitDelayTicks, whatever the threads did: the
+  // main thread waits for a late job. 0 commits in the tick it was prepared.
+  uint32_t commitDelayTicks = 1;
+  // The split system's estimates, per stage and piece kind (measured on the demo objects; see
+  // docs/performance.md): main thread per split (rigid pieces, or skinned ragdoll pieces with their
+  // bones and joints), worker per split and per triangle of the target, the first cut of a mesh
+  // (its collider parts are decomposed then) costing `firstCutWorkerFactor` times more.
+  double estimatedMainMilliseconds = 0.12;
+  double estimatedRagdollMainMilliseconds = 0.5;
+  double estimatedWorkerMilliseconds = 0.05;
+  double estimatedWorkerMillisecondsPerTriangle = 0.00025;
+  double firstCutWorkerFactor = 6.0;
 };
 
 struct SplitBudgetStats {
@@ -50,8 +72,9 @@ struct SplitBudgetStats {
   uint32_t deferred = 0;      // requests left waiting at the end of this tick
   uint32_t dropped = 0;       // stale or over-capacity requests dropped this tick
   uint32_t failed = 0;        // splits that failed this tick (original kept)
-  double millisecondsUsed = 0.0;      // measured split time this tick
-  double millisecondsCharged = 0.0;   // what the budget counted (the estimate when deterministic)
+  double millisecondsUsed = 0.0;      // measured main-thread prepare time this tick
+  double millisecondsCharged = 0.0;   // main-thread time the budget counted (the estimate when deterministic)
+  double workerMillisecondsCharged = 0.0;  // compute time the budget counted (estimates)
   double lastSplitMilliseconds = 0.0;
   double maxSplitMilliseconds = 0.0;  // over the whole run
   uint32_t queueLength = 0;
@@ -79,9 +102,10 @@ class SplitBudget {
                const std::function<bool(const SplitRequest&)>& execute,
                const std::function<double()>& nowMilliseconds);
 
-  // Estimated milliseconds of one request, used when settings().deterministic is true. Without an
-  // estimator every split is charged millisecondsPerTick (one split per tick).
-  void setCostEstimator(std::function<double(const SplitRequest&)> estimator) {
+  // Estimated cost of one request per stage. The main-thread part is charged when
+  // settings().deterministic is true, the worker part always. Without an estimator every split is
+  // charged millisecondsPerTick (one split per tick).
+  void setCostEstimator(std::function<SplitCost(const SplitRequest&)> estimator) {
     estimator_ = std::move(estimator);
   }
 
@@ -100,7 +124,7 @@ class SplitBudget {
   std::vector<SplitRequest> queue_;
   std::vector<uint64_t> activations_;
   uint64_t nextSequence_ = 0;
-  std::function<double(const SplitRequest&)> estimator_;
+  std::function<SplitCost(const SplitRequest&)> estimator_;
   double chargedMilliseconds_ = 0.0;
 };
 

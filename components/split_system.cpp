@@ -14,11 +14,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "components/split_compute.h"
 #include "engine/ecs/command_buffer.h"
 #include "engine/ecs/hierarchy.h"
-#include "engine/geometry/convex_hull.h"
 #include "engine/geometry/mass_properties.h"
-#include "engine/geometry/primitives.h"
 
 namespace cleave::components {
 
@@ -30,20 +29,6 @@ double nowMs() {
 }
 
 }  // namespace
-
-BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const glm::dmat4& model) {
-  BodyFrame f;
-  f.position = props.centerOfMass;
-  const double scale = props.volume > 0.0 ? mass / props.volume : 0.0;
-  const geometry::PrincipalInertia principal = geometry::principalInertia(props.inertia * scale);
-  f.rotation = glm::normalize(glm::quat_cast(principal.axes));
-  // A piece must never get zero inertia (a sliver): floor each moment at a small share of the largest.
-  const double largest = std::max({principal.moments.x, principal.moments.y, principal.moments.z, 1e-12});
-  f.moments = glm::max(principal.moments, glm::dvec3(largest * 1e-3));
-  const glm::dmat4 bodyToWorld = glm::translate(glm::dmat4(1.0), f.position) * glm::mat4_cast(f.rotation);
-  f.meshOffset = glm::inverse(bodyToWorld) * model;
-  return f;
-}
 
 void placeOnBody(SplitWorld& w, ecs::Entity e, const physics::BodyDef& def, physics::BodyId body,
                  physics::ShapeId shape, double mass, const geometry::MassProperties& props, double density) {
@@ -69,86 +54,6 @@ std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const g
 }
 
 namespace {
-
-// Collider choice: is the closed mesh convex enough that its convex hull is a faithful collider?
-// The hull of the points extreme along 64 spread directions lies inside the true hull; when even
-// that inscribed hull exceeds the mesh volume by more than `slack`, the mesh has a real concavity.
-// A concavity smaller than the slack is filled by the hull collider, by design. Cheap: 64 passes
-// over the points and a hull of at most 64 points.
-bool nearlyConvex(const geometry::MeshData& mesh, double slack = 0.03) {
-  const size_t n = mesh.positions.size();
-  if (n < 4 || mesh.indices.size() < 12) return false;
-  const geometry::MassProperties props = geometry::computeMassProperties(mesh, glm::dmat4(1.0));
-  if (!props.closed || !(props.volume > 0.0)) return false;
-  constexpr int kDirections = 64;
-  std::vector<uint32_t> extreme;
-  extreme.reserve(kDirections);
-  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < kDirections; ++i) {
-    const double z = 1.0 - 2.0 * (double(i) + 0.5) / double(kDirections);
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const glm::dvec3 dir(r * std::cos(golden * i), r * std::sin(golden * i), z);
-    uint32_t best = 0;
-    double bestDot = -std::numeric_limits<double>::infinity();
-    for (uint32_t v = 0; v < n; ++v) {
-      const double d = glm::dot(dir, glm::dvec3(mesh.positions[v]));
-      if (d > bestDot) {
-        bestDot = d;
-        best = v;
-      }
-    }
-    extreme.push_back(best);
-  }
-  std::sort(extreme.begin(), extreme.end());
-  extreme.erase(std::unique(extreme.begin(), extreme.end()), extreme.end());
-  std::vector<glm::dvec3> points;
-  points.reserve(extreme.size());
-  for (uint32_t v : extreme) points.push_back(glm::dvec3(mesh.positions[v]));
-  const geometry::ConvexHull hull = geometry::computeConvexHull(std::span<const glm::dvec3>(points));
-  if (hull.status != geometry::HullStatus::Ok) return false;
-  const geometry::MassProperties hullProps =
-      geometry::computeMassProperties(std::span<const glm::dvec3>(hull.positions), hull.indices);
-  return hullProps.volume <= props.volume * (1.0 + slack);
-}
-
-// Our own convex decomposition for colliders: cut the piece through its centre along the longest
-// extent of its bounds, recursively, until every part is convex or the depth runs out.
-void decompose(geometry::IMeshSplitter& splitter, const geometry::MeshData& mesh, int depth,
-               std::vector<physics::ConvexPart>& parts) {
-  if (mesh.positions.size() < 4) return;
-  if (depth <= 0 || nearlyConvex(mesh)) {
-    physics::ConvexPart part;
-    part.points = mesh.positions;
-    parts.push_back(std::move(part));
-    return;
-  }
-  glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const auto& p : mesh.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  const glm::vec3 extent = hi - lo;
-  int axis = 0;
-  if (extent.y > extent[axis]) axis = 1;
-  if (extent.z > extent[axis]) axis = 2;
-  geometry::Plane plane;
-  plane.normal = glm::dvec3(0.0);
-  plane.normal[axis] = 1.0;
-  plane.offset = 0.5 * (double(lo[axis]) + double(hi[axis]));
-  geometry::MeshContainer container;
-  if (container.setMesh(mesh) != geometry::SplitStatus::Ok) return;
-  geometry::SplitOptions options;
-  options.computeMass = false;
-  options.separateIslands = true;
-  geometry::SplitResult result;
-  if (splitter.split(container, plane, options, result) != geometry::SplitStatus::Ok) {
-    physics::ConvexPart part;
-    part.points = mesh.positions;
-    parts.push_back(std::move(part));
-    return;
-  }
-  for (const auto& piece : result.pieces) decompose(splitter, piece.mesh, depth - 1, parts);
-}
 
 // Writes the mesh of a failed split in cut space (an OBJ with the plane in its header) so the case
 // can be reproduced with cleave-split or a unit test.
@@ -180,48 +85,76 @@ void writeFailureCase(const std::string& directory, const std::string& name, uin
   std::fprintf(stderr, "cleave: failed split written to %s\n", path.c_str());
 }
 
+// The frame and motion of an entity now: its body's when it has one, else its Transform's.
+ParentMotion motionOf(SplitWorld& w, ecs::Entity e) {
+  ParentMotion m;
+  if (const auto* t = w.world.tryGet<ecs::Transform>(e)) {
+    m.centre = glm::dvec3(t->position);
+    m.rotation = glm::dquat(t->rotation);
+  }
+  if (const auto* rb = w.world.tryGet<RigidBody>(e); rb && w.physics.isValid(rb->body)) {
+    if (const auto state = w.physics.bodyState(rb->body)) {
+      m.centre = glm::dvec3(state->transform.position);
+      m.rotation = glm::dquat(state->transform.rotation);
+      m.velocity = glm::dvec3(state->linearVelocity);
+      m.angularVelocity = glm::dvec3(state->angularVelocity);
+      m.mass = state->mass;
+    }
+  }
+  if (const auto* mi = w.world.tryGet<MassInfo>(e)) m.mass = mi->mass;
+  return m;
+}
+
+// The rigid motion that takes the frame `then` to the frame `now` (identity, exactly, when equal).
+glm::dmat4 motionBetween(const ParentMotion& then, const ParentMotion& now) {
+  if (then.centre == now.centre && then.rotation == now.rotation) return glm::dmat4(1.0);
+  const glm::dmat4 a = glm::translate(glm::dmat4(1.0), then.centre) * glm::mat4_cast(then.rotation);
+  const glm::dmat4 b = glm::translate(glm::dmat4(1.0), now.centre) * glm::mat4_cast(now.rotation);
+  return b * glm::inverse(a);
+}
+
 }  // namespace
 
 struct SplitSystem::Scratch {
-  geometry::MeshContainer container;
-  std::unique_ptr<geometry::IMeshSplitter> concave = geometry::makeConcaveSplitter();
-  std::unique_ptr<geometry::IMeshSplitter> convex = geometry::makeConvexSplitter();
-  geometry::SplitResult result;
   // Structural changes of the current batch; made for the world of the first call.
   std::unique_ptr<ecs::CommandBuffer> commands;
   ecs::World* commandsWorld = nullptr;
   std::vector<ecs::Entity> doomed;  // entities the batch destroys: their resources go first
-  std::vector<SplitRequest> pending;
   uint32_t activationsThisTick = 0;
-  // Welds of the meshes the system has cut or made, by mesh: a mesh cut again (every piece, and an
-  // authored mesh that many objects share) is not welded again. An entry is valid while its mesh
-  // lives (the weak pointer still points at it); dead entries are dropped when the table grows.
-  struct KnownWeld {
+  // What is known of the meshes the system has cut or made, by mesh: its weld, and its collider
+  // parts. A mesh cut again (every piece, and an authored mesh that many objects share) is neither
+  // welded nor decomposed again. An entry is valid while its mesh lives (the weak pointer still
+  // points at it); dead entries are dropped when the table grows.
+  struct Known {
     std::weak_ptr<const geometry::MeshData> mesh;
-    geometry::MeshWeld weld;
+    std::shared_ptr<const geometry::MeshWeld> weld;
+    geometry::SharedColliderParts parts;
   };
-  std::unordered_map<const geometry::MeshData*, KnownWeld> welds;
-  size_t weldsPruneAt = 64;
+  std::unordered_map<const geometry::MeshData*, Known> known;
+  size_t prunedAt = 64;
+  SplitComputeScratch inlineCompute;  // splitNow
 
-  const geometry::MeshWeld* knownWeld(const std::shared_ptr<const geometry::MeshData>& mesh) const {
-    const auto it = welds.find(mesh.get());
-    if (it == welds.end() || it->second.mesh.lock() != mesh) return nullptr;
-    return &it->second.weld;
+  const Known* find(const std::shared_ptr<const geometry::MeshData>& mesh) const {
+    const auto it = known.find(mesh.get());
+    if (it == known.end() || it->second.mesh.lock() != mesh) return nullptr;
+    return &it->second;
   }
-  void keepWeld(const std::shared_ptr<const geometry::MeshData>& mesh, geometry::MeshWeld weld) {
-    if (welds.size() >= weldsPruneAt) {
-      std::erase_if(welds, [](const auto& entry) { return entry.second.mesh.expired(); });
-      weldsPruneAt = std::max<size_t>(64, 2 * welds.size());
+  Known& entry(const std::shared_ptr<const geometry::MeshData>& mesh) {
+    if (known.size() >= prunedAt) {
+      std::erase_if(known, [](const auto& e) { return e.second.mesh.expired(); });
+      prunedAt = std::max<size_t>(64, 2 * known.size());
     }
-    KnownWeld& entry = welds[mesh.get()];
-    entry.mesh = mesh;
-    entry.weld = std::move(weld);
+    Known& e = known[mesh.get()];
+    if (e.mesh.lock() != mesh) e = Known{mesh, nullptr, nullptr};
+    return e;
   }
 };
 
 SplitSystem::SplitSystem(SplitBudgetSettings budget)
     : budget_(budget), scratch_(std::make_unique<Scratch>()) {}
-SplitSystem::~SplitSystem() = default;
+SplitSystem::~SplitSystem() {
+  if (workers_) workers_->waitAll();
+}
 
 namespace {
 
@@ -246,7 +179,31 @@ void SplitSystem::registerHandler(const std::string& name, SplitHandler handler)
   handlers_[name] = std::move(handler);
 }
 
+void SplitSystem::setTaskExecutor(SplitTaskExecutor executor) {
+  executor_ = std::move(executor);
+  if (workers_) workers_->setExecutor(executor_);
+}
+
+SplitWorkers& SplitSystem::workers() {
+  const uint32_t threads = budget_.settings().threads;
+  if (!workers_ || workers_->threads() != threads) {
+    if (workers_) workers_->waitAll();
+    workers_ = std::make_unique<SplitWorkers>(threads);
+    if (executor_) workers_->setExecutor(executor_);
+  }
+  return *workers_;
+}
+
 void SplitSystem::request(const SplitRequest& request) { budget_.enqueue(request); }
+
+geometry::SharedColliderParts SplitSystem::colliderParts(const std::shared_ptr<const geometry::MeshData>& mesh,
+                                                         ColliderMode mode) {
+  if (!mesh) return nullptr;
+  if (const Scratch::Known* k = scratch_->find(mesh); k && k->parts) return k->parts;
+  const ColliderPlan plan = planCollider(*mesh, glm::dmat4(1.0), mode, false, nullptr, *scratch_->inlineCompute.concave);
+  scratch_->entry(mesh).parts = plan.parts;
+  return plan.parts;
+}
 
 uint64_t toUserData(ecs::Entity e) { return (uint64_t(e.generation) << 32) | uint64_t(e.index); }
 
@@ -299,67 +256,54 @@ void releaseEntityResources(SplitWorld& w, ecs::Entity e) {
   }
 }
 
-namespace {
-
-// Creates a collider for a mesh given in mesh space with the body frame's offset.
-physics::ShapeId makeCollider(SplitWorld& w, geometry::IMeshSplitter& splitter,
-                              const geometry::MeshData& mesh, const glm::dmat4& meshOffset,
-                              ColliderMode mode, bool knownConvex, std::string* reason) {
-  ColliderMode chosen = mode;
-  // A piece of a convex mesh is convex (the intersection of two convex sets): no check needed.
-  if (chosen == ColliderMode::Auto)
-    chosen = knownConvex || nearlyConvex(mesh) ? ColliderMode::ConvexHull : ColliderMode::Compound;
-  std::vector<glm::vec3> points = transformedPoints(mesh, meshOffset);
-  if (chosen == ColliderMode::ConcaveMesh) {
-    auto r = w.physics.createShape(physics::ShapeDef::concaveMesh(points, mesh.indices));
+physics::ShapeId createPlannedShape(physics::PhysicsWorld& physics, const std::vector<HullSpec>& hulls,
+                                    const std::vector<glm::vec3>& concavePositions,
+                                    const std::vector<uint32_t>& concaveIndices, std::string* reason) {
+  if (!concavePositions.empty()) {
+    auto r = physics.createShape(physics::ShapeDef::concaveMesh(concavePositions, concaveIndices));
     if (r.ok()) return r.value();
-    chosen = ColliderMode::ConvexHull;
   }
-  if (chosen == ColliderMode::Compound) {
-    geometry::MeshData bodySpace;
-    bodySpace.positions = points;
-    bodySpace.indices = mesh.indices;
-    std::vector<physics::ConvexPart> parts;
-    decompose(splitter, bodySpace, 3, parts);
-    if (parts.size() > 1) {
-      physics::ShapeDef def = physics::ShapeDef::compound(std::move(parts));
-      def.maxHullVertices = 24;  // parts are small: a coarse hull each keeps building and contacts cheap
-      auto r = w.physics.createShape(def);
-      if (r.ok()) return r.value();
+  if (hulls.empty()) {
+    if (reason) *reason = "no collider part holds any volume";
+    return {};
+  }
+  physics::ShapeDef def;
+  if (hulls.size() == 1) {
+    def = physics::ShapeDef::preparedHull(hulls[0].points, hulls[0].margin);
+  } else {
+    std::vector<physics::ConvexPart> parts(hulls.size());
+    for (size_t i = 0; i < hulls.size(); ++i) {
+      parts[i].points = hulls[i].points;
+      parts[i].margin = hulls[i].margin;
     }
+    def = physics::ShapeDef::compound(std::move(parts));
   }
-  physics::ShapeDef hullDef = physics::ShapeDef::convexHull(points);
-  hullDef.maxHullVertices = 48;
-  auto r = w.physics.createShape(hullDef);
+  def.maxHullVertices = 48;  // parts are small: a coarse hull each keeps contacts cheap
+  auto r = physics.createShape(def);
   if (r.ok()) return r.value();
   if (reason) *reason = r.reason();
   return {};
 }
 
-}  // namespace
-
 namespace {
 
-// One Splitable on a parent cuts the meshes of its whole subtree together. The meshes are merged
-// into the parent entity's space with their submesh material ids tagged by part:
-// id = part * kPartStride + original id (part 0 is the parent's own mesh), and the caps get
-// kMergedCapId. After the cut, the tags tell which triangles go back to which part.
-constexpr uint32_t kPartStride = 64;
-constexpr uint32_t kMergedCapId = kPartStride - 1;
-
-struct HierarchyPart {
-  ecs::Entity entity;
-  const MeshRenderer* renderer = nullptr;
-  glm::dmat4 toParent{1.0};  // the part's mesh space -> the parent entity's space
-};
-
-// Collects the parent's own mesh (if any) and the meshes of its descendants. Returns false when the
-// subtree has no descendant with a mesh (the plain single-mesh path applies).
-bool gatherParts(const ecs::World& world, ecs::Entity root, std::vector<HierarchyPart>& parts) {
+// Collects the target's own mesh (if any) and the meshes of its descendants (those without a body
+// of their own). Returns false when the subtree has no descendant with a mesh (the plain
+// single-mesh path applies).
+bool gatherParts(const ecs::World& world, ecs::Entity root, std::vector<HierarchyPartData>& parts) {
   parts.clear();
-  if (const auto* mr = world.tryGet<MeshRenderer>(root); mr && mr->source)
-    parts.push_back({root, mr, glm::dmat4(mr->meshOffset)});
-  size_t own = parts.size();
+  auto add = [&](ecs::Entity e, const MeshRenderer& mr, const glm::dmat4& toParent) {
+    HierarchyPartData part;
+    part.entity = e;
+    part.mesh = mr.source;
+    part.toParent = toParent * glm::dmat4(mr.meshOffset);
+    part.materials = mr.materials;
+    part.visible = mr.visible;
+    if (const auto* n = world.tryGet<ecs::Name>(e)) part.name = n->value;
+    parts.push_back(std::move(part));
+  };
+  if (const auto* mr = world.tryGet<MeshRenderer>(root); mr && mr->source) add(root, *mr, glm::dmat4(1.0));
+  const size_t own = parts.size();
   struct Item {
     ecs::Entity entity;
     glm::dmat4 toParent;
@@ -377,47 +321,12 @@ bool gatherParts(const ecs::World& world, ecs::Entity root, std::vector<Hierarch
     if (world.has<RigidBody>(item.entity)) continue;  // a body of its own: an object of its own
     const auto* t = world.tryGet<ecs::Transform>(item.entity);
     const glm::dmat4 toParent = item.toParent * (t ? glm::dmat4(ecs::localMatrix(*t)) : glm::dmat4(1.0));
-    if (const auto* mr = world.tryGet<MeshRenderer>(item.entity); mr && mr->source)
-      parts.push_back({item.entity, mr, toParent * glm::dmat4(mr->meshOffset)});
+    if (const auto* mr = world.tryGet<MeshRenderer>(item.entity); mr && mr->source) add(item.entity, *mr, toParent);
     if (const auto* children = world.tryGet<ecs::Children>(item.entity))
       for (auto it = children->entities.rbegin(); it != children->entities.rend(); ++it)
         stack.push_back({*it, toParent, item.depth + 1});
   }
   return parts.size() > own && parts.size() < kPartStride;
-}
-
-// The merged mesh of the parts in the parent entity's space, material ids tagged by part.
-geometry::MeshData mergeParts(const std::vector<HierarchyPart>& parts) {
-  geometry::MeshData merged;
-  for (size_t k = 0; k < parts.size(); ++k) {
-    geometry::MeshData part = *parts[k].renderer->source;
-    geometry::primitives::transform(part, glm::mat4(parts[k].toParent));
-    if (part.submeshes.empty()) part.submeshes.push_back({0, uint32_t(part.indices.size()), 0});
-    for (geometry::SubMesh& sub : part.submeshes)
-      sub.materialId = uint32_t(k) * kPartStride + std::min(sub.materialId, kMergedCapId - 1);
-    merged = merged.positions.empty() ? std::move(part) : geometry::primitives::merge(merged, part);
-  }
-  return merged;
-}
-
-// The triangles of `piece` whose tag says they belong to part `part` (and the caps, for `withCaps`),
-// with the tags turned back into the part's own material ids (caps: capMaterialId).
-geometry::MeshData extractPart(const geometry::MeshData& piece, uint32_t part, bool withCaps,
-                               uint32_t capMaterialId) {
-  std::vector<uint32_t> triangles;
-  for (const geometry::SubMesh& sub : piece.submeshes) {
-    const bool cap = sub.materialId == kMergedCapId;
-    if (!(cap ? withCaps : sub.materialId / kPartStride == part)) continue;
-    for (uint32_t i = 0; i < sub.indexCount / 3; ++i) triangles.push_back(sub.firstIndex / 3 + i);
-  }
-  geometry::MeshData out;
-  if (triangles.empty()) return out;
-  geometry::MeshContainer container;
-  if (container.setMesh(piece) != geometry::SplitStatus::Ok) return out;
-  container.extractTriangles(triangles, out);
-  for (geometry::SubMesh& sub : out.submeshes)
-    sub.materialId = sub.materialId == kMergedCapId ? capMaterialId : sub.materialId % kPartStride;
-  return out;
 }
 
 // Rigid part of an affine matrix as a Transform (scale from the column lengths; shear is dropped).
@@ -438,9 +347,9 @@ ecs::Transform toTransform(const glm::dmat4& m) {
 }  // namespace
 
 bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode collider,
-                     std::string* error) {
+                     std::string* error, SplitSystem* splits) {
   auto* t = w.world.tryGet<ecs::Transform>(e);
-  std::vector<HierarchyPart> parts;
+  std::vector<HierarchyPartData> parts;
   const bool hierarchy = t && gatherParts(w.world, e, parts);
   auto* mr = w.world.tryGet<MeshRenderer>(e);
   if ((!hierarchy && (!mr || !mr->source)) || !t) {
@@ -449,7 +358,7 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
   }
   // A parent with meshes below it: one body for the whole subtree, from the merged meshes.
   geometry::MeshData merged;
-  if (hierarchy) merged = mergeParts(parts);
+  if (hierarchy) merged = mergeHierarchyParts(parts);
   const geometry::MeshData& source = hierarchy ? merged : *mr->source;
   const glm::dmat4 oldLocal(ecs::localMatrix(*t));
   const glm::dmat4 model = hierarchy ? oldLocal : oldLocal * glm::dmat4(mr->meshOffset);
@@ -460,10 +369,14 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
   }
   const double mass = density * props.volume;
   const BodyFrame frame = bodyFrameFor(props, mass, model);
+  // The collider parts (mesh space): the cache's for a shared authored mesh, else planned here.
+  geometry::SharedColliderParts carried;
+  if (splits && !hierarchy && collider != ColliderMode::ConcaveMesh) carried = splits->colliderParts(mr->source, collider);
   auto splitter = geometry::makeConcaveSplitter();
+  const ColliderPlan plan = planCollider(source, frame.meshOffset, collider, false, carried, *splitter);
   std::string reason;
-  const physics::ShapeId shape = makeCollider(w, *splitter, source, frame.meshOffset, collider,
-                                               /*knownConvex=*/false, &reason);
+  const physics::ShapeId shape =
+      createPlannedShape(w.physics, plan.hulls, plan.concavePositions, plan.concaveIndices, &reason);
   if (shape.isNull()) {
     if (error) *error = "no collider: " + reason;
     return false;
@@ -493,6 +406,7 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
     }
   } else {
     mr->meshOffset = glm::mat4(frame.meshOffset);
+    if (collider != ColliderMode::ConcaveMesh) w.world.add<ColliderParts>(e, ColliderParts{plan.parts});
   }
   placeOnBody(w, e, def, body.value(), shape, mass, props, density);
   return true;
@@ -563,284 +477,367 @@ void SplitSystem::activatePending(SplitWorld& w) {
   }
 }
 
-void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
+namespace {
+
+SplitCost estimateSplit(SplitWorld& w, const SplitBudgetSettings& s, const SplitRequest& r,
+                                bool partsKnown) {
+  SplitCost cost;
+  double triangles = 0.0;
+  if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source)
+    triangles = double(mr->source->indices.size() / 3);
+  const auto* sp = w.world.tryGet<Splitable>(r.target);
+  const bool skinned = w.world.has<SkinnedMesh>(r.target);
+  const bool ragdoll = skinned && sp && sp->skinnedPieces == SkinnedPieceMode::Ragdoll;
+  cost.main = ragdoll ? s.estimatedRagdollMainMilliseconds : s.estimatedMainMilliseconds;
+  cost.worker = s.estimatedWorkerMilliseconds + s.estimatedWorkerMillisecondsPerTriangle * triangles;
+  // Parts decomposed in this cut: the first cut of a mesh, and skinned pieces on a rigid body (their
+  // posed mesh is decomposed every cut). Ragdolls fit capsules instead.
+  if ((!partsKnown && !skinned) || (skinned && !ragdoll)) cost.worker *= s.firstCutWorkerFactor;
+  return cost;
+}
+
+}  // namespace
+
+void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
+  const double start = nowMs();
   events_.clear();
+  activatePending(w);
+  auto inFlight = [this](ecs::Entity e) {
+    return std::any_of(pending_.begin(), pending_.end(), [&](const Pending& p) { return p.job->request.target == e; });
+  };
   budget_.setCostEstimator([&w, this](const SplitRequest& r) {
-    const SplitBudgetSettings& settings = budget_.settings();
-    double triangles = 0.0;
-    if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source)
-      triangles = double(mr->source->indices.size() / 3);
-    return settings.estimatedMillisecondsPerSplit + settings.estimatedMillisecondsPerTriangle * triangles;
+    const auto* mr = w.world.tryGet<MeshRenderer>(r.target);
+    const bool known = w.world.has<ColliderParts>(r.target) ||
+                       (mr && mr->source && scratch_->find(mr->source) && scratch_->find(mr->source)->parts);
+    return estimateSplit(w, budget_.settings(), r, known);
   });
   budget_.runTick(
       tick, cameraPosition,
-      [&](ecs::Entity e) { return w.world.alive(e) && w.world.has<Splitable>(e); },
+      [&](ecs::Entity e) { return w.world.alive(e) && w.world.has<Splitable>(e) && !inFlight(e); },
       [&](ecs::Entity e) {
         const auto* t = w.world.tryGet<ecs::Transform>(e);
         return t ? glm::dvec3(t->position) : glm::dvec3(0.0);
       },
       [&](const SplitRequest& r) {
-        SplitEvent ev = splitOne(w, r.target, r, tick);
-        scratch_->container.release();  // do not keep the (doomed) target's mesh alive
-        const bool ok = ev.status == geometry::SplitStatus::Ok ||
-                        ev.status == geometry::SplitStatus::PlaneMissesMesh;
-        events_.push_back(std::move(ev));
-        return ok;
+        const double prepareStart = nowMs();
+        auto job = std::make_shared<SplitJob>();
+        SplitEvent failed;
+        if (!prepare(w, r, tick, *job, failed)) {
+          failed.prepareMilliseconds = failed.mainMilliseconds = failed.milliseconds = nowMs() - prepareStart;
+          events_.push_back(std::move(failed));
+          return false;
+        }
+        Pending p;
+        p.weldKnown = job->weld != nullptr;
+        p.partsKnown = job->parts != nullptr;
+        p.job = job;
+        p.task = workers().submit(std::move(job));
+        p.prepareMilliseconds = nowMs() - prepareStart;
+        pending_.push_back(std::move(p));
+        return true;
       },
       nowMs);
   budget_.setCostEstimator({});  // it refers to `w`, which only lives for this call
+  flush(w);
+  if (tickOfMainMs_ != tick) tickMainMs_ = 0.0;
+  tickOfMainMs_ = tick;
+  tickMainMs_ += nowMs() - start;
+}
+
+void SplitSystem::commitSplits(SplitWorld& w, uint64_t tick) {
+  const double start = nowMs();
+  if (tickOfMainMs_ != tick) {
+    events_.clear();
+    tickMainMs_ = 0.0;
+  }
+  // Request order (the order they were prepared in, which is the budget's total order).
+  size_t done = 0;
+  for (; done < pending_.size() && pending_[done].job->commitTick <= tick; ++done)
+    events_.push_back(commit(w, pending_[done], tick));
+  pending_.erase(pending_.begin(), pending_.begin() + done);
   // Structural changes after the iteration: pieces appear, originals go.
   flush(w);
+  tickOfMainMs_ = tick;
+  tickMainMs_ += nowMs() - start;
+}
+
+void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
+  prepareSplits(w, tick, cameraPosition);
+  commitSplits(w, tick);
 }
 
 SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitRequest& request,
                                  uint64_t tick) {
-  SplitEvent ev = splitOne(w, target, request, tick);
-  scratch_->container.release();
+  for (Pending& p : pending_) commit(w, p, tick);
+  pending_.clear();
+  flush(w);
+  const double start = nowMs();
+  auto job = std::make_shared<SplitJob>();
+  SplitEvent ev;
+  SplitRequest r = request;
+  r.target = target;
+  if (!prepare(w, r, tick, *job, ev)) {
+    ev.prepareMilliseconds = ev.mainMilliseconds = ev.milliseconds = nowMs() - start;
+    return ev;
+  }
+  job->commitTick = tick;
+  Pending p;
+  p.weldKnown = job->weld != nullptr;
+  p.partsKnown = job->parts != nullptr;
+  p.job = job;
+  SplitWorkers inline0(0);
+  p.task = inline0.submit(std::move(job));
+  p.prepareMilliseconds = nowMs() - start;
+  ev = commit(w, p, tick);
   flush(w);
   return ev;
 }
 
-SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitRequest& request,
-                                 uint64_t tick) {
-  const double start = nowMs();
-  SplitEvent ev;
-  ev.tick = tick;
-  ev.original = target;
-  if (const auto* n = w.world.tryGet<ecs::Name>(target)) ev.originalName = n->value;
-  auto fail = [&](geometry::SplitStatus status, const std::string& message) {
-    ev.status = status;
-    ev.message = message;
-    ev.milliseconds = nowMs() - start;
-    if (status != geometry::SplitStatus::PlaneMissesMesh)
-      std::fprintf(stderr, "cleave: split of %s (entity %u) at tick %llu kept whole: %s\n",
-                   ev.originalName.empty() ? "an object" : ev.originalName.c_str(), target.index,
-                   static_cast<unsigned long long>(tick), message.c_str());
-    return ev;
-  };
-  const auto* mr = w.world.tryGet<MeshRenderer>(target);
-  const auto* sp = w.world.tryGet<Splitable>(target);
-  const auto* rb = w.world.tryGet<RigidBody>(target);
-  const auto* t = w.world.tryGet<ecs::Transform>(target);
-  std::vector<HierarchyPart> parts;
-  const bool hierarchy = t && !w.world.has<SkinnedMesh>(target) && gatherParts(w.world, target, parts);
-  if ((!hierarchy && (!mr || !mr->source)) || !sp || !t)
-    return fail(geometry::SplitStatus::InvalidInput, "target has no mesh, Splitable or Transform");
-  // A parent with meshes below it is cut as one merged mesh in its own space (see gatherParts).
-  geometry::MeshData merged;
-  if (hierarchy) merged = mergeParts(parts);
-  const geometry::MeshData& source = hierarchy ? merged : *mr->source;
-  const glm::mat4 sourceOffset = hierarchy ? glm::mat4(1.f) : mr->meshOffset;
+namespace {
 
-  // The parent's motion and frame (the body is authoritative when there is one).
-  glm::dvec3 parentCom(t->position);
-  glm::dquat parentRot(t->rotation);
-  glm::dvec3 v(0.0), omega(0.0);
-  double parentMass = 0.0;
-  if (rb && w.physics.isValid(rb->body)) {
-    const auto state = w.physics.bodyState(rb->body);
-    if (state) {
-      parentCom = glm::dvec3(state->transform.position);
-      parentRot = glm::dquat(state->transform.rotation);
-      v = glm::dvec3(state->linearVelocity);
-      omega = glm::dvec3(state->angularVelocity);
-      parentMass = state->mass;
-    }
-  }
-  if (const auto* mi = w.world.tryGet<MassInfo>(target)) parentMass = mi->mass;
-  ev.parentMass = parentMass;
-  const glm::dmat4 entityToWorld = glm::translate(glm::dmat4(1.0), parentCom) * glm::mat4_cast(parentRot) *
-                                   glm::scale(glm::dmat4(1.0), glm::dvec3(t->scale));
-  const glm::dmat4 model = entityToWorld * glm::dmat4(sourceOffset);
-
-  Scratch& s = *scratch_;
-  std::string message;
-  const double setupStart = nowMs();
-  const geometry::MeshWeld* known = hierarchy ? nullptr : s.knownWeld(mr->source);  // reset below if stale
-  ev.weldKnown = known != nullptr;
-  // The container shares the renderer's mesh (no copy); a merged hierarchy mesh is copied. A kept
-  // weld that no longer fits the mesh (its arrays were changed in place, which meshes must not be)
-  // is dropped and the mesh welded anew.
-  geometry::SplitStatus set = hierarchy ? s.container.setMesh(source, &message)
-                                        : s.container.setMesh(mr->source, known, &message);
-  if (set != geometry::SplitStatus::Ok && known) {
-    s.welds.erase(mr->source.get());
-    known = nullptr;
-    ev.weldKnown = false;
-    set = s.container.setMesh(mr->source, nullptr, &message);
-  }
-  if (set != geometry::SplitStatus::Ok) return fail(geometry::SplitStatus::InvalidInput, message);
-  if (!known && !hierarchy) {
-    geometry::MeshWeld weld;
-    s.container.copyWeld(weld);
-    s.keepWeld(mr->source, std::move(weld));
-  }
-  // A skinned target is cut in its current pose: the cut space is the skinned mesh in the world.
-  const auto* skin = w.world.tryGet<SkinnedMesh>(target);
-  if (skin && (hierarchy || skin->jointMatrices.empty() || source.joints.empty())) skin = nullptr;
-  if (skin) {
-    if (s.container.setSkinningPose(skin->jointMatrices, glm::mat4(model), &message) != geometry::SplitStatus::Ok)
-      return fail(geometry::SplitStatus::InvalidInput, message);
-  } else {
-    s.container.setTransform(glm::mat4(model));
-  }
-  ev.setupMilliseconds = nowMs() - setupStart;
+// The split options of a target's Splitable.
+geometry::SplitOptions optionsFor(const Splitable& sp, bool hierarchy) {
   geometry::SplitOptions options;
-  options.cap = sp->cap;
-  options.capMaterialId = hierarchy ? kMergedCapId : sp->capMaterialId;
-  options.uvMode = sp->capUvMode;
-  options.uvPerMetre = sp->capUvPerMetre;
-  options.atlasRect = sp->capAtlasRect;
-  options.uvPerBorder = sp->capUvPerBorder;
+  options.cap = sp.cap;
+  options.capMaterialId = hierarchy ? kMergedCapId : sp.capMaterialId;
+  options.uvMode = sp.capUvMode;
+  options.uvPerMetre = sp.capUvPerMetre;
+  options.atlasRect = sp.capAtlasRect;
+  options.uvPerBorder = sp.capUvPerBorder;
   // The parts of a hierarchy are usually disjoint meshes (a head above a body) that form one
   // object: each side stays one piece.
-  options.separateIslands = sp->separateIslands && !hierarchy;
-  const geometry::Plane plane{request.planeNormal, request.planeOffset};
-  geometry::IMeshSplitter& splitter = sp->convexHint ? *s.convex : *s.concave;
-  const double geometryStart = nowMs();
-  const geometry::SplitStatus status = splitter.split(s.container, plane, options, s.result);
-  ev.geometryMilliseconds = nowMs() - geometryStart;
-  if (status != geometry::SplitStatus::Ok) {
-    if (status != geometry::SplitStatus::PlaneMissesMesh && !failureDumpDirectory_.empty())
-      writeFailureCase(failureDumpDirectory_, ev.originalName, tick, target, source, model, plane,
-                       geometry::toString(status), s.result.message);
-    return fail(status, s.result.message);
-  }
+  options.separateIslands = sp.separateIslands && !hierarchy;
+  return options;
+}
 
-  if (!sp->handler.empty()) {
-    auto it = handlers_.find(sp->handler);
-    if (it == handlers_.end())
-      return fail(geometry::SplitStatus::InvalidInput, "no split handler named '" + sp->handler + "'");
-    if (!it->second(w, target, request, s.result))
-      return fail(geometry::SplitStatus::Ok, "the custom handler kept the original");
-    ev.milliseconds = nowMs() - start;
-    return ev;
-  }
+}  // namespace
 
-  double totalVolume = 0.0;
-  for (const auto& piece : s.result.pieces) totalVolume += std::max(piece.mass.volume, 0.0);
-  if (!(totalVolume > 0.0)) return fail(geometry::SplitStatus::InvalidInput, "pieces enclose no volume");
-  const glm::dvec3 n = glm::normalize(request.planeNormal);
-
-  const Splitable pieceSplitable = *sp;
-  const auto* origin = w.world.tryGet<SplitOrigin>(target);
-  const uint32_t depth = origin ? origin->generation + 1 : 1;
+bool SplitSystem::prepare(SplitWorld& w, const SplitRequest& request, uint64_t tick, SplitJob& job, SplitEvent& ev) {
+  const ecs::Entity target = request.target;
+  ev.tick = ev.preparedTick = tick;
+  ev.original = target;
   const auto* name = w.world.tryGet<ecs::Name>(target);
-  const auto* choice = w.world.tryGet<MaterialChoice>(target);
-
-  std::vector<render::Material> materials = mr ? mr->materials : std::vector<render::Material>{};
-  if (materials.size() <= sp->capMaterialId) {
-    materials.resize(sp->capMaterialId + 1, materials.empty() ? render::Material{} : materials.back());
+  if (name) ev.originalName = name->value;
+  const auto* mr = w.world.tryGet<MeshRenderer>(target);
+  const auto* sp = w.world.tryGet<Splitable>(target);
+  const auto* t = w.world.tryGet<ecs::Transform>(target);
+  const auto* skin = w.world.tryGet<SkinnedMesh>(target);
+  const bool hierarchy = t && !skin && gatherParts(w.world, target, job.hierarchyParts);
+  if ((!hierarchy && (!mr || !mr->source)) || !sp || !t) {
+    ev.status = geometry::SplitStatus::InvalidInput;
+    ev.message = "target has no mesh, Splitable or Transform";
+    std::fprintf(stderr, "cleave: split of %s (entity %u) at tick %llu kept whole: %s\n",
+                 ev.originalName.empty() ? "an object" : ev.originalName.c_str(), target.index,
+                 static_cast<unsigned long long>(tick), ev.message.c_str());
+    return false;
   }
-  materials[sp->capMaterialId] = sp->capMaterial;
+  if (!hierarchy) job.hierarchyParts.clear();
+  job.sequence = request.sequence;
+  job.preparedTick = tick;
+  job.commitTick = tick + budget_.settings().commitDelayTicks;
+  job.request = request;
+  job.targetName = name ? name->value : std::string();
+  job.parent = motionOf(w, target);
+  ev.parentMass = job.parent.mass;
+  const glm::dmat4 entityToWorld = glm::translate(glm::dmat4(1.0), job.parent.centre) *
+                                   glm::mat4_cast(job.parent.rotation) *
+                                   glm::scale(glm::dmat4(1.0), glm::dvec3(t->scale));
+  job.model = hierarchy ? entityToWorld : entityToWorld * glm::dmat4(mr->meshOffset);
+  if (!hierarchy) {
+    job.mesh = mr->source;
+    if (const Scratch::Known* k = scratch_->find(mr->source)) {
+      job.weld = k->weld;
+      job.parts = k->parts;
+    }
+    if (const auto* cp = w.world.tryGet<ColliderParts>(target); cp && cp->parts) job.parts = cp->parts;
+  }
+  // A skinned target is cut in its current pose: the cut space is the skinned mesh in the world.
+  if (skin && !skin->jointMatrices.empty() && !mr->source->joints.empty()) {
+    job.skin = skin->asset;
+    job.jointMatrices = skin->jointMatrices;
+    job.parts = nullptr;  // bind-space parts do not follow the pose
+  }
+  job.plane = geometry::Plane{request.planeNormal, request.planeOffset};
+  job.options = optionsFor(*sp, hierarchy);
+  job.settings = *sp;
+  const auto* origin = w.world.tryGet<SplitOrigin>(target);
+  job.depth = origin ? origin->generation + 1 : 1;
+  job.materials = mr ? mr->materials : std::vector<render::Material>{};
+  if (job.materials.size() <= sp->capMaterialId)
+    job.materials.resize(sp->capMaterialId + 1, job.materials.empty() ? render::Material{} : job.materials.back());
+  job.materials[sp->capMaterialId] = sp->capMaterial;
+  if (const auto* choice = w.world.tryGet<MaterialChoice>(target)) {
+    job.hasMaterialChoice = true;
+    job.materialChoice = choice->index;
+  }
+  return true;
+}
 
-  ecs::CommandBuffer& commands = commandsFor(s.commands, s.commandsWorld, w.world);
-  // Skinned targets share the parent's mass by posed volume whatever the mass mode: skinning does not
-  // keep volume exactly, so density x posed volume would make the mass drift with the pose.
-  const bool shareParentMass = sp->massMode == MassMode::KeepParentMass || (skin && parentMass > 0.0);
-  std::vector<glm::dmat4> globals;  // ragdolls: world transforms of the joints in the cut pose
-  if (skin && sp->skinnedPieces == SkinnedPieceMode::Ragdoll)
-    posedJointGlobals(skin->asset->skeleton, skin->jointMatrices, model, globals);
-  uint32_t k = 0;
-  for (auto& piece : s.result.pieces) {
-    const double volume = std::max(piece.mass.volume, 0.0);
-    const double mass = shareParentMass ? parentMass * volume / totalVolume : sp->density * volume;
-    const bool small = volume < sp->minPieceVolume;
-    if (small && sp->smallPieces == SmallPieceMode::Remove) continue;
-    const BodyFrame frame = bodyFrameFor(piece.mass, std::max(mass, 1e-9), model);
-    const glm::dvec3 velocity = v + glm::cross(omega, frame.position - parentCom) +
-                                n * (double(piece.side) * sp->splitImpulse);
+SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
+  const double start = nowMs();
+  workers().wait(*pending.task);
+  const double waited = nowMs() - start;
+  const SplitJob& job = *pending.job;
+  SplitOutcome& outcome = pending.task->outcome;
+  SplitEvent ev;
+  ev.tick = tick;
+  ev.preparedTick = job.preparedTick;
+  ev.original = job.request.target;
+  ev.originalName = job.targetName;
+  ev.parentMass = job.parent.mass;
+  ev.weldKnown = pending.weldKnown;
+  ev.partsKnown = pending.partsKnown;
+  ev.prepareMilliseconds = pending.prepareMilliseconds;
+  ev.waitMilliseconds = waited;
+  ev.computeMilliseconds = outcome.computeMilliseconds;
+  ev.setupMilliseconds = outcome.setupMilliseconds;
+  ev.geometryMilliseconds = outcome.geometryMilliseconds;
+  ev.colliderMilliseconds = outcome.colliderMilliseconds;
+  // What compute worked out for the source is kept whatever happens next.
+  if (job.mesh && (outcome.sourceWeld || outcome.sourceParts)) {
+    Scratch::Known& k = scratch_->entry(job.mesh);
+    if (outcome.sourceWeld) k.weld = outcome.sourceWeld;
+    if (outcome.sourceParts) k.parts = outcome.sourceParts;
+  }
+  auto finish = [&](geometry::SplitStatus status, const std::string& message) {
+    ev.status = status;
+    ev.message = message;
+    if (status != geometry::SplitStatus::Ok && status != geometry::SplitStatus::PlaneMissesMesh)
+      std::fprintf(stderr, "cleave: split of %s (entity %u) at tick %llu kept whole: %s\n",
+                   ev.originalName.empty() ? "an object" : ev.originalName.c_str(), ev.original.index,
+                   static_cast<unsigned long long>(tick), message.c_str());
+    ev.commitMilliseconds = nowMs() - start - waited;
+    ev.mainMilliseconds = ev.prepareMilliseconds + ev.commitMilliseconds;
+    ev.milliseconds = ev.mainMilliseconds + ev.computeMilliseconds;
+    return ev;
+  };
+  if (outcome.status != geometry::SplitStatus::Ok) {
+    if (outcome.status != geometry::SplitStatus::PlaneMissesMesh && !failureDumpDirectory_.empty() && job.mesh)
+      writeFailureCase(failureDumpDirectory_, job.targetName, job.preparedTick, job.request.target, *job.mesh,
+                       job.model, job.plane, geometry::toString(outcome.status), outcome.message);
+    return finish(outcome.status, outcome.message);
+  }
+  const ecs::Entity target = job.request.target;
+  if (!w.world.alive(target) || !w.world.has<Splitable>(target))
+    return finish(geometry::SplitStatus::InvalidInput, "the target was gone before its pieces were committed");
+  if (job.skinned() && !w.world.has<SkinnedMesh>(target))
+    return finish(geometry::SplitStatus::InvalidInput, "the target lost its skin before its pieces were committed");
+  if (!job.settings.handler.empty()) {
+    const auto it = handlers_.find(job.settings.handler);
+    if (it == handlers_.end())
+      return finish(geometry::SplitStatus::InvalidInput, "no split handler named '" + job.settings.handler + "'");
+    if (it->second(job, outcome) == HandlerDecision::KeepOriginal)
+      return finish(geometry::SplitStatus::Ok, "the custom handler kept the original");
+  }
+  commitPieces(w, job, outcome, ev);
+  return finish(geometry::SplitStatus::Ok, {});
+}
 
-    const ecs::Entity e = commands.create();
-    // Skinned pieces: the posed mesh (mesh space) gives the collider; Bake pieces and small ones are
-    // drawn from it too, the others keep their skin and a copy of the animator.
-    SkinnedPieceMode skinMode = sp->skinnedPieces;
-    geometry::MeshData posed;
-    if (skin) {
-      bakeSkin(piece.mesh, skin->jointMatrices, posed);
-      if (small) skinMode = SkinnedPieceMode::Bake;
-    }
-    const bool keepSkin = skin && skinMode != SkinnedPieceMode::Bake;
-    Ragdoll ragdoll;
-    bool isRagdoll = false;
-    if (keepSkin && skinMode == SkinnedPieceMode::Ragdoll) {
-      std::vector<glm::vec3> worldPositions;
-      worldPositions.reserve(posed.positions.size());
-      for (const glm::vec3& p : posed.positions)
-        worldPositions.push_back(glm::vec3(model * glm::dvec4(glm::dvec3(p), 1.0)));
-      std::string reason;
-      const double colliderStart = nowMs();
-      isRagdoll = buildRagdoll(w, piece.mesh, worldPositions, piece.joints, skin->asset->skeleton, globals,
-                               std::max(mass, 1e-6), v, omega, parentCom, toUserData(e), toUserData(e) | (1ull << 63),
-                               ragdoll, &reason);
-      ev.colliderMilliseconds += nowMs() - colliderStart;
-      if (!isRagdoll) skinMode = SkinnedPieceMode::KeepAnimating;  // too few vertices for any bone
-    }
-    // Hierarchy: the piece entity draws the parent's part and the caps; each child part with
-    // triangles on this side becomes a child entity (below). The collider covers them all.
-    geometry::MeshData wholePiece;
-    if (hierarchy) {
-      wholePiece = std::move(piece.mesh);
-      piece.mesh = extractPart(wholePiece, 0, true, sp->capMaterialId);
-    }
-    auto mesh = std::make_shared<geometry::MeshData>(keepSkin ? std::move(piece.mesh)
-                                                              : skin ? std::move(posed) : std::move(piece.mesh));
-    const geometry::MeshData& colliderMesh = hierarchy ? wholePiece : keepSkin ? posed : *mesh;
-    // The piece's weld comes with it (kept below if the piece can be cut again), unless its vertices
-    // changed: hierarchy parts are extracted again, and a baked skin may pose two vertices of one
-    // bind position apart; or the split left it unknown.
-    const bool weldKnown = !hierarchy && (keepSkin || !skin) && !piece.weld.positionIds.empty();
+namespace {
+
+// The parent's motion from prepare to commit, applied to the specs' prepare-tick poses.
+struct Moved {
+  ParentMotion now;
+  glm::dmat4 motion{1.0};
+  glm::dmat3 turn{1.0};
+  bool moved = false;
+
+  glm::dvec3 position(const glm::dvec3& p) const { return moved ? glm::dvec3(motion * glm::dvec4(p, 1.0)) : p; }
+  glm::dquat rotation(const glm::dquat& q) const {
+    return moved ? glm::normalize(glm::quat_cast(turn) * q) : q;
+  }
+  // The parent's velocity now at the piece, plus its impulse (both turned with the parent).
+  glm::dvec3 velocity(const PieceSpec& spec) const {
+    return now.velocity + glm::cross(now.angularVelocity, turn * spec.offsetFromParent) + turn * spec.impulse;
+  }
+};
+
+void addHierarchyChildren(ecs::CommandBuffer& commands, SplitWorld& w, const SplitJob& job, const PieceSpec& spec,
+                          ecs::Entity e, const ecs::Transform& transform, double& uploadMs) {
+  std::vector<ecs::Entity> children;
+  const std::string suffix = spec.name.substr(spec.name.rfind('/'));
+  for (const HierarchyChildSpec& childSpec : spec.children) {
+    const HierarchyPartData& part = job.hierarchyParts[childSpec.part];
+    const ecs::Entity child = commands.create();
     MeshRenderer renderer;
-    renderer.source = mesh;
-    renderer.materials = materials;
-    renderer.meshOffset = glm::mat4(frame.meshOffset);
+    renderer.source = childSpec.mesh;
+    renderer.materials = part.materials;
+    renderer.meshOffset = glm::mat4(spec.frame.meshOffset);  // merged space -> the piece's frame
+    renderer.visible = part.visible;
     if (w.renderer) {
       const double uploadStart = nowMs();
-      renderer.gpu = w.renderer->uploadMesh(*mesh);
-      ev.uploadMilliseconds += nowMs() - uploadStart;
+      renderer.gpu = w.renderer->uploadMesh(*childSpec.mesh);
+      uploadMs += nowMs() - uploadStart;
     }
-    ecs::Transform transform;
-    transform.position = glm::vec3(frame.position);
-    transform.rotation = glm::quat(frame.rotation);
-    transform.scale = glm::vec3(1.f);
+    commands.add<ecs::Transform>(child, ecs::Transform{});
+    commands.add<ecs::WorldTransform>(child, ecs::WorldTransform{ecs::localMatrix(transform)});
+    commands.add<ecs::Name>(child, ecs::Name{(part.name.empty() ? std::string("part") : part.name) + suffix});
+    commands.add<ecs::Parent>(child, ecs::Parent{e});
+    commands.add<MeshRenderer>(child, std::move(renderer));
+    children.push_back(child);
+  }
+  commands.add<ecs::Children>(e, ecs::Children{std::move(children)});
+}
 
-    bool debris = small;
+}  // namespace
+
+void SplitSystem::commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome& outcome, SplitEvent& ev) {
+  Scratch& s = *scratch_;
+  ecs::CommandBuffer& commands = commandsFor(s.commands, s.commandsWorld, w.world);
+  const ecs::Entity target = job.request.target;
+  Moved m;
+  m.now = motionOf(w, target);
+  m.motion = motionBetween(job.parent, m.now);
+  m.moved = m.motion != glm::dmat4(1.0);
+  m.turn = glm::dmat3(m.motion);
+  const SkinnedMesh* skin = job.skinned() ? w.world.tryGet<SkinnedMesh>(target) : nullptr;
+  for (PieceSpec& spec : outcome.pieces) {
+    const ecs::Entity e = commands.create();
+    const glm::dvec3 velocity = m.velocity(spec);
+    ecs::Transform transform;
+    transform.position = glm::vec3(m.position(spec.frame.position));
+    transform.rotation = glm::quat(m.rotation(spec.frame.rotation));
+    transform.scale = glm::vec3(1.f);
+    MeshRenderer renderer;
+    renderer.source = spec.mesh;
+    renderer.materials = job.materials;
+    renderer.meshOffset = glm::mat4(spec.frame.meshOffset);
     physics::ShapeId shape;
     physics::BodyId body;
-    if (isRagdoll) {
-      // The entity frame is the anchor bone's body frame; joint matrices are relative to it.
-      const RagdollBone& anchor = ragdoll.bones[ragdoll.anchor];
-      const physics::BodyTransform at = *w.physics.bodyTransform(anchor.body);
-      transform.position = at.position;
-      transform.rotation = at.rotation;
-      renderer.meshOffset = glm::mat4(1.f);
-      shape = anchor.shape;
-      body = anchor.body;
-      const glm::dmat4 toAnchor =
-          glm::inverse(glm::translate(glm::dmat4(1.0), glm::dvec3(at.position)) * glm::mat4_cast(glm::dquat(at.rotation))) *
-          model;
-      SkinnedMesh pieceSkin = *skin;
-      for (glm::mat4& m : pieceSkin.jointMatrices) m = glm::mat4(toAnchor * glm::dmat4(m));
-      commands.add<SkinnedMesh>(e, std::move(pieceSkin));
-      commands.add<Ragdoll>(e, std::move(ragdoll));
-    }
-    if (!debris && !isRagdoll) {
+    const double shapeStart = nowMs();
+    if (spec.kind == PieceKind::Ragdoll) {
+      Ragdoll ragdoll;
+      if (createRagdoll(w.physics, spec.ragdoll, m.motion, m.now.velocity, m.now.angularVelocity, m.now.centre,
+                        toUserData(e), toUserData(e) | (1ull << 63), ragdoll)) {
+        // The entity frame is the anchor bone's body frame; joint matrices are relative to it.
+        const RagdollBone& anchor = ragdoll.bones[ragdoll.anchor];
+        const physics::BodyTransform at = *w.physics.bodyTransform(anchor.body);
+        transform.position = at.position;
+        transform.rotation = at.rotation;
+        renderer.meshOffset = glm::mat4(1.f);
+        shape = anchor.shape;
+        body = anchor.body;
+        SkinnedMesh pieceSkin = *skin;
+        pieceSkin.jointMatrices = spec.ragdoll.jointMatrices;
+        commands.add<SkinnedMesh>(e, std::move(pieceSkin));
+        commands.add<Ragdoll>(e, std::move(ragdoll));
+      } else {
+        spec.kind = PieceKind::Debris;  // no bone could be made: the skin falls as debris
+      }
+    } else if (spec.kind != PieceKind::Debris) {
       std::string reason;
-      const double colliderStart = nowMs();
-      shape = makeCollider(w, *s.concave, colliderMesh, frame.meshOffset, sp->collider,
-                           sp->convexHint, &reason);
-      ev.colliderMilliseconds += nowMs() - colliderStart;
-      if (shape.isNull()) debris = true;  // a flat sliver: no hull can hold it
+      shape = createPlannedShape(w.physics, spec.hulls, spec.concavePositions, spec.concaveIndices, &reason);
+      if (shape.isNull()) spec.kind = PieceKind::Debris;  // a flat sliver: no hull can hold it
     }
-    if (!debris && !isRagdoll) {
+    if (!shape.isNull() && spec.kind != PieceKind::Ragdoll) {
       physics::BodyDef def;
       def.shape = shape;
-      def.mass = float(std::max(mass, 1e-6));
+      def.mass = float(std::max(spec.mass, 1e-6));
       def.position = transform.position;
       def.rotation = transform.rotation;
       def.linearVelocity = glm::vec3(velocity);
-      def.angularVelocity = glm::vec3(omega);
-      def.localInertia = glm::vec3(frame.moments);
+      def.angularVelocity = glm::vec3(m.now.angularVelocity);
+      def.localInertia = glm::vec3(spec.frame.moments);
       def.userData = toUserData(e);
       const bool awakeNow = s.activationsThisTick < budget_.settings().maxActivationsPerTick;
       def.startAwake = awakeNow;
@@ -855,83 +852,67 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
       } else {
         w.physics.destroyShape(shape);
         shape = {};
-        debris = true;
+        spec.kind = PieceKind::Debris;
       }
+    }
+    ev.shapeMilliseconds += nowMs() - shapeStart;
+    if (w.renderer) {
+      const double uploadStart = nowMs();
+      renderer.gpu = w.renderer->uploadMesh(*spec.mesh);
+      ev.uploadMilliseconds += nowMs() - uploadStart;
     }
     commands.add<ecs::Transform>(e, transform);
     commands.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(transform)});
-    commands.add<ecs::Name>(e, ecs::Name{(name ? name->value : std::string("piece")) + "/" +
-                                         (piece.side > 0 ? "a" : "b") + std::to_string(k)});
+    commands.add<ecs::Name>(e, ecs::Name{spec.name});
     commands.add<MeshRenderer>(e, std::move(renderer));
     MassInfo info;
-    info.mass = mass;
-    info.volume = volume;
-    info.density = volume > 0.0 ? mass / volume : 0.0;
-    info.closed = piece.mass.closed;
+    info.mass = spec.mass;
+    info.volume = spec.volume;
+    info.density = spec.volume > 0.0 ? spec.mass / spec.volume : 0.0;
+    info.closed = spec.closed;
     commands.add<MassInfo>(e, info);
     SplitOrigin so;
     so.parent = target;
     so.parentId = toUserData(target);
-    so.generation = depth;
+    so.generation = job.depth;
     commands.add<SplitOrigin>(e, so);
-    if (choice) commands.add<MaterialChoice>(e, *choice);
-    // KeepAnimating: the copy of the animator keeps playing in the body's frame.
-    if (keepSkin && !isRagdoll) commands.add<SkinnedMesh>(e, *skin);
-    if (debris) {
+    if (job.hasMaterialChoice) commands.add<MaterialChoice>(e, MaterialChoice{job.materialChoice});
+    // A piece drawn with its skin (KeepAnimating, or debris a handler made of a ragdoll piece): the
+    // copy of the animator keeps playing in the body's frame.
+    if (spec.kind != PieceKind::Ragdoll && skin && !spec.mesh->joints.empty()) commands.add<SkinnedMesh>(e, *skin);
+    if (spec.kind == PieceKind::Debris) {
       Debris d;
       d.velocity = glm::vec3(velocity);
-      d.angularVelocity = glm::vec3(omega);
+      d.angularVelocity = glm::vec3(m.now.angularVelocity);
       commands.add<Debris>(e, d);
     } else {
       commands.add<RigidBody>(e, RigidBody{body, shape});
-      if (depth < sp->maxDepth) {
-        commands.add<Splitable>(e, pieceSplitable);
-        if (weldKnown) s.keepWeld(mesh, std::move(piece.weld));
-      }
-    }
-    if (hierarchy) {
-      std::vector<ecs::Entity> children;
-      for (size_t part = 0; part < parts.size(); ++part) {
-        if (parts[part].entity == target) continue;
-        geometry::MeshData childMesh = extractPart(wholePiece, uint32_t(part), false, sp->capMaterialId);
-        if (childMesh.indices.empty()) continue;
-        const ecs::Entity child = commands.create();
-        auto childSource = std::make_shared<geometry::MeshData>(std::move(childMesh));
-        MeshRenderer childRenderer;
-        childRenderer.source = childSource;
-        childRenderer.materials = parts[part].renderer->materials;
-        childRenderer.meshOffset = glm::mat4(frame.meshOffset);  // merged space -> the piece's frame
-        childRenderer.visible = parts[part].renderer->visible;
-        if (w.renderer) {
-          const double uploadStart = nowMs();
-          childRenderer.gpu = w.renderer->uploadMesh(*childSource);
-          ev.uploadMilliseconds += nowMs() - uploadStart;
+      if (job.depth < job.settings.maxDepth) {
+        commands.add<Splitable>(e, job.settings);
+        if (spec.parts) commands.add<ColliderParts>(e, ColliderParts{spec.parts});
+        if (spec.weld || spec.parts) {
+          Scratch::Known& k = s.entry(spec.mesh);
+          k.weld = spec.weld;
+          k.parts = spec.parts;
         }
-        const auto* childName = w.world.tryGet<ecs::Name>(parts[part].entity);
-        commands.add<ecs::Transform>(child, ecs::Transform{});
-        commands.add<ecs::WorldTransform>(child, ecs::WorldTransform{ecs::localMatrix(transform)});
-        commands.add<ecs::Name>(child, ecs::Name{(childName ? childName->value : std::string("part")) + "/" +
-                                                 (piece.side > 0 ? "a" : "b") + std::to_string(k)});
-        commands.add<ecs::Parent>(child, ecs::Parent{e});
-        commands.add<MeshRenderer>(child, std::move(childRenderer));
-        children.push_back(child);
       }
-      commands.add<ecs::Children>(e, ecs::Children{std::move(children)});
     }
+    if (job.hierarchy()) addHierarchyChildren(commands, w, job, spec, e, transform, ev.uploadMilliseconds);
     ev.pieces.push_back(e);
-    ev.capLoops.push_back(piece.capLoops);
-    ev.piecesMass += mass;
-    ++k;
+    ev.capLoops.push_back(spec.capLoops);
+    ev.kinds.push_back(spec.kind);
+    ev.colliderFit.push_back(spec.volume > 0.0 && spec.kind != PieceKind::Debris ? spec.colliderVolume / spec.volume : 0.0);
+    ev.piecesMass += spec.mass;
   }
   // A persistent splitter does not cut the pieces of its own cut again during this pass.
-  if (auto* blade = w.world.tryGet<Splitter>(request.splitter);
+  if (auto* blade = w.world.tryGet<Splitter>(job.request.splitter);
       blade && blade->lifetime == SplitterLifetime::Persistent) {
     std::erase(blade->passing, toUserData(target));
     for (ecs::Entity piece : ev.pieces) blade->passing.push_back(toUserData(piece));
   }
-  if (hierarchy) {
+  if (job.hierarchy()) {
     // The original subtree goes with its GPU meshes; the pieces carry copies of its parts.
-    for (const HierarchyPart& part : parts)
+    for (const HierarchyPartData& part : job.hierarchyParts)
       if (part.entity != target) s.doomed.push_back(part.entity);
     commands.destroyRecursive(target);
   } else {
@@ -939,8 +920,6 @@ SplitEvent SplitSystem::splitOne(SplitWorld& w, ecs::Entity target, const SplitR
   }
   s.doomed.push_back(target);
   totalPieces_ += ev.pieces.size();
-  ev.milliseconds = nowMs() - start;
-  return ev;
 }
 
 void syncTransformsFromBodies(SplitWorld& w) {

@@ -1,12 +1,22 @@
-// The split systems: turn splitter touches into split requests (Triggers phase), execute requests
-// gathered in earlier ticks within the SplitBudget (Split phase), and create the pieces.
+// The split systems: turn splitter touches into split requests (Triggers phase), prepare the
+// requests gathered in earlier ticks within the SplitBudget (Split phase), compute them on worker
+// threads, and commit their pieces at a fixed tick (Commit phase). The three stages and their plain
+// data are in split_job.h; the compute stage in split_compute.h.
 //
-// Piece creation (the thesis's CreateNewObjects): each piece gets its own entity with a render mesh
-// (the parent's materials plus the cap material), a rigid body whose origin is the piece's centre of
-// mass and whose axes are its principal axes of inertia, the exact mass and principal inertia, the
-// velocity the parent had at that point (v + w x (c_piece - c_parent), w kept), an optional split
-// impulse, and a collider chosen by the Splitable. The original entity is destroyed after the
-// iteration. If a split fails the original stays whole and the reason is logged.
+// Piece creation (the thesis's CreateNewObjects, the commit stage): each piece gets its own entity
+// with a render mesh (the parent's materials plus the cap material), a rigid body whose origin is
+// the piece's centre of mass and whose axes are its principal axes of inertia, the exact mass and
+// principal inertia, the velocity the parent had at that point (v + w x (c_piece - c_parent), w
+// kept), an optional split impulse, and the collider its spec carries: the parent's convex collider
+// parts clipped by the plane (ColliderParts), so no cut decomposes or hulls anything on the main
+// thread. The original entity is destroyed. If a split fails the original stays whole and the
+// reason is logged.
+//
+// Timing: a request gathered in tick N is prepared from tick N+1 (budget permitting) and commits
+// commitDelayTicks later, in request order, on any number of threads. If the parent moved between
+// prepare and commit (one physics step), its pieces move rigidly with it and take its velocity at
+// commit, so mass and momentum are those of the parent at commit. A target destroyed meanwhile
+// commits nothing.
 #pragma once
 
 #include <cstdint>
@@ -20,6 +30,8 @@
 
 #include "components/scene_components.h"
 #include "components/split_budget.h"
+#include "components/split_job.h"
+#include "components/split_workers.h"
 #include "components/splitable.h"
 #include "engine/ecs/world.h"
 #include "engine/geometry/mesh_splitter.h"
@@ -35,71 +47,120 @@ struct SplitWorld {
   render::Renderer* renderer = nullptr;
 };
 
-// A custom handler (the thesis's ISplitable): called instead of the default piece creation with
-// the request and the split result; returns false to keep the original.
-using SplitHandler = std::function<bool(SplitWorld&, ecs::Entity target, const SplitRequest&,
-                                        geometry::SplitResult&)>;
+// A custom handler (the thesis's ISplitable), named by Splitable::handler: called on the main thread
+// at commit with the job and its computed pieces, before anything is created. It may edit the
+// specs (kinds, masses, velocities, meshes), drop or add pieces, or keep the original whole.
+enum class HandlerDecision : uint8_t { Commit, KeepOriginal };
+using SplitHandler = std::function<HandlerDecision(const SplitJob& job, SplitOutcome& outcome)>;
 
 struct SplitEvent {
-  uint64_t tick = 0;
+  uint64_t tick = 0;            // the commit tick (the tick the event is reported in)
+  uint64_t preparedTick = 0;
   ecs::Entity original;
   std::string originalName;     // its Name at the time of the split, if it had one
   std::vector<ecs::Entity> pieces;
   std::vector<uint32_t> capLoops;  // per piece: boundary loops capped on it (2 for an annulus)
+  std::vector<PieceKind> kinds;    // per piece
+  std::vector<double> colliderFit; // per piece: collider volume / piece volume (0 without collider)
   geometry::SplitStatus status = geometry::SplitStatus::Ok;
   std::string message;
   double parentMass = 0.0;
   double piecesMass = 0.0;      // sum over pieces kept with colliders and debris
-  double milliseconds = 0.0;          // the whole split, pieces created
-  double setupMilliseconds = 0.0;     // of which: container set-up (copy, weld unless known, cut space)
+  // Milliseconds. main = prepare + commit on the main thread; the compute stage ran on a worker
+  // (or inline with 0 threads) and the main thread waited `waitMilliseconds` for it at commit.
+  double milliseconds = 0.0;          // main + compute: the whole work of the split
+  double mainMilliseconds = 0.0;
+  double prepareMilliseconds = 0.0;
+  double commitMilliseconds = 0.0;
+  double computeMilliseconds = 0.0;
+  double waitMilliseconds = 0.0;
+  double setupMilliseconds = 0.0;     // of compute: container set-up (weld unless known, cut space)
   bool weldKnown = false;             // the mesh's weld was known (a piece, or a mesh cut before)
-  double geometryMilliseconds = 0.0;  // of which: cut, caps, islands, mass properties
-  double colliderMilliseconds = 0.0;  // of which: collider shapes
-  double uploadMilliseconds = 0.0;    // of which: GPU mesh upload
+  bool partsKnown = false;            // the mesh's collider parts were known (carried or cached)
+  double geometryMilliseconds = 0.0;  // of compute: cut, caps, islands, mass properties
+  double colliderMilliseconds = 0.0;  // of compute: parts clipped, hulls shrunk, ragdolls planned
+  double shapeMilliseconds = 0.0;     // of commit: physics shapes and bodies
+  double uploadMilliseconds = 0.0;    // of commit: GPU mesh upload
 };
 
 class SplitSystem {
  public:
   explicit SplitSystem(SplitBudgetSettings budget = {});
   ~SplitSystem();
+  SplitSystem(const SplitSystem&) = delete;
+  SplitSystem& operator=(const SplitSystem&) = delete;
 
+  // The budget and its settings (threads and commitDelayTicks among them; a change of threads takes
+  // effect at the next prepare, after the jobs in flight are done).
   SplitBudget& budget() { return budget_; }
   void registerHandler(const std::string& name, SplitHandler handler);
+  // Runs compute tasks on the host's task system instead of our threads (empty: our own).
+  void setTaskExecutor(SplitTaskExecutor executor);
   // When set, a split that fails (other than a plane missing the mesh) writes the mesh in cut space
   // with the plane to an OBJ file in this directory, for a reproducible bug report.
   void setFailureDumpDirectory(std::string directory) { failureDumpDirectory_ = std::move(directory); }
 
-  // Queues a request from gameplay (e.g. the drag cut). Executed from the next tick on.
+  // Queues a request from gameplay (e.g. the drag cut). Prepared from the next tick on.
   void request(const SplitRequest& request);
 
   // Triggers phase: reads the physics world's trigger events of the last step and queues a request
   // for every Splitable body a Splitter touched; one-tick splitters are destroyed afterwards.
   void gatherTriggerRequests(SplitWorld& w, uint64_t tick);
 
-  // Split phase: executes queued requests within the budget and applies the structural changes.
+  // Split phase: activates bodies of earlier splits (a few per tick), then prepares queued requests
+  // within the budget and starts their compute stage.
+  void prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition);
+  // Commit phase: commits, in request order, every job due by `tick` (waiting for late ones).
+  void commitSplits(SplitWorld& w, uint64_t tick);
+  // Both, as one phase (tests and tools that step the stages together).
   void runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition);
 
-  // Activates bodies created by earlier splits, a few per tick (part of the Split phase).
+  // Activates bodies created by earlier splits, a few per tick (called by prepareSplits).
   void activatePending(SplitWorld& w);
 
-  // Splits `target` by the world plane now (no budget, no deferral): used by tests and tools.
+  // Splits `target` by the world plane now (no budget, no deferral, compute inline): used by tests
+  // and tools. Jobs in flight are committed first.
   SplitEvent splitNow(SplitWorld& w, ecs::Entity target, const SplitRequest& request, uint64_t tick);
 
-  // Events of the splits done in the last runSplits call.
+  // The convex collider parts of an authored mesh (mesh space), decomposed on first use and kept
+  // for every instance and cut of it.
+  geometry::SharedColliderParts colliderParts(const std::shared_ptr<const geometry::MeshData>& mesh,
+                                              ColliderMode mode = ColliderMode::Auto);
+
+  // Events of the splits committed (or failed at prepare) in the last prepare and commit calls.
   const std::vector<SplitEvent>& lastEvents() const { return events_; }
   uint64_t totalPiecesCreated() const { return totalPieces_; }
+  size_t jobsInFlight() const { return pending_.size(); }
+  // Main-thread milliseconds spent in the split stages in the last tick (prepare + commit).
+  double lastTickMainMilliseconds() const { return tickMainMs_; }
 
  private:
   struct Scratch;
-  // One split; its structural changes wait in the batch until flush().
-  SplitEvent splitOne(SplitWorld& w, ecs::Entity target, const SplitRequest& request, uint64_t tick);
+  struct Pending {
+    std::shared_ptr<SplitWorkers::Task> task;
+    std::shared_ptr<const SplitJob> job;
+    double prepareMilliseconds = 0.0;
+    bool weldKnown = false;
+    bool partsKnown = false;
+  };
+  // Prepare: reads the world into a job; false with the event filled when the target cannot be split.
+  bool prepare(SplitWorld& w, const SplitRequest& request, uint64_t tick, SplitJob& job, SplitEvent& ev);
+  // Commit: creates the pieces of a computed job (their structural changes wait in the batch).
+  SplitEvent commit(SplitWorld& w, Pending& pending, uint64_t tick);
+  void commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome& outcome, SplitEvent& ev);
+  SplitWorkers& workers();
   // Frees the resources of the entities the batch destroys, then applies the batch.
   void flush(SplitWorld& w);
   SplitBudget budget_;
   std::map<std::string, SplitHandler> handlers_;
   std::vector<SplitEvent> events_;
   std::unique_ptr<Scratch> scratch_;
+  std::unique_ptr<SplitWorkers> workers_;
+  SplitTaskExecutor executor_;
+  std::vector<Pending> pending_;  // prepared, in request order
   uint64_t totalPieces_ = 0;
+  double tickMainMs_ = 0.0;
+  uint64_t tickOfMainMs_ = ~0ull;
   std::string failureDumpDirectory_;
 };
 
@@ -120,20 +181,16 @@ void releaseEntityResources(SplitWorld& w, ecs::Entity e);
 // Creates the rigid body and collider for an authored object with a MeshRenderer, from its mesh's
 // exact mass properties (density from its Splitable, or `density`). Sets RigidBody, MassInfo and the
 // mesh offset so the body origin is the centre of mass. Returns false with a reason on failure.
+// With `splits`, the collider parts come from its cache (shared by every instance of the mesh) and
+// the entity keeps them (ColliderParts) for its cuts.
 bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode collider,
-                     std::string* error);
+                     std::string* error, SplitSystem* splits = nullptr);
 
-// The body frame of a mesh of mass properties `props` (cut space = model x mesh space) and `mass`:
-// origin at the centre of mass, axes along the principal axes of inertia, the principal moments
-// (each floored at a small share of the largest, so that a sliver never gets zero inertia), and
-// the mesh offset (mesh space -> body frame).
-struct BodyFrame {
-  glm::dvec3 position{0.0};
-  glm::dquat rotation{1.0, 0.0, 0.0, 0.0};
-  glm::dvec3 moments{0.0};     // principal inertia, kg m^2
-  glm::dmat4 meshOffset{1.0};  // mesh space -> body frame
-};
-BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const glm::dmat4& model);
+// The physics shape of a planned collider (hulls: one prepared hull or a compound of them; or the
+// concave mesh). Null with a reason when none can be built.
+physics::ShapeId createPlannedShape(physics::PhysicsWorld& physics, const std::vector<HullSpec>& hulls,
+                                    const std::vector<glm::vec3>& concavePositions,
+                                    const std::vector<uint32_t>& concaveIndices, std::string* reason);
 
 // The mesh's positions mapped by `m` (for example a body frame's mesh offset), as collider points.
 std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const glm::dmat4& m);

@@ -29,7 +29,9 @@ std::string appOptionsUsage() {
          "  --dump-every N             one state line every N ticks (default: last tick only)\n"
          "  --print-state-hash         print the final state hash\n"
          "  --width W --height H       frame size in pixels (default 1280x720)\n"
-         "  --seed N                   seed for the scene's random choices\n";
+         "  --seed N                   seed for the scene's random choices\n"
+         "  --split-threads N          worker threads for split jobs (0: on the main thread;\n"
+         "                             default: hardware threads minus one); results are the same\n";
 }
 
 ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
@@ -85,6 +87,10 @@ ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
       int64_t v = 0;
       if (!number(v, 0)) return fail("--seed needs a whole number >= 0");
       out.seed = uint64_t(v);
+    } else if (arg == "--split-threads") {
+      int64_t v = 0;
+      if (!number(v, 0) || v > 64) return fail("--split-threads needs a whole number from 0 to 64");
+      out.splitThreads = int(v);
     } else {
       bool known = false;
       for (const auto& [name, count] : gameOptions) {

@@ -22,6 +22,7 @@ struct AppOptions {
   int width = 1280;                // --width, --height: window or offscreen size in pixels
   int height = 720;
   uint64_t seed = 1;               // --seed N: for anything random in the scene
+  int splitThreads = -1;           // --split-threads N: split worker threads (-1: the engine's default)
   std::string sceneName = "default";  // the scene word written into recorded replays (set by the game)
   std::vector<std::string> extra;  // arguments the engine does not know, for the game to read
 };

@@ -11,7 +11,9 @@ enum class Phase : uint8_t {
   Input,        // fold this tick's input events into the input state
   Gameplay,     // game rules, controllers, spawning
   Triggers,     // read trigger events of the last physics step, emit split requests
-  Split,        // execute split requests gathered in earlier ticks, within the split budget
+  Split,        // prepare split requests gathered in earlier ticks, within the split budget; their
+                // compute stage starts on worker threads
+  Commit,       // commit the split jobs due this tick (pieces appear), in request order
   PhysicsStep,  // one fixed physics step
   PhysicsSync,  // copy body transforms back to entities
   Animation,    // sample clips, joint matrices
@@ -20,7 +22,7 @@ enum class Phase : uint8_t {
 };
 
 inline constexpr std::array<const char*, size_t(Phase::Count)> kPhaseNames = {
-    "Input", "Gameplay", "Triggers", "Split", "PhysicsStep", "PhysicsSync", "Animation", "Render"};
+    "Input", "Gameplay", "Triggers", "Split", "Commit", "PhysicsStep", "PhysicsSync", "Animation", "Render"};
 
 inline constexpr double kTickSeconds = 1.0 / 60.0;  // the fixed tick: 60 Hz
 

@@ -170,6 +170,34 @@ Hull buildHull(std::span<const glm::vec3> points, uint32_t maxVertices, const st
   return hull;
 }
 
+// A hull given as the vertices of an already shrunken convex polytope: checked and, when dense,
+// reduced to its extreme vertices (a subset, so it stays inside), with the margin as given.
+Hull preparedHull(std::span<const glm::vec3> points, float margin, uint32_t maxVertices,
+                  const std::string& what) {
+  Hull hull;
+  if (points.size() < 4 || !std::isfinite(margin) || margin > kMaxConvexMargin) {
+    hull.status = PhysicsStatus::InvalidArgument;
+    hull.reason = what + ": a prepared hull needs at least 4 points and a margin in [0, " +
+                  std::to_string(kMaxConvexMargin) + "] m";
+    return hull;
+  }
+  hull.vertices.reserve(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (!finite(points[i])) {
+      hull.status = PhysicsStatus::InvalidArgument;
+      hull.reason = what + ": point " + std::to_string(i) + " is not finite";
+      return hull;
+    }
+    hull.vertices.emplace_back(points[i].x, points[i].y, points[i].z);
+  }
+  if (hull.vertices.size() > maxVertices) {
+    std::vector<btVector3> reduced = reduceBySupport(hull.vertices, maxVertices);
+    if (reduced.size() >= 4) hull.vertices = std::move(reduced);
+  }
+  hull.margin = margin;
+  return hull;
+}
+
 std::unique_ptr<btConvexHullShape> makeHullShape(const Hull& hull) {
   auto shape = std::make_unique<btConvexHullShape>(
       hull.vertices[0].m_floats, int(hull.vertices.size()), int(sizeof(btVector3)));
@@ -293,7 +321,9 @@ BuildOutcome buildShape(const ShapeDef& def) {
       built.margin = built.shape->getMargin();
       break;
     case ShapeType::ConvexHull: {
-      Hull hull = buildHull(def.points, def.maxHullVertices, "convex hull");
+      Hull hull = def.preparedMargin >= 0.0f
+                      ? preparedHull(def.points, def.preparedMargin, def.maxHullVertices, "convex hull")
+                      : buildHull(def.points, def.maxHullVertices, "convex hull");
       if (hull.status != PhysicsStatus::Ok) return fail(hull.status, std::move(hull.reason));
       built.margin = hull.margin;
       built.hullVertices = uint32_t(hull.vertices.size());
@@ -315,7 +345,8 @@ BuildOutcome buildShape(const ShapeDef& def) {
                       what + ": the position must be finite and the rotation a finite, non-zero "
                              "quaternion");
         }
-        Hull hull = buildHull(part.points, def.maxHullVertices, what);
+        Hull hull = part.margin >= 0.0f ? preparedHull(part.points, part.margin, def.maxHullVertices, what)
+                                        : buildHull(part.points, def.maxHullVertices, what);
         if (hull.status != PhysicsStatus::Ok) return fail(hull.status, std::move(hull.reason));
         auto child = makeHullShape(hull);
         smallestMargin = std::min(smallestMargin, hull.margin);

@@ -46,6 +46,12 @@ ShapeDef ShapeDef::convexHull(std::span<const glm::vec3> points) {
   return def;
 }
 
+ShapeDef ShapeDef::preparedHull(std::span<const glm::vec3> points, float margin) {
+  ShapeDef def = convexHull(points);
+  def.preparedMargin = margin;
+  return def;
+}
+
 ShapeDef ShapeDef::compound(std::vector<ConvexPart> parts) {
   ShapeDef def;
   def.type = ShapeType::Compound;

@@ -52,6 +52,11 @@ struct ConvexPart {
   std::vector<glm::vec3> points;            // hull points in the part's own frame
   glm::vec3 position{0.0f};                 // part frame origin in the compound frame, metres
   glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // part frame rotation (normalised by createShape)
+  // Prepared parts: margin >= 0 says `points` are the vertices of a convex polytope whose faces were
+  // already moved inwards by `margin` (geometry::shrinkPolytope; the carried collider parts of split
+  // pieces). createShape then uses them as they are, with this margin, and runs no hull computation.
+  // margin must be at most kMaxConvexMargin. Negative (the default): the hull is computed and shrunk.
+  float margin = -1.0f;
 };
 
 struct ShapeDef {
@@ -67,12 +72,17 @@ struct ShapeDef {
   // that are extreme along maxHullVertices fixed, evenly spread directions. They are a subset of
   // its vertices, so the reduced hull lies inside the exact one: reduction never inflates a piece.
   uint32_t maxHullVertices = kDefaultMaxHullVertices;  // >= 4
+  // ConvexHull: >= 0 means `points` are already a shrunken hull with this margin (see
+  // ConvexPart::margin); negative: computed.
+  float preparedMargin = -1.0f;
 
   static ShapeDef box(glm::vec3 halfExtents);
   static ShapeDef sphere(float radius);
   static ShapeDef capsule(float radius, float halfHeight);
   static ShapeDef convexHull(std::span<const glm::vec3> points);
   static ShapeDef compound(std::vector<ConvexPart> parts);
+  // A convex hull given by the vertices of an already shrunken polytope and its margin.
+  static ShapeDef preparedHull(std::span<const glm::vec3> points, float margin);
   static ShapeDef concaveMesh(std::span<const glm::vec3> positions,
                               std::span<const uint32_t> indices);
   static ShapeDef staticMesh(std::span<const glm::vec3> positions,

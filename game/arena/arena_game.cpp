@@ -44,6 +44,7 @@ constexpr uint64_t kQuitTicks = 50;
 constexpr uint64_t kWaveGapTicks = 120;
 constexpr int kHitFreezeTicks = 60;         // a frozen enemy whose split never comes walks on
 constexpr double kCrumbVolume = 1.5e-3;     // m^3: pieces smaller than this are not cut again
+constexpr double kLimbShare = 0.2;          // gladiator pieces under this share of its mass: no ragdoll
 
 
 // The shortest rotation taking +Y to the unit vector `to`.
@@ -320,18 +321,24 @@ void ArenaGame::createPlayer() {
 bool ArenaGame::setup(app::App& app, std::string* error) {
   app_ = &app;
   rng_ = app.options().seed * 0x9e3779b97f4a7c15ull + 0x632be59bd9b4e019ull;
-  physics_ = std::make_unique<physics::PhysicsWorld>();
-  // The budget: 6 ms of split work a tick, charged by estimate so replays stay exact. The estimate
-  // is fitted to the arena's objects (a gladiator of ~820 triangles falling into 9 pieces costs
-  // about 3.4 ms here: the cut, nine hull colliders, nine uploads), so a burst of kills is spread
-  // at two gladiators a tick instead of eight at once.
+  // The budget: 4 ms of main-thread split work a tick, charged by estimate so replays stay exact;
+  // the heavy part of a split (the cut, the collider parts, the ragdoll fits) runs on workers.
   components::SplitBudgetSettings budget;
-  budget.millisecondsPerTick = 6.0;
-  budget.maxSplitsPerTick = 4;
+  budget.millisecondsPerTick = 4.0;
+  budget.maxSplitsPerTick = 8;
   budget.maxActivationsPerTick = 24;
-  budget.estimatedMillisecondsPerSplit = 0.5;
-  budget.estimatedMillisecondsPerTriangle = 0.0035;
-  splits_ = std::make_unique<components::SplitSystem>(budget);
+  if (app.options().splitThreads >= 0) budget.threads = uint32_t(app.options().splitThreads);
+  sim_ = std::make_unique<components::Simulation>(app.world(), budget, &app.renderer());
+  physics_ = &sim_->physics();
+  splits_ = &sim_->splits();
+  // Gladiators fall as ragdoll halves; what a blow only clips off (a hand, a head) flies away as
+  // skinned debris instead of a ragdoll of its own.
+  splits_->registerHandler("arena.gladiator", [](const components::SplitJob& job, components::SplitOutcome& out) {
+    for (components::PieceSpec& piece : out.pieces)
+      if (piece.kind == components::PieceKind::Ragdoll && piece.mass < kLimbShare * job.parent.mass)
+        piece.kind = components::PieceKind::Debris;
+    return components::HandlerDecision::Commit;
+  });
   if (const char* dir = std::getenv("CLEAVE_SPLIT_FAILURE_DIR"); dir && *dir) splits_->setFailureDumpDirectory(dir);
 
   character_ = assets::makeProceduralCharacter();
@@ -357,9 +364,13 @@ bool ArenaGame::setup(app::App& app, std::string* error) {
 
   app.addSystem(app::Phase::Gameplay, "arena.gameplay", [this](app::TickContext& c) { gameplay(c); });
   app.addSystem(app::Phase::Triggers, "arena.triggers", [this](app::TickContext& c) { triggers(c); });
-  app.addSystem(app::Phase::Split, "arena.split", [this](app::TickContext& c) { split(c); });
-  app.addSystem(app::Phase::PhysicsStep, "physics.step", [this](app::TickContext& c) { physics_->step(c.dt); });
-  app.addSystem(app::Phase::PhysicsSync, "arena.sync", [this](app::TickContext& c) { physicsSync(c); });
+  components::SplittingHooks hooks;
+  hooks.camera = [this] { return glm::dvec3(cameraPosition_); };
+  hooks.committed = [this](app::TickContext& c, const std::vector<components::SplitEvent>& events) {
+    committed(c, events);
+  };
+  components::installSplitting(app, *sim_, std::move(hooks));
+  app.addSystem(app::Phase::PhysicsSync, "arena.pieces", [this](app::TickContext& c) { physicsSync(c); });
   app.addSystem(app::Phase::Animation, "arena.animation", [this](app::TickContext& c) { animation(c); });
   app.addSystem(app::Phase::Render, "arena.render", [this](app::TickContext& c) { render(c); });
   app.setStateDumpExtension([this](ecs::Entity e, nlohmann::json& out) { dumpEntity(e, out); });
@@ -731,8 +742,6 @@ void ArenaGame::triggers(app::TickContext& c) {
     }
   }
   maxEnemiesHitInOneTick_ = std::max(maxEnemiesHitInOneTick_, hitsThisTick);
-  components::SplitWorld sw = splitWorld();
-  splits_->gatherTriggerRequests(sw, c.tick);
 }
 
 void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
@@ -809,20 +818,17 @@ void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
   }
 }
 
-void ArenaGame::split(app::TickContext& c) {
-  components::SplitWorld sw = splitWorld();
-  splits_->activatePending(sw);
-  splits_->runSplits(sw, c.tick, glm::dvec3(cameraPosition_));
+void ArenaGame::committed(app::TickContext& c, const std::vector<components::SplitEvent>& events) {
   const size_t killedBefore = enemiesKilled_;
-  for (const components::SplitEvent& ev : splits_->lastEvents()) onSplit(ev, c.tick);
+  for (const components::SplitEvent& ev : events) onSplit(ev, c.tick);
   maxKillsInOneTick_ = std::max(maxKillsInOneTick_, uint32_t(enemiesKilled_ - killedBefore));
   const auto& stats = splits_->budget().stats();
   deferredTotal_ += stats.deferred;
   maxQueue_ = std::max(maxQueue_, stats.queueLength);
   splitsThisTick_ = stats.executed;
-  splitMsThisTick_ = stats.millisecondsUsed;
-  maxSplitMsInATick_ = std::max(maxSplitMsInATick_, stats.millisecondsUsed);
-  splitMsHistory_.push_back(float(stats.millisecondsUsed));
+  splitMsThisTick_ = splits_->lastTickMainMilliseconds();
+  maxSplitMsInATick_ = std::max(maxSplitMsInATick_, splitMsThisTick_);
+  splitMsHistory_.push_back(float(splitMsThisTick_));
   if (splitMsHistory_.size() > 120) splitMsHistory_.pop_front();
 }
 
@@ -871,17 +877,11 @@ void ArenaGame::updatePieces(uint64_t tick) {
   }
 }
 
-void ArenaGame::physicsSync(app::TickContext& c) {
-  components::SplitWorld sw = splitWorld();
-  components::syncTransformsFromBodies(sw);
-  components::updateDebris(sw, float(c.dt));
-  updatePieces(c.tick);
-}
+void ArenaGame::physicsSync(app::TickContext& c) { updatePieces(c.tick); }
 
 void ArenaGame::animation(app::TickContext& c) {
-  // The skinned enemies play their clips; their ragdoll halves take their poses from their bones.
-  components::SplitWorld sw = splitWorld();
-  components::updateAnimations(sw, float(c.dt));
+  // The skinned enemies played their clips in the split installer's Animation stage (their ragdoll
+  // halves take their poses from their bones); here the player's own character.
   const bool walking = playerSpeed_ > 0.3f;
   const anim::AnimationClip* want = walking ? &character_.walk : &character_.idle;
   if (animator_.clip() != want) animator_.play(want, 0.25f);

@@ -22,6 +22,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "components/split_log.h"
+#include "components/simulation.h"
 #include "components/split_system.h"
 #include "engine/anim/animation_clip.h"
 #include "engine/app/app.h"
@@ -101,7 +102,7 @@ class ArenaGame {
   // Systems.
   void gameplay(app::TickContext& c);
   void triggers(app::TickContext& c);
-  void split(app::TickContext& c);
+  void committed(app::TickContext& c, const std::vector<components::SplitEvent>& events);
   void physicsSync(app::TickContext& c);
   void animation(app::TickContext& c);
   void render(app::TickContext& c);
@@ -137,8 +138,9 @@ class ArenaGame {
   EnemyContext enemyContext();
 
   app::App* app_ = nullptr;
-  std::unique_ptr<physics::PhysicsWorld> physics_;
-  std::unique_ptr<components::SplitSystem> splits_;
+  std::unique_ptr<components::Simulation> sim_;
+  physics::PhysicsWorld* physics_ = nullptr;   // sim_'s
+  components::SplitSystem* splits_ = nullptr;  // sim_'s
   ArenaMaterials materials_;
   EnemyMeshes enemyMeshes_;
   std::vector<Obstacle> pillars_;

@@ -95,6 +95,7 @@ Enemy spawnSkinned(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 positio
   splitable.capMaterial = c.materials.flesh;
   splitable.capMaterialId = 1;
   splitable.skinnedPieces = components::SkinnedPieceMode::Ragdoll;
+  splitable.handler = "arena.gladiator";  // see ArenaGame::setup
   splitable.splitImpulse = 0.6;
   splitable.maxDepth = 3;
   world.add<components::Splitable>(e, splitable);

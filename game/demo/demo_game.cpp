@@ -393,7 +393,7 @@ void DemoGame::benchmarkSplits(int repeats) {
 }
 
 bool DemoGame::loadSceneFile(const std::string& path, std::string* error) {
-  components::SceneContext context{app_->world(), *physics_, &app_->renderer(), splits_.get(), {}};
+  components::SceneContext context{app_->world(), *physics_, &app_->renderer(), splits_, {}};
   // Material names of the scene file map to the demo's looks; caps get the inside look.
   context.materials = [this](const std::string& name, bool cap) {
     if (name == "floor") return floorMaterial_;
@@ -434,11 +434,13 @@ bool DemoGame::loadSceneFile(const std::string& path, std::string* error) {
 
 bool DemoGame::setup(app::App& app, std::string* error) {
   app_ = &app;
-  physics_ = std::make_unique<physics::PhysicsWorld>();
   components::SplitBudgetSettings budget;
   budget.millisecondsPerTick = 6.0;
   budget.maxSplitsPerTick = 12;
-  splits_ = std::make_unique<components::SplitSystem>(budget);
+  if (app.options().splitThreads >= 0) budget.threads = uint32_t(app.options().splitThreads);
+  sim_ = std::make_unique<components::Simulation>(app.world(), budget, &app.renderer());
+  physics_ = &sim_->physics();
+  splits_ = &sim_->splits();
   if (const char* dir = std::getenv("CLEAVE_SPLIT_FAILURE_DIR"); dir && *dir)
     splits_->setFailureDumpDirectory(dir);
   createMaterials();
@@ -458,35 +460,20 @@ bool DemoGame::setup(app::App& app, std::string* error) {
   }
 
   app.addSystem(app::Phase::Gameplay, "demo.gameplay", [this](app::TickContext& c) { gameplay(c); });
-  app.addSystem(app::Phase::Triggers, "split.gather", [this](app::TickContext& c) {
-    components::SplitWorld sw = splitWorld();
-    splits_->gatherTriggerRequests(sw, c.tick);
-  });
-  app.addSystem(app::Phase::Split, "split.run", [this](app::TickContext& c) {
-    components::SplitWorld sw = splitWorld();
-    splits_->activatePending(sw);
-    splits_->runSplits(sw, c.tick, glm::dvec3(cameraPosition_));
+  components::SplittingHooks hooks;
+  hooks.camera = [this] { return glm::dvec3(cameraPosition_); };
+  hooks.committed = [this](app::TickContext& c, const std::vector<components::SplitEvent>& events) {
     const auto& stats = splits_->budget().stats();
-    splitLog_.record(c.tick, splits_->lastEvents());
+    splitLog_.record(c.tick, events);
     deferredTotal_ += stats.deferred;
     maxQueue_ = std::max(maxQueue_, stats.queueLength);
     splitsThisTick_ = stats.executed;
     if (stats.executed > 0) lastSplitMs_ = stats.lastSplitMilliseconds;
     maxSplitMs_ = stats.maxSplitMilliseconds;
-    splitMsHistory_.push_back(float(stats.millisecondsUsed));
+    splitMsHistory_.push_back(float(splits_->lastTickMainMilliseconds()));
     if (splitMsHistory_.size() > 120) splitMsHistory_.pop_front();
-  });
-  app.addSystem(app::Phase::PhysicsStep, "physics.step",
-                [this](app::TickContext& c) { physics_->step(c.dt); });
-  app.addSystem(app::Phase::PhysicsSync, "physics.sync", [this](app::TickContext& c) {
-    components::SplitWorld sw = splitWorld();
-    components::syncTransformsFromBodies(sw);
-    components::updateDebris(sw, float(c.dt));
-  });
-  app.addSystem(app::Phase::Animation, "animation", [this](app::TickContext& c) {
-    components::SplitWorld sw = splitWorld();
-    components::updateAnimations(sw, float(c.dt));
-  });
+  };
+  components::installSplitting(app, *sim_, std::move(hooks));
   app.addSystem(app::Phase::Render, "demo.render", [this](app::TickContext& c) { render(c); });
   app.setStateDumpExtension([this](ecs::Entity e, nlohmann::json& out) { dumpExtension(e, out); });
   app.setFrameDumpExtension([this](nlohmann::json& line) {

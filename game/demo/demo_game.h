@@ -14,6 +14,7 @@
 #include "components/scene_loader.h"
 #include "components/skinned.h"
 #include "components/split_log.h"
+#include "components/simulation.h"
 #include "components/split_system.h"
 #include "engine/app/app.h"
 #include "engine/physics/physics_world.h"
@@ -70,8 +71,9 @@ class DemoGame {
   void dumpExtension(ecs::Entity e, nlohmann::json& out);
 
   app::App* app_ = nullptr;
-  std::unique_ptr<physics::PhysicsWorld> physics_;
-  std::unique_ptr<components::SplitSystem> splits_;
+  std::unique_ptr<components::Simulation> sim_;
+  physics::PhysicsWorld* physics_ = nullptr;     // sim_'s
+  components::SplitSystem* splits_ = nullptr;    // sim_'s
   std::unique_ptr<components::SceneRunner> sceneRunner_;
 
   // Camera (fly camera: yaw around +Y, pitch up).

@@ -1,7 +1,8 @@
 // A headless simulation for the component tests: a World, a PhysicsWorld and a SplitSystem without
-// renderer, stepped tick by tick in the App's phase order (engine/app/phase.h):
-// Gameplay (scene splitters) -> Triggers (gather the last step's touches) -> Split (activations,
-// budgeted splits) -> PhysicsStep -> PhysicsSync (transforms, debris) -> Animation.
+// renderer (a components::Simulation), stepped tick by tick in the App's phase order
+// (engine/app/phase.h): Gameplay (scene splitters) -> Triggers (gather the last step's touches) ->
+// Split (activations, budgeted prepares) -> Commit (due jobs) -> PhysicsStep -> PhysicsSync
+// (transforms, debris) -> Animation.
 #pragma once
 
 #include <functional>
@@ -14,6 +15,7 @@
 
 #include "components/scene_components.h"
 #include "components/scene_loader.h"
+#include "components/simulation.h"
 #include "components/skinned.h"
 #include "components/split_system.h"
 #include "engine/ecs/hierarchy.h"
@@ -30,8 +32,9 @@ inline std::string scenePath(const std::string& name) {
 
 struct Sim {
   ecs::World world;
-  physics::PhysicsWorld physics;
-  SplitSystem splits;
+  Simulation simulation{world};
+  physics::PhysicsWorld& physics = simulation.physics();
+  SplitSystem& splits = simulation.splits();
   SceneRunner runner;
   SceneLoadResult scene;
   uint64_t tick = 0;
@@ -52,15 +55,14 @@ struct Sim {
   void step(const std::function<void()>& afterSplit = {}, const std::function<void()>& afterStep = {}) {
     SplitWorld w = sw();
     runner.update(w, tick, kDt);
-    splits.gatherTriggerRequests(w, tick);
-    splits.activatePending(w);
-    splits.runSplits(w, tick, camera);
+    simulation.gather(tick);
+    simulation.prepare(tick, camera);
+    simulation.commit(tick);
     if (afterSplit) afterSplit();
-    physics.step(kDt);
+    simulation.stepPhysics(kDt);
     if (afterStep) afterStep();
-    syncTransformsFromBodies(w);
-    updateDebris(w, float(kDt));
-    updateAnimations(w, float(kDt));
+    simulation.sync(kDt);
+    simulation.animate(kDt);
     ++tick;
   }
 

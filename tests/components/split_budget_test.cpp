@@ -20,7 +20,7 @@ struct Fixture {
 
   // Every split is estimated at 0.1 ms unless a test says otherwise (the default budget is 4 ms).
   explicit Fixture(SplitBudgetSettings s = {}) : budget(s) {
-    budget.setCostEstimator([](const SplitRequest&) { return 0.1; });
+    budget.setCostEstimator([](const SplitRequest&) { return SplitCost{0.1, 0.0}; });
   }
 
   void add(uint32_t index, glm::dvec3 position, bool player, uint64_t tick) {
@@ -86,7 +86,7 @@ TEST(SplitBudget, DeterministicBudgetStopsAfterTheSplitThatReachesIt) {
   s.maxSplitsPerTick = 100;
   s.deterministic = true;
   Fixture f(s);
-  f.budget.setCostEstimator([](const SplitRequest&) { return 1.0; });
+  f.budget.setCostEstimator([](const SplitRequest&) { return SplitCost{1.0, 0.0}; });
   for (uint32_t i = 1; i <= 7; ++i) f.add(i, {double(i), 0, 0}, false, 0);
   f.run(1, /*msPerSplit=*/50.0);  // measured time is ignored when deterministic
   EXPECT_EQ(f.executed.size(), 3u);
@@ -102,7 +102,7 @@ TEST(SplitBudget, AtLeastOneSplitRunsEvenIfItAloneIsOverBudget) {
   SplitBudgetSettings s;
   s.millisecondsPerTick = 1.0;
   Fixture f(s);
-  f.budget.setCostEstimator([](const SplitRequest&) { return 5.0; });
+  f.budget.setCostEstimator([](const SplitRequest&) { return SplitCost{5.0, 0.0}; });
   f.add(1, {0, 0, 0}, false, 0);
   f.add(2, {1, 0, 0}, false, 0);
   f.run(1);

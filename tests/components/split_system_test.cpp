@@ -58,8 +58,10 @@ TEST(SplitConservation, SpinningMovingSphereKeepsMassMomentumAndAngularMomentum)
   }
   ASSERT_EQ(events.size(), 1u);
   ASSERT_EQ(events[0].status, geometry::SplitStatus::Ok) << events[0].message;
-  // Fired at tick 10: its step touches the sphere, tick 11 gathers the request, tick 12 splits.
-  EXPECT_EQ(splitTick, 12u);
+  // Fired at tick 10: its step touches the sphere, tick 11 gathers the request, tick 12 prepares
+  // the split and tick 13 commits it (the sphere moved and turned for one step in between).
+  EXPECT_EQ(events[0].preparedTick, 12u);
+  EXPECT_EQ(splitTick, 13u);
   ASSERT_EQ(events[0].pieces.size(), 2u);
   ASSERT_EQ(before.bodies, 1u);
   ASSERT_EQ(after.bodies, 2u);
@@ -197,7 +199,8 @@ TEST(Splitters, OneTickSplitterCutsOnlyWhatItTouchesInItsTick) {
   const auto ok = okEvents(events);
   ASSERT_EQ(ok.size(), 1u);
   EXPECT_EQ(ok[0].originalName, "cube 2");
-  EXPECT_EQ(ok[0].tick, 12u);
+  EXPECT_EQ(ok[0].preparedTick, 12u);
+  EXPECT_EQ(ok[0].tick, 13u);
   for (const char* name : {"cube 0", "cube 1", "cube 3", "cube 4"})
     EXPECT_TRUE(sim.world.alive(sim.scene.find(name))) << name;
   EXPECT_FALSE(sim.world.alive(sim.scene.find("cube 2")));
@@ -244,7 +247,9 @@ TEST(SplitFailure, OpenMeshKeepsTheOriginalWholeWithItsMassAndMomentum) {
   r.requestedTick = sim.tick;
   sim.splits.request(r);
   sim.step();
-  EXPECT_TRUE(sim.splits.lastEvents().empty());  // requested in this tick: runs in the next one
+  EXPECT_TRUE(sim.splits.lastEvents().empty());  // requested in this tick: prepared in the next one
+  sim.step();
+  EXPECT_TRUE(sim.splits.lastEvents().empty());  // prepared: its outcome is committed in the next one
   const Momenta pre = momentaOf(sim);
   Momenta post;
   sim.step([&] { post = momentaOf(sim); });
@@ -300,8 +305,8 @@ TEST(SplitBudgetScene, FiftyCubesInOneTickSpreadOverTicksWithinTheBudget) {
   const BudgetRun run = runFiftyCubes(sim, /*deterministic=*/true);
   const SplitBudgetSettings& s = sim.splits.budget().settings();
   ASSERT_DOUBLE_EQ(s.millisecondsPerTick, 2.0);
-  // A cube has 12 triangles: one split is estimated at 0.3 + 12 x 0.004 ms.
-  const double oneSplit = s.estimatedMillisecondsPerSplit + 12 * s.estimatedMillisecondsPerTriangle;
+  // One split of a cube is charged the scene's main-thread estimate, 0.3 ms.
+  const double oneSplit = s.estimatedMainMilliseconds;
   std::printf("[budget] deterministic: %u splits over %u ticks (%llu..%llu), max charged %.3f ms/tick "
               "(budget %.1f, one split %.3f), max measured %.3f ms/tick\n",
               run.executed, run.ticksWithSplits, (unsigned long long)run.firstTick,
@@ -312,7 +317,7 @@ TEST(SplitBudgetScene, FiftyCubesInOneTickSpreadOverTicksWithinTheBudget) {
   EXPECT_EQ(run.failed, 0u);
   EXPECT_EQ(run.firstTick, 7u);  // fired at 5, gathered at 6, first splits at 7
   EXPECT_GT(run.ticksWithSplits, 1u);
-  EXPECT_EQ(run.ticksWithSplits, 9u);  // 6 splits (2.088 ms charged) per tick
+  EXPECT_EQ(run.ticksWithSplits, 8u);  // 7 splits (2.1 ms charged) per tick
   EXPECT_LE(run.maxCharged, s.millisecondsPerTick + oneSplit + 1e-9);
   EXPECT_EQ(sim.dynamicBodies().size(), 100u);
 }

@@ -1,0 +1,64 @@
+// Simulation: the world's physics and splitting stepped in the phase order of engine/app/phase.h,
+// one stage per phase. It serves both games (installSplitting registers its stages in an App's
+// phases once), the component tests and the benchmarks (step() runs a whole tick without an App).
+//
+// Phases and stages: Triggers -> gather (splitter touches become requests); Split -> prepare (the
+// budget picks requests, jobs start computing on workers); Commit -> commit (due jobs' pieces
+// appear, in request order); PhysicsStep -> one fixed step; PhysicsSync -> transforms follow
+// bodies, debris falls; Animation -> skinned meshes play, ragdolls follow their bones.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "components/split_system.h"
+#include "engine/app/app.h"
+#include "engine/ecs/world.h"
+#include "engine/physics/physics_world.h"
+#include "engine/render/renderer.h"
+
+namespace cleave::components {
+
+class Simulation {
+ public:
+  // `world` must outlive the simulation; the renderer may be null (no GPU meshes).
+  explicit Simulation(ecs::World& world, SplitBudgetSettings budget = {}, render::Renderer* renderer = nullptr);
+
+  ecs::World& world() { return world_; }
+  physics::PhysicsWorld& physics() { return physics_; }
+  SplitSystem& splits() { return splits_; }
+  SplitWorld splitWorld() { return SplitWorld{world_, physics_, renderer_}; }
+  void setRenderer(render::Renderer* renderer) { renderer_ = renderer; }
+
+  void gather(uint64_t tick);                             // Triggers
+  void prepare(uint64_t tick, const glm::dvec3& camera);  // Split
+  void commit(uint64_t tick);                             // Commit
+  void stepPhysics(double dt);                            // PhysicsStep
+  void sync(double dt);                                   // PhysicsSync
+  void animate(double dt);                                // Animation
+  // One whole tick without an App (gameplay is the caller's, before this).
+  void step(uint64_t tick, double dt, const glm::dvec3& camera);
+
+ private:
+  ecs::World& world_;
+  physics::PhysicsWorld physics_;
+  SplitSystem splits_;
+  render::Renderer* renderer_ = nullptr;
+};
+
+struct SplittingHooks {
+  std::function<glm::dvec3()> camera;  // where split priority measures distance from
+  // After the Commit phase, with the events of this tick's prepare and commit.
+  std::function<void(app::TickContext&, const std::vector<SplitEvent>&)> committed;
+};
+
+// Registers the simulation's stages in the App's phases (Triggers, Split, Commit, PhysicsStep,
+// PhysicsSync, Animation), once. Systems a game registers in the same phases afterwards run after
+// these. The simulation must outlive the App's runs.
+void installSplitting(app::App& app, Simulation& sim, SplittingHooks hooks = {});
+
+}  // namespace cleave::components

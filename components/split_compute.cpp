@@ -1,0 +1,348 @@
+// The compute stage: container set-up, the cut, and a PieceSpec per piece with its collider planned
+// (carried parts clipped by the plane, hulls shrunk by their margin) and, for skinned ragdoll pieces,
+// its bones and joints planned. Nothing here touches the world, physics or the renderer.
+#include "components/split_compute.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "components/skinned.h"
+#include "engine/geometry/convex_polytope.h"
+#include "engine/geometry/mass_properties.h"
+#include "engine/geometry/primitives.h"
+#include "engine/physics/shape_def.h"
+
+namespace cleave::components {
+namespace {
+
+double nowMs() {
+  using namespace std::chrono;
+  return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
+}
+
+constexpr double kMinPartWidth = 1e-5;  // metres: flatter parts hold nothing
+
+// The triangles of `piece` whose tag says they belong to part `part` (and the caps, for `withCaps`),
+// with the tags turned back into the part's own material ids (caps: capMaterialId).
+geometry::MeshData extractPart(const geometry::MeshData& piece, uint32_t part, bool withCaps, uint32_t capMaterialId) {
+  std::vector<uint32_t> triangles;
+  for (const geometry::SubMesh& sub : piece.submeshes) {
+    const bool cap = sub.materialId == kMergedCapId;
+    if (!(cap ? withCaps : sub.materialId / kPartStride == part)) continue;
+    for (uint32_t i = 0; i < sub.indexCount / 3; ++i) triangles.push_back(sub.firstIndex / 3 + i);
+  }
+  geometry::MeshData out;
+  if (triangles.empty()) return out;
+  geometry::MeshContainer container;
+  if (container.setMesh(piece) != geometry::SplitStatus::Ok) return out;
+  container.extractTriangles(triangles, out);
+  for (geometry::SubMesh& sub : out.submeshes)
+    sub.materialId = sub.materialId == kMergedCapId ? capMaterialId : sub.materialId % kPartStride;
+  return out;
+}
+
+// Sets the container up for the job: the shared mesh (with its weld when known) or the merged
+// hierarchy, then the cut space (model matrix, or the pose). Returns false with out.message.
+bool setUpContainer(const SplitJob& job, const geometry::MeshData* merged, SplitComputeScratch& s, SplitOutcome& out) {
+  std::string message;
+  geometry::SplitStatus set = geometry::SplitStatus::Ok;
+  if (merged) {
+    set = s.container.setMesh(*merged, &message);
+  } else {
+    set = job.weld ? s.container.setMesh(job.mesh, job.weld.get(), &message)
+                   : geometry::SplitStatus::InvalidInput;
+    if (set != geometry::SplitStatus::Ok) {  // no weld, or a stale one: weld anew and hand it back
+      set = s.container.setMesh(job.mesh, nullptr, &message);
+      if (set == geometry::SplitStatus::Ok) {
+        auto weld = std::make_shared<geometry::MeshWeld>();
+        s.container.copyWeld(*weld);
+        out.sourceWeld = std::move(weld);
+      }
+    }
+  }
+  if (set == geometry::SplitStatus::Ok && job.skinned()) {
+    set = s.container.setSkinningPose(job.jointMatrices, glm::mat4(job.model), &message);
+  } else if (set == geometry::SplitStatus::Ok) {
+    s.container.setTransform(glm::mat4(job.model));
+  }
+  if (set == geometry::SplitStatus::Ok) return true;
+  out.status = geometry::SplitStatus::InvalidInput;
+  out.message = message;
+  return false;
+}
+
+// The per-piece context shared by every piece of one job.
+struct PieceContext {
+  const SplitJob& job;
+  SplitComputeScratch& scratch;
+  double totalVolume = 0.0;
+  bool shareParentMass = false;
+  glm::dvec3 normal{0.0};                 // unit plane normal, world
+  std::vector<glm::dmat4> globals;        // ragdolls: joint world transforms in the cut pose
+  std::vector<geometry::ColliderPartSet> clipped;  // carried parts per piece (rigid jobs)
+  bool carried = false;                   // `clipped` is meaningful
+};
+
+void planRagdollPiece(const PieceContext& c, const geometry::SplitPiece& piece, const geometry::MeshData& posed,
+                      PieceSpec& spec) {
+  std::vector<glm::vec3> world;
+  world.reserve(posed.positions.size());
+  for (const glm::vec3& p : posed.positions) world.push_back(glm::vec3(c.job.model * glm::dvec4(glm::dvec3(p), 1.0)));
+  std::string reason;
+  if (!planRagdoll(piece.mesh, world, piece.joints, c.job.skin->skeleton, c.globals, std::max(spec.mass, 1e-6),
+                   spec.ragdoll, &reason)) {
+    spec.kind = PieceKind::KeepAnimating;  // too few vertices for any bone
+    return;
+  }
+  const RagdollBoneSpec& anchor = spec.ragdoll.bones[spec.ragdoll.anchor];
+  const glm::dmat4 toAnchor =
+      glm::inverse(glm::translate(glm::dmat4(1.0), anchor.centre) * glm::mat4_cast(anchor.rotation)) * c.job.model;
+  spec.ragdoll.jointMatrices.reserve(c.job.jointMatrices.size());
+  for (const glm::mat4& m : c.job.jointMatrices) spec.ragdoll.jointMatrices.push_back(glm::mat4(toAnchor * glm::dmat4(m)));
+}
+
+void planHierarchyChildren(const PieceContext& c, geometry::MeshData& whole, PieceSpec& spec) {
+  for (size_t part = 0; part < c.job.hierarchyParts.size(); ++part) {
+    if (c.job.hierarchyParts[part].entity == c.job.request.target) continue;
+    geometry::MeshData child = extractPart(whole, uint32_t(part), false, c.job.settings.capMaterialId);
+    if (child.indices.empty()) continue;
+    spec.children.push_back({part, std::make_shared<geometry::MeshData>(std::move(child))});
+  }
+}
+
+// Plans one piece; returns false when the piece is removed (small, SmallPieceMode::Remove).
+bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint32_t k, PieceSpec& spec) {
+  const SplitJob& job = c.job;
+  const Splitable& sp = job.settings;
+  spec.volume = std::max(piece.mass.volume, 0.0);
+  spec.mass = c.shareParentMass ? job.parent.mass * spec.volume / c.totalVolume : sp.density * spec.volume;
+  const bool small = spec.volume < sp.minPieceVolume;
+  if (small && sp.smallPieces == SmallPieceMode::Remove) return false;
+  spec.side = piece.side;
+  spec.capLoops = piece.capLoops;
+  spec.closed = piece.mass.closed;
+  spec.frame = bodyFrameFor(piece.mass, std::max(spec.mass, 1e-9), job.model);
+  spec.offsetFromParent = spec.frame.position - job.parent.centre;
+  spec.impulse = c.normal * (double(piece.side) * sp.splitImpulse);
+  spec.velocity = job.parent.velocity + glm::cross(job.parent.angularVelocity, spec.offsetFromParent) + spec.impulse;
+  spec.name = (job.targetName.empty() ? std::string("piece") : job.targetName) + "/" + (piece.side > 0 ? "a" : "b") +
+              std::to_string(k);
+
+  // What the piece becomes. Skinned pieces: the posed mesh gives the collider; baked and small ones
+  // are drawn from it too, the others keep their skin (bind space).
+  geometry::MeshData posed;
+  spec.kind = small ? PieceKind::Debris : PieceKind::Rigid;
+  if (job.skinned()) {
+    bakeSkin(piece.mesh, job.jointMatrices, posed);
+    const SkinnedPieceMode mode = small ? SkinnedPieceMode::Bake : sp.skinnedPieces;
+    spec.kind = small ? PieceKind::Debris
+                : mode == SkinnedPieceMode::Bake ? PieceKind::Baked
+                : mode == SkinnedPieceMode::Ragdoll ? PieceKind::Ragdoll
+                                                    : PieceKind::KeepAnimating;
+    if (spec.kind == PieceKind::Ragdoll) planRagdollPiece(c, piece, posed, spec);
+  }
+  const bool keepSkin = spec.kind == PieceKind::KeepAnimating || spec.kind == PieceKind::Ragdoll;
+  geometry::MeshData whole;
+  if (job.hierarchy()) {
+    whole = std::move(piece.mesh);
+    piece.mesh = extractPart(whole, 0, true, sp.capMaterialId);
+    planHierarchyChildren(c, whole, spec);
+  }
+  const bool weldKnown = !job.hierarchy() && (keepSkin || !job.skinned()) && !piece.weld.positionIds.empty();
+  if (weldKnown && job.depth < sp.maxDepth) spec.weld = std::make_shared<geometry::MeshWeld>(std::move(piece.weld));
+  auto drawn = std::make_shared<geometry::MeshData>(job.skinned() && !keepSkin ? std::move(posed) : std::move(piece.mesh));
+  spec.mesh = drawn;
+  if (spec.kind == PieceKind::Debris || spec.kind == PieceKind::Ragdoll) return true;
+
+  // The collider: carried parts for rigid pieces of a static mesh, planned from the mesh otherwise.
+  const geometry::MeshData& colliderMesh = job.hierarchy() ? whole : spec.kind == PieceKind::KeepAnimating ? posed : *drawn;
+  geometry::SharedColliderParts carried;
+  if (c.carried) carried = std::make_shared<const geometry::ColliderPartSet>(std::move(c.clipped[index]));
+  ColliderPlan plan = planCollider(colliderMesh, spec.frame.meshOffset, sp.collider, sp.convexHint, std::move(carried),
+                                   *c.scratch.concave);
+  spec.hulls = std::move(plan.hulls);
+  spec.concavePositions = std::move(plan.concavePositions);
+  spec.concaveIndices = std::move(plan.concaveIndices);
+  spec.colliderVolume = plan.colliderVolume;
+  // Parts stay with the piece when they are in the space of the mesh it draws.
+  if (spec.kind == PieceKind::Rigid && !job.hierarchy()) spec.parts = std::move(plan.parts);
+  if (spec.kind == PieceKind::Baked) spec.parts = std::move(plan.parts);
+  if (spec.hulls.empty() && spec.concavePositions.empty()) spec.kind = PieceKind::Debris;  // a flat sliver
+  return true;
+}
+
+// The carried parts of a rigid job, clipped by the plane into the pieces (mesh space). Decomposes
+// the source first when its parts are not known yet (handed back for the split system to keep).
+void clipCarriedParts(PieceContext& c, SplitOutcome& out) {
+  const SplitJob& job = c.job;
+  const Splitable& sp = job.settings;
+  const bool usesParts = sp.collider == ColliderMode::Auto || sp.collider == ColliderMode::Compound ||
+                         (sp.convexHint && sp.collider != ColliderMode::ConcaveMesh);
+  if (job.hierarchy() || job.skinned() || !usesParts) return;
+  geometry::SharedColliderParts parts = job.parts;
+  if (!parts) {
+    geometry::ColliderPartSet decomposed;
+    if (sp.convexHint) {
+      geometry::ConvexPolytope hull = geometry::polytopeOfPoints(job.mesh->positions);
+      if (!hull.empty()) decomposed.push_back(std::move(hull));
+    } else {
+      decomposed = geometry::decomposeConvex(*job.mesh, *c.scratch.concave);
+    }
+    parts = std::make_shared<const geometry::ColliderPartSet>(std::move(decomposed));
+    out.sourceParts = parts;
+  }
+  geometry::clipPartsToPieces(*parts, planeInMeshSpace(job.plane, job.model), c.scratch.result, {}, c.clipped);
+  c.carried = true;
+}
+
+}  // namespace
+
+BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const glm::dmat4& model) {
+  BodyFrame f;
+  f.position = props.centerOfMass;
+  const double scale = props.volume > 0.0 ? mass / props.volume : 0.0;
+  const geometry::PrincipalInertia principal = geometry::principalInertia(props.inertia * scale);
+  f.rotation = glm::normalize(glm::quat_cast(principal.axes));
+  // A piece must never get zero inertia (a sliver): floor each moment at a small share of the largest.
+  const double largest = std::max({principal.moments.x, principal.moments.y, principal.moments.z, 1e-12});
+  f.moments = glm::max(principal.moments, glm::dvec3(largest * 1e-3));
+  const glm::dmat4 bodyToWorld = glm::translate(glm::dmat4(1.0), f.position) * glm::mat4_cast(f.rotation);
+  f.meshOffset = glm::inverse(bodyToWorld) * model;
+  return f;
+}
+
+const char* toString(PieceKind kind) {
+  switch (kind) {
+    case PieceKind::Rigid: return "rigid";
+    case PieceKind::Debris: return "debris";
+    case PieceKind::KeepAnimating: return "keep-animating";
+    case PieceKind::Ragdoll: return "ragdoll";
+    case PieceKind::Baked: return "baked";
+  }
+  return "unknown";
+}
+
+geometry::MeshData mergeHierarchyParts(const std::vector<HierarchyPartData>& parts) {
+  geometry::MeshData merged;
+  for (size_t k = 0; k < parts.size(); ++k) {
+    geometry::MeshData part = *parts[k].mesh;
+    geometry::primitives::transform(part, glm::mat4(parts[k].toParent));
+    if (part.submeshes.empty()) part.submeshes.push_back({0, uint32_t(part.indices.size()), 0});
+    for (geometry::SubMesh& sub : part.submeshes)
+      sub.materialId = uint32_t(k) * kPartStride + std::min(sub.materialId, kMergedCapId - 1);
+    merged = merged.positions.empty() ? std::move(part) : geometry::primitives::merge(merged, part);
+  }
+  return merged;
+}
+
+geometry::Plane planeInMeshSpace(const geometry::Plane& world, const glm::dmat4& model) {
+  // dot(n, M p + t) = d  <=>  dot(L^T n, p) = d - dot(n, t)
+  geometry::Plane out;
+  out.normal = glm::transpose(glm::dmat3(model)) * world.normal;
+  out.offset = world.offset - glm::dot(world.normal, glm::dvec3(model[3]));
+  return out;
+}
+
+std::vector<HullSpec> hullsInBodyFrame(const geometry::ColliderPartSet& parts, const glm::dmat4& meshOffset,
+                                       double* volume) {
+  std::vector<HullSpec> hulls;
+  double sum = 0.0;
+  for (const geometry::ConvexPolytope& part : parts) {
+    const geometry::ConvexPolytope body = geometry::transformPolytope(part, meshOffset);
+    const double width = geometry::polytopeWidth(body);
+    if (body.empty() || width < kMinPartWidth) continue;
+    sum += geometry::polytopeVolume(body);
+    const double margin = std::min<double>(physics::kMaxConvexMargin, physics::kRelativeConvexMargin * width);
+    geometry::ConvexPolytope shrunk = geometry::shrinkPolytope(body, margin);
+    HullSpec hull;
+    hull.margin = shrunk.empty() ? 0.f : float(margin);
+    const geometry::ConvexPolytope& kept = shrunk.empty() ? body : shrunk;
+    hull.points.reserve(kept.vertices.size());
+    for (const glm::dvec3& v : kept.vertices) hull.points.push_back(glm::vec3(v));
+    hulls.push_back(std::move(hull));
+  }
+  if (volume) *volume = sum;
+  return hulls;
+}
+
+ColliderPlan planCollider(const geometry::MeshData& mesh, const glm::dmat4& meshOffset, ColliderMode mode,
+                          bool knownConvex, geometry::SharedColliderParts carried, geometry::IMeshSplitter& splitter) {
+  ColliderPlan plan;
+  auto hullOfPoints = [&] {
+    geometry::ColliderPartSet one;
+    geometry::ConvexPolytope hull = geometry::polytopeOfPoints(mesh.positions);
+    if (!hull.empty()) one.push_back(std::move(hull));
+    return std::make_shared<const geometry::ColliderPartSet>(std::move(one));
+  };
+  if (mode == ColliderMode::ConcaveMesh) {
+    plan.concavePositions.reserve(mesh.positions.size());
+    for (const glm::vec3& p : mesh.positions) plan.concavePositions.push_back(glm::vec3(meshOffset * glm::dvec4(glm::dvec3(p), 1.0)));
+    plan.concaveIndices = mesh.indices;
+    plan.parts = hullOfPoints();
+  } else if (mode == ColliderMode::ConvexHull || knownConvex) {
+    plan.parts = hullOfPoints();
+  } else if (!carried) {
+    plan.parts = std::make_shared<const geometry::ColliderPartSet>(geometry::decomposeConvex(mesh, splitter));
+  } else {
+    plan.parts = carried->empty() ? hullOfPoints() : std::move(carried);
+  }
+  plan.hulls = hullsInBodyFrame(*plan.parts, meshOffset, &plan.colliderVolume);
+  if (plan.hulls.empty() && plan.parts->size() != 1) {  // every part flat: try the hull of the points
+    plan.parts = hullOfPoints();
+    plan.hulls = hullsInBodyFrame(*plan.parts, meshOffset, &plan.colliderVolume);
+  }
+  return plan;
+}
+
+void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out) {
+  const double start = nowMs();
+  out = SplitOutcome{};
+  geometry::MeshData merged;
+  if (job.hierarchy()) merged = mergeHierarchyParts(job.hierarchyParts);
+  if (!setUpContainer(job, job.hierarchy() ? &merged : nullptr, s, out)) {
+    out.computeMilliseconds = out.setupMilliseconds = nowMs() - start;
+    return;
+  }
+  out.setupMilliseconds = nowMs() - start;
+  const double geometryStart = nowMs();
+  geometry::IMeshSplitter& splitter = job.settings.convexHint ? *s.convex : *s.concave;
+  out.status = splitter.split(s.container, job.plane, job.options, s.result);
+  s.container.release();  // do not keep the (doomed) target's mesh alive
+  out.geometryMilliseconds = nowMs() - geometryStart;
+  if (out.status != geometry::SplitStatus::Ok) {
+    out.message = s.result.message;
+    out.computeMilliseconds = nowMs() - start;
+    return;
+  }
+  PieceContext c{job, s, 0.0, false, glm::dvec3(0.0), {}, {}, false};
+  for (const auto& piece : s.result.pieces) c.totalVolume += std::max(piece.mass.volume, 0.0);
+  if (!(c.totalVolume > 0.0)) {
+    out.status = geometry::SplitStatus::InvalidInput;
+    out.message = "pieces enclose no volume";
+    out.computeMilliseconds = nowMs() - start;
+    return;
+  }
+  const double colliderStart = nowMs();
+  c.normal = glm::normalize(job.plane.normal);
+  // Skinned targets share the parent's mass by posed volume whatever the mass mode: skinning does not
+  // keep volume exactly, so density x posed volume would make the mass drift with the pose.
+  c.shareParentMass = job.settings.massMode == MassMode::KeepParentMass || (job.skinned() && job.parent.mass > 0.0);
+  if (job.skinned() && job.settings.skinnedPieces == SkinnedPieceMode::Ragdoll)
+    posedJointGlobals(job.skin->skeleton, job.jointMatrices, job.model, c.globals);
+  clipCarriedParts(c, out);
+  uint32_t k = 0;
+  for (size_t i = 0; i < s.result.pieces.size(); ++i) {
+    PieceSpec spec;
+    if (!planPiece(c, i, s.result.pieces[i], k, spec)) continue;
+    out.pieces.push_back(std::move(spec));
+    ++k;
+  }
+  out.colliderMilliseconds = nowMs() - colliderStart;
+  out.computeMilliseconds = nowMs() - start;
+}
+
+}  // namespace cleave::components

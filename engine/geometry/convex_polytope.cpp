@@ -1,0 +1,281 @@
+// Convex polytopes as face loops. Clipping follows Sutherland-Hodgman per face: each face polygon
+// keeps its corners below the plane and gains a section point where an edge crosses it; the section
+// points of one edge are shared by its two faces (keyed by the edge), and the new face is the ring of
+// section points (and of the vertices on the plane) ordered by angle about their mean. The order of
+// everything follows the input order, so the output is deterministic.
+#include "engine/geometry/convex_polytope.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace cleave::geometry {
+namespace {
+
+// Newell normal (unnormalised, twice the area) of a loop.
+glm::dvec3 newellNormal(const std::vector<glm::dvec3>& v, const uint32_t* loop, uint32_t count) {
+  glm::dvec3 n(0.0);
+  for (uint32_t i = 0; i < count; ++i) {
+    const glm::dvec3& a = v[loop[i]];
+    const glm::dvec3& b = v[loop[(i + 1) % count]];
+    n.x += (a.y - b.y) * (a.z + b.z);
+    n.y += (a.z - b.z) * (a.x + b.x);
+    n.z += (a.x - b.x) * (a.y + b.y);
+  }
+  return n;
+}
+
+// Adds a face from `loop`, its plane from the loop itself. Loops of no area are dropped.
+void addFace(ConvexPolytope& p, const std::vector<uint32_t>& loop) {
+  if (loop.size() < 3) return;
+  const glm::dvec3 n = newellNormal(p.vertices, loop.data(), uint32_t(loop.size()));
+  const double length = glm::length(n);
+  if (!(length > 0.0)) return;
+  ConvexPolytope::Face face;
+  face.normal = n / length;
+  glm::dvec3 mean(0.0);
+  for (uint32_t v : loop) mean += p.vertices[v];
+  face.offset = glm::dot(face.normal, mean / double(loop.size()));
+  face.first = uint32_t(p.corners.size());
+  face.count = uint32_t(loop.size());
+  p.corners.insert(p.corners.end(), loop.begin(), loop.end());
+  p.faces.push_back(face);
+}
+
+// Drops vertices no face uses and renumbers the loops.
+void compact(ConvexPolytope& p) {
+  std::vector<uint32_t> remap(p.vertices.size(), std::numeric_limits<uint32_t>::max());
+  std::vector<glm::dvec3> kept;
+  kept.reserve(p.vertices.size());
+  for (uint32_t& c : p.corners) {
+    if (remap[c] == std::numeric_limits<uint32_t>::max()) {
+      remap[c] = uint32_t(kept.size());
+      kept.push_back(p.vertices[c]);
+    }
+    c = remap[c];
+  }
+  p.vertices = std::move(kept);
+}
+
+// Orders the section points (indices into p.vertices, all on the plane) counter-clockwise seen from
+// the side `normal` points to, merging points closer than `tolerance`.
+std::vector<uint32_t> sectionRing(const ConvexPolytope& p, std::vector<uint32_t> points,
+                                  const glm::dvec3& normal, double tolerance) {
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.size() < 3) return {};
+  glm::dvec3 mean(0.0);
+  for (uint32_t v : points) mean += p.vertices[v];
+  mean /= double(points.size());
+  const glm::dvec3 n = glm::normalize(normal);
+  const glm::dvec3 helper = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 u = glm::normalize(glm::cross(helper, n));
+  const glm::dvec3 w = glm::cross(n, u);
+  std::vector<std::pair<double, uint32_t>> byAngle;
+  byAngle.reserve(points.size());
+  for (uint32_t v : points) {
+    const glm::dvec3 d = p.vertices[v] - mean;
+    byAngle.emplace_back(std::atan2(glm::dot(d, w), glm::dot(d, u)), v);
+  }
+  std::sort(byAngle.begin(), byAngle.end());
+  std::vector<uint32_t> ring;
+  for (const auto& [angle, v] : byAngle) {
+    if (!ring.empty() && glm::length(p.vertices[v] - p.vertices[ring.back()]) <= tolerance) continue;
+    ring.push_back(v);
+  }
+  while (ring.size() > 1 && glm::length(p.vertices[ring.front()] - p.vertices[ring.back()]) <= tolerance)
+    ring.pop_back();
+  if (ring.size() < 3) ring.clear();
+  return ring;
+}
+
+}  // namespace
+
+ConvexPolytope polytopeFromHull(const ConvexHull& hull) {
+  ConvexPolytope p;
+  if (hull.status != HullStatus::Ok || hull.indices.size() < 12) return p;
+  p.vertices = hull.positions;
+  for (size_t i = 0; i + 2 < hull.indices.size(); i += 3)
+    addFace(p, {hull.indices[i], hull.indices[i + 1], hull.indices[i + 2]});
+  compact(p);
+  if (p.empty()) return ConvexPolytope{};
+  return p;
+}
+
+ConvexPolytope polytopeOfPoints(std::span<const glm::vec3> points) {
+  if (points.size() < 4) return ConvexPolytope{};
+  return polytopeFromHull(computeConvexHull(points));
+}
+
+ConvexPolytope clipPolytope(const ConvexPolytope& p, const glm::dvec3& normal, double offset,
+                            double tolerance) {
+  const double length = glm::length(normal);
+  if (p.empty() || !(length > 0.0) || !std::isfinite(offset)) return ConvexPolytope{};
+  const glm::dvec3 n = normal / length;
+  const double d = offset / length;
+  std::vector<double> dist(p.vertices.size());
+  bool anyBelow = false, anyAbove = false;
+  for (size_t v = 0; v < p.vertices.size(); ++v) {
+    dist[v] = glm::dot(n, p.vertices[v]) - d;
+    anyBelow |= dist[v] < -tolerance;
+    anyAbove |= dist[v] > tolerance;
+  }
+  if (!anyBelow) return ConvexPolytope{};
+  if (!anyAbove) return p;
+
+  ConvexPolytope out;
+  constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+  std::vector<uint32_t> kept(p.vertices.size(), kNone);
+  for (size_t v = 0; v < p.vertices.size(); ++v) {
+    if (dist[v] > tolerance) continue;
+    kept[v] = uint32_t(out.vertices.size());
+    out.vertices.push_back(p.vertices[v]);
+  }
+  std::vector<std::pair<uint64_t, uint32_t>> crossings;  // edge key -> section vertex
+  auto crossing = [&](uint32_t a, uint32_t b) {
+    const uint32_t lo = std::min(a, b), hi = std::max(a, b);
+    const uint64_t key = (uint64_t(lo) << 32) | hi;
+    for (const auto& [k, v] : crossings)
+      if (k == key) return v;
+    const double t = dist[lo] / (dist[lo] - dist[hi]);
+    const uint32_t v = uint32_t(out.vertices.size());
+    out.vertices.push_back(p.vertices[lo] + (p.vertices[hi] - p.vertices[lo]) * t);
+    crossings.emplace_back(key, v);
+    return v;
+  };
+  std::vector<uint32_t> section, loop;
+  for (const ConvexPolytope::Face& face : p.faces) {
+    loop.clear();
+    for (uint32_t i = 0; i < face.count; ++i) {
+      const uint32_t a = p.corners[face.first + i];
+      const uint32_t b = p.corners[face.first + (i + 1) % face.count];
+      if (kept[a] != kNone) {
+        loop.push_back(kept[a]);
+        if (std::abs(dist[a]) <= tolerance) section.push_back(kept[a]);
+      }
+      const bool crosses = (dist[a] < -tolerance && dist[b] > tolerance) ||
+                           (dist[a] > tolerance && dist[b] < -tolerance);
+      if (crosses) {
+        const uint32_t s = crossing(a, b);
+        loop.push_back(s);
+        section.push_back(s);
+      }
+    }
+    if (loop.size() < 3) continue;
+    const size_t first = out.corners.size();
+    out.corners.insert(out.corners.end(), loop.begin(), loop.end());
+    ConvexPolytope::Face clipped = face;
+    clipped.first = uint32_t(first);
+    clipped.count = uint32_t(loop.size());
+    out.faces.push_back(clipped);
+  }
+  const std::vector<uint32_t> ring = sectionRing(out, std::move(section), n, tolerance);
+  if (ring.size() >= 3) {
+    ConvexPolytope::Face cap;
+    cap.normal = n;
+    cap.offset = d;
+    cap.first = uint32_t(out.corners.size());
+    cap.count = uint32_t(ring.size());
+    out.corners.insert(out.corners.end(), ring.begin(), ring.end());
+    out.faces.push_back(cap);
+  }
+  compact(out);
+  if (out.empty()) return ConvexPolytope{};
+  return out;
+}
+
+ConvexPolytope transformPolytope(const ConvexPolytope& p, const glm::dmat4& m) {
+  ConvexPolytope out;
+  if (p.empty()) return out;
+  out.vertices.reserve(p.vertices.size());
+  for (const glm::dvec3& v : p.vertices) out.vertices.push_back(glm::dvec3(m * glm::dvec4(v, 1.0)));
+  const bool mirrored = glm::determinant(glm::dmat3(m)) < 0.0;
+  std::vector<uint32_t> loop;
+  for (const ConvexPolytope::Face& face : p.faces) {
+    loop.assign(p.corners.begin() + face.first, p.corners.begin() + face.first + face.count);
+    if (mirrored) std::reverse(loop.begin(), loop.end());
+    addFace(out, loop);
+  }
+  if (out.empty()) return ConvexPolytope{};
+  return out;
+}
+
+ConvexPolytope shrinkPolytope(const ConvexPolytope& p, double margin) {
+  if (p.empty() || !(margin > 0.0)) return p;
+  // Distinct planes only: hull triangles of one flat side share a plane and clip once.
+  std::vector<std::pair<glm::dvec3, double>> planes;
+  for (const ConvexPolytope::Face& f : p.faces) {
+    bool seen = false;
+    for (const auto& [n, o] : planes)
+      if (glm::dot(n, f.normal) > 1.0 - 1e-12 && std::abs(o - f.offset) <= 1e-12 * (1.0 + std::abs(o))) seen = true;
+    if (!seen) planes.emplace_back(f.normal, f.offset);
+  }
+  glm::dvec3 lo, hi;
+  polytopeBounds(p, lo, hi);
+  const double tolerance = 1e-9 * std::max(glm::length(hi - lo), 1e-30);
+  ConvexPolytope out = p;
+  for (const auto& [n, o] : planes) {
+    out = clipPolytope(out, n, o - margin, tolerance);
+    if (out.empty()) return out;
+  }
+  return out;
+}
+
+double polytopeVolume(const ConvexPolytope& p) {
+  if (p.empty()) return 0.0;
+  const glm::dvec3 origin = p.vertices[0];
+  double six = 0.0;
+  for (const ConvexPolytope::Face& f : p.faces) {
+    const glm::dvec3 a = p.vertices[p.corners[f.first]] - origin;
+    for (uint32_t i = 1; i + 1 < f.count; ++i) {
+      const glm::dvec3 b = p.vertices[p.corners[f.first + i]] - origin;
+      const glm::dvec3 c = p.vertices[p.corners[f.first + i + 1]] - origin;
+      six += glm::dot(a, glm::cross(b, c));
+    }
+  }
+  return six / 6.0;
+}
+
+glm::dvec3 polytopeCentroid(const ConvexPolytope& p) {
+  glm::dvec3 mean(0.0);
+  for (const glm::dvec3& v : p.vertices) mean += v;
+  if (!p.vertices.empty()) mean /= double(p.vertices.size());
+  if (p.empty()) return mean;
+  double six = 0.0;
+  glm::dvec3 moment(0.0);
+  for (const ConvexPolytope::Face& f : p.faces) {
+    const glm::dvec3 a = p.vertices[p.corners[f.first]] - mean;
+    for (uint32_t i = 1; i + 1 < f.count; ++i) {
+      const glm::dvec3 b = p.vertices[p.corners[f.first + i]] - mean;
+      const glm::dvec3 c = p.vertices[p.corners[f.first + i + 1]] - mean;
+      const double v = glm::dot(a, glm::cross(b, c));
+      six += v;
+      moment += v * (a + b + c) / 4.0;
+    }
+  }
+  return six > 0.0 ? mean + moment / six : mean;
+}
+
+double polytopeWidth(const ConvexPolytope& p) {
+  if (p.empty()) return 0.0;
+  double best = std::numeric_limits<double>::infinity();
+  for (const ConvexPolytope::Face& f : p.faces) {
+    double depth = 0.0;
+    for (const glm::dvec3& v : p.vertices) depth = std::max(depth, f.offset - glm::dot(f.normal, v));
+    best = std::min(best, depth);
+  }
+  return std::isfinite(best) ? best : 0.0;
+}
+
+void polytopeBounds(const ConvexPolytope& p, glm::dvec3& lo, glm::dvec3& hi) {
+  lo = glm::dvec3(std::numeric_limits<double>::infinity());
+  hi = -lo;
+  for (const glm::dvec3& v : p.vertices) {
+    lo = glm::min(lo, v);
+    hi = glm::max(hi, v);
+  }
+  if (p.vertices.empty()) lo = hi = glm::dvec3(0.0);
+}
+
+}  // namespace cleave::geometry
