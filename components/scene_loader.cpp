@@ -930,7 +930,7 @@ struct Builder {
       }
       if (auto* s = ctx.world.tryGet<Splitable>(e); s && !d.splitDensityGiven) s->density = density;
       std::string why;
-      if (!makeDynamicBody(sw, e, density, d.collider, &why)) return failWith(name + ": " + why, d.path);
+      if (!makeDynamicBody(sw, e, density, d.collider, &why, ctx.splits)) return failWith(name + ": " + why, d.path);
       const auto& rb = ctx.world.get<RigidBody>(e);
       if (d.linearVelocity != glm::vec3(0.f) || d.angularVelocity != glm::vec3(0.f))
         ctx.physics.setVelocity(rb.body, d.linearVelocity, d.angularVelocity);

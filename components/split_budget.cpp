@@ -94,6 +94,7 @@ void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition
     stats_.workerMillisecondsCharged += std::max(0.0, estimate.worker);
     if (settings_.deterministic) {
       stats_.millisecondsCharged += std::max(0.0, estimate.main);
+      stats_.maxChargeMilliseconds = std::max(stats_.maxChargeMilliseconds, estimate.main);
     } else {
       stats_.millisecondsCharged += spent;
     }

@@ -40,7 +40,7 @@ struct SplitCost {
 
 struct SplitBudgetSettings {
   double millisecondsPerTick = 4.0;   // main-thread split work allowed per tick (at least one split runs)
-  double workerMillisecondsPerTick = 16.0;  // compute work started per tick, summed over workers
+  double workerMillisecondsPerTick = 8.0;   // compute work started per tick, summed over workers
   uint32_t maxSplitsPerTick = 8;
   uint32_t maxActivationsPerTick = 16;
   uint32_t maxQueueLength = 1024;     // beyond this the lowest-priority requests are dropped
@@ -56,27 +56,37 @@ struct SplitBudgetSettings {
   // A split prepared in tick T commits in tick T + commitDelayTicks, whatever the threads did: the
   // main thread waits for a late job. 0 commits in the tick it was prepared.
   uint32_t commitDelayTicks = 1;
-  // The split system's estimates, per stage and piece kind (measured on the demo objects; see
-  // docs/performance.md): main thread per split (rigid pieces, or skinned ragdoll pieces with their
-  // bones and joints), worker per split and per triangle of the target, the first cut of a mesh
-  // (its collider parts are decomposed then) costing `firstCutWorkerFactor` times more.
-  double estimatedMainMilliseconds = 0.12;
-  double estimatedRagdollMainMilliseconds = 0.5;
-  double estimatedWorkerMilliseconds = 0.05;
-  double estimatedWorkerMillisecondsPerTriangle = 0.00025;
-  double firstCutWorkerFactor = 6.0;
+  // The split system's estimates, per stage and piece kind, fitted to the demo objects (each within
+  // 2x of the measured medians; docs/performance.md lists both). Main thread, rigid pieces: a fixed
+  // part, per collider part (shapes built at commit) and per triangle (GPU upload); skinned pieces
+  // on a rigid body, and ragdoll pieces (bones and joints), a fixed cost each plus their upload per
+  // triangle (skinned vertices are larger). Worker: a fixed part,
+  // per triangle, per unit of collider-part work (geometry::partsWork: clipping and shrinking), and
+  // per triangle again when the collider parts are decomposed in the cut (a mesh's first cut, and
+  // skinned pieces on a rigid body, whose posed pieces are decomposed every cut).
+  double estimatedMainMilliseconds = 0.011;
+  double estimatedMainMillisecondsPerPart = 0.006;
+  double estimatedMainMillisecondsPerTriangle = 0.00002;
+  double estimatedSkinnedMainMilliseconds = 0.02;
+  double estimatedRagdollMainMilliseconds = 0.05;
+  double estimatedSkinnedMainMillisecondsPerTriangle = 0.000023;
+  double estimatedWorkerMilliseconds = 0.01;
+  double estimatedWorkerMillisecondsPerTriangle = 0.00012;
+  double estimatedWorkerMillisecondsPerPartWork = 0.0001;
+  double estimatedDecomposeMillisecondsPerTriangle = 0.004;
 };
 
 struct SplitBudgetStats {
   uint32_t executed = 0;      // splits done this tick
   uint32_t deferred = 0;      // requests left waiting at the end of this tick
   uint32_t dropped = 0;       // stale or over-capacity requests dropped this tick
-  uint32_t failed = 0;        // splits that failed this tick (original kept)
+  uint32_t failed = 0;        // splits that failed this tick, at prepare or commit (original kept)
   double millisecondsUsed = 0.0;      // measured main-thread prepare time this tick
   double millisecondsCharged = 0.0;   // main-thread time the budget counted (the estimate when deterministic)
   double workerMillisecondsCharged = 0.0;  // compute time the budget counted (estimates)
   double lastSplitMilliseconds = 0.0;
   double maxSplitMilliseconds = 0.0;  // over the whole run
+  double maxChargeMilliseconds = 0.0; // the largest main-thread charge of one split, whole run
   uint32_t queueLength = 0;
   uint32_t pendingActivations = 0;
   uint64_t totalExecuted = 0;
@@ -113,6 +123,9 @@ class SplitBudget {
   void queueActivation(uint64_t bodyKey) { activations_.push_back(bodyKey); }
   // Returns up to maxActivationsPerTick keys in creation order and removes them from the queue.
   std::vector<uint64_t> takeActivations();
+
+  // A split that was executed (prepared) but failed later, at commit: counted in this tick's stats.
+  void recordFailure() { stats_.failed++; }
 
   const SplitBudgetStats& stats() const { return stats_; }
   size_t queueLength() const { return queue_.size(); }

@@ -25,6 +25,7 @@ double nowMs() {
 }
 
 constexpr double kMinPartWidth = 1e-5;  // metres: flatter parts hold nothing
+constexpr uint32_t kMaxHullVertices = 48;  // per collider hull, as the bridge would reduce it
 
 // The triangles of `piece` whose tag says they belong to part `part` (and the caps, for `withCaps`),
 // with the tags turned back into the part's own material ids (caps: capMaterialId).
@@ -110,7 +111,10 @@ void planHierarchyChildren(const PieceContext& c, geometry::MeshData& whole, Pie
     if (c.job.hierarchyParts[part].entity == c.job.request.target) continue;
     geometry::MeshData child = extractPart(whole, uint32_t(part), false, c.job.settings.capMaterialId);
     if (child.indices.empty()) continue;
-    spec.children.push_back({part, std::make_shared<geometry::MeshData>(std::move(child))});
+    auto mesh = std::make_shared<geometry::MeshData>(std::move(child));
+    std::shared_ptr<const render::PackedMesh> packed;
+    if (c.job.packForGpu) packed = std::make_shared<render::PackedMesh>(render::packMesh(*mesh));
+    spec.children.push_back({part, std::move(mesh), std::move(packed)});
   }
 }
 
@@ -156,6 +160,7 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
   if (weldKnown && job.depth < sp.maxDepth) spec.weld = std::make_shared<geometry::MeshWeld>(std::move(piece.weld));
   auto drawn = std::make_shared<geometry::MeshData>(job.skinned() && !keepSkin ? std::move(posed) : std::move(piece.mesh));
   spec.mesh = drawn;
+  if (job.packForGpu) spec.packed = std::make_shared<render::PackedMesh>(render::packMesh(*drawn));
   if (spec.kind == PieceKind::Debris || spec.kind == PieceKind::Ragdoll) return true;
 
   // The collider: carried parts for rigid pieces of a static mesh, planned from the mesh otherwise.
@@ -187,7 +192,8 @@ void clipCarriedParts(PieceContext& c, SplitOutcome& out) {
   if (!parts) {
     geometry::ColliderPartSet decomposed;
     if (sp.convexHint) {
-      geometry::ConvexPolytope hull = geometry::polytopeOfPoints(job.mesh->positions);
+      geometry::ConvexPolytope hull =
+          geometry::simplifyPolytope(geometry::polytopeOfPoints(job.mesh->positions), geometry::kMaxPartVertices);
       if (!hull.empty()) decomposed.push_back(std::move(hull));
     } else {
       decomposed = geometry::decomposeConvex(*job.mesh, *c.scratch.concave);
@@ -261,8 +267,11 @@ std::vector<HullSpec> hullsInBodyFrame(const geometry::ColliderPartSet& parts, c
     HullSpec hull;
     hull.margin = shrunk.empty() ? 0.f : float(margin);
     const geometry::ConvexPolytope& kept = shrunk.empty() ? body : shrunk;
-    hull.points.reserve(kept.vertices.size());
-    for (const glm::dvec3& v : kept.vertices) hull.points.push_back(glm::vec3(v));
+    // Moving faces inwards splits the vertices where more than three faces meet: keep the extreme
+    // ones (a subset, so the hull stays inside) and the bridge has nothing left to reduce.
+    const std::vector<uint32_t> extreme = geometry::extremeVertices(kept, kMaxHullVertices);
+    hull.points.reserve(extreme.size());
+    for (uint32_t v : extreme) hull.points.push_back(glm::vec3(kept.vertices[v]));
     hulls.push_back(std::move(hull));
   }
   if (volume) *volume = sum;
@@ -274,7 +283,8 @@ ColliderPlan planCollider(const geometry::MeshData& mesh, const glm::dmat4& mesh
   ColliderPlan plan;
   auto hullOfPoints = [&] {
     geometry::ColliderPartSet one;
-    geometry::ConvexPolytope hull = geometry::polytopeOfPoints(mesh.positions);
+    geometry::ConvexPolytope hull =
+        geometry::simplifyPolytope(geometry::polytopeOfPoints(mesh.positions), geometry::kMaxPartVertices);
     if (!hull.empty()) one.push_back(std::move(hull));
     return std::make_shared<const geometry::ColliderPartSet>(std::move(one));
   };
@@ -283,8 +293,8 @@ ColliderPlan planCollider(const geometry::MeshData& mesh, const glm::dmat4& mesh
     for (const glm::vec3& p : mesh.positions) plan.concavePositions.push_back(glm::vec3(meshOffset * glm::dvec4(glm::dvec3(p), 1.0)));
     plan.concaveIndices = mesh.indices;
     plan.parts = hullOfPoints();
-  } else if (mode == ColliderMode::ConvexHull || knownConvex) {
-    plan.parts = hullOfPoints();
+  } else if (mode == ColliderMode::ConvexHull || (knownConvex && !(carried && !carried->empty()))) {
+    plan.parts = hullOfPoints();  // a convex mesh's carried part is its hull already: clipped, it stays exact
   } else if (!carried) {
     plan.parts = std::make_shared<const geometry::ColliderPartSet>(geometry::decomposeConvex(mesh, splitter));
   } else {

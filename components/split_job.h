@@ -26,6 +26,7 @@
 #include "engine/geometry/collider_parts.h"
 #include "engine/geometry/mesh_splitter.h"
 #include "engine/physics/joint_def.h"
+#include "engine/render/packed_mesh.h"
 #include "engine/render/renderer.h"
 
 namespace cleave::components {
@@ -97,6 +98,7 @@ struct SplitJob {
   std::vector<render::Material> materials;  // piece materials, the cap material in place
   bool hasMaterialChoice = false;
   int materialChoice = 0;
+  bool packForGpu = false;     // a renderer will draw the pieces: compute packs their vertex buffers
 
   bool hierarchy() const { return !hierarchyParts.empty(); }
   bool skinned() const { return skin != nullptr; }
@@ -133,6 +135,7 @@ struct RagdollSpec {
 struct HierarchyChildSpec {
   size_t part = 0;  // index into SplitJob::hierarchyParts
   std::shared_ptr<const geometry::MeshData> mesh;
+  std::shared_ptr<const render::PackedMesh> packed;  // when the job packs for the GPU
 };
 
 struct PieceSpec {
@@ -140,6 +143,7 @@ struct PieceSpec {
   int side = 0;                  // +1 above the plane, -1 below
   uint32_t capLoops = 0;
   std::shared_ptr<const geometry::MeshData> mesh;  // drawn (bind space when the skin is kept)
+  std::shared_ptr<const render::PackedMesh> packed;  // `mesh` packed for upload (SplitJob::packForGpu)
   std::shared_ptr<const geometry::MeshWeld> weld;  // null: unknown (welded anew if cut again)
   double volume = 0.0, mass = 0.0;
   bool closed = true;

@@ -371,7 +371,7 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
   const BodyFrame frame = bodyFrameFor(props, mass, model);
   // The collider parts (mesh space): the cache's for a shared authored mesh, else planned here.
   geometry::SharedColliderParts carried;
-  if (splits && !hierarchy && collider != ColliderMode::ConcaveMesh) carried = splits->colliderParts(mr->source, collider);
+  if (splits && !hierarchy && (collider == ColliderMode::Auto || collider == ColliderMode::Compound)) carried = splits->colliderParts(mr->source, collider);
   auto splitter = geometry::makeConcaveSplitter();
   const ColliderPlan plan = planCollider(source, frame.meshOffset, collider, false, carried, *splitter);
   std::string reason;
@@ -406,7 +406,8 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
     }
   } else {
     mr->meshOffset = glm::mat4(frame.meshOffset);
-    if (collider != ColliderMode::ConcaveMesh) w.world.add<ColliderParts>(e, ColliderParts{plan.parts});
+    if (collider == ColliderMode::Auto || collider == ColliderMode::Compound)
+      w.world.add<ColliderParts>(e, ColliderParts{plan.parts});
   }
   placeOnBody(w, e, def, body.value(), shape, mass, props, density);
   return true;
@@ -480,7 +481,7 @@ void SplitSystem::activatePending(SplitWorld& w) {
 namespace {
 
 SplitCost estimateSplit(SplitWorld& w, const SplitBudgetSettings& s, const SplitRequest& r,
-                                bool partsKnown) {
+                        const geometry::ColliderPartSet* parts) {
   SplitCost cost;
   double triangles = 0.0;
   if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source)
@@ -488,11 +489,19 @@ SplitCost estimateSplit(SplitWorld& w, const SplitBudgetSettings& s, const Split
   const auto* sp = w.world.tryGet<Splitable>(r.target);
   const bool skinned = w.world.has<SkinnedMesh>(r.target);
   const bool ragdoll = skinned && sp && sp->skinnedPieces == SkinnedPieceMode::Ragdoll;
-  cost.main = ragdoll ? s.estimatedRagdollMainMilliseconds : s.estimatedMainMilliseconds;
   cost.worker = s.estimatedWorkerMilliseconds + s.estimatedWorkerMillisecondsPerTriangle * triangles;
-  // Parts decomposed in this cut: the first cut of a mesh, and skinned pieces on a rigid body (their
-  // posed mesh is decomposed every cut). Ragdolls fit capsules instead.
-  if ((!partsKnown && !skinned) || (skinned && !ragdoll)) cost.worker *= s.firstCutWorkerFactor;
+  if (ragdoll) {
+    cost.main = s.estimatedRagdollMainMilliseconds + s.estimatedSkinnedMainMillisecondsPerTriangle * triangles;
+  } else if (skinned) {
+    cost.main = s.estimatedSkinnedMainMilliseconds + s.estimatedSkinnedMainMillisecondsPerTriangle * triangles;
+    cost.worker += s.estimatedDecomposeMillisecondsPerTriangle * triangles;
+  } else {
+    const double partCount = parts ? double(parts->size()) : 1.0;
+    cost.main = s.estimatedMainMilliseconds + s.estimatedMainMillisecondsPerPart * partCount +
+                s.estimatedMainMillisecondsPerTriangle * triangles;
+    cost.worker += parts ? s.estimatedWorkerMillisecondsPerPartWork * geometry::partsWork(*parts)
+                         : s.estimatedDecomposeMillisecondsPerTriangle * triangles;
+  }
   return cost;
 }
 
@@ -506,10 +515,13 @@ void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& 
     return std::any_of(pending_.begin(), pending_.end(), [&](const Pending& p) { return p.job->request.target == e; });
   };
   budget_.setCostEstimator([&w, this](const SplitRequest& r) {
-    const auto* mr = w.world.tryGet<MeshRenderer>(r.target);
-    const bool known = w.world.has<ColliderParts>(r.target) ||
-                       (mr && mr->source && scratch_->find(mr->source) && scratch_->find(mr->source)->parts);
-    return estimateSplit(w, budget_.settings(), r, known);
+    const geometry::ColliderPartSet* parts = nullptr;
+    if (const auto* cp = w.world.tryGet<ColliderParts>(r.target); cp && cp->parts) {
+      parts = cp->parts.get();
+    } else if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source) {
+      if (const Scratch::Known* k = scratch_->find(mr->source); k && k->parts) parts = k->parts.get();
+    }
+    return estimateSplit(w, budget_.settings(), r, parts);
   });
   budget_.runTick(
       tick, cameraPosition,
@@ -531,8 +543,8 @@ void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& 
         p.weldKnown = job->weld != nullptr;
         p.partsKnown = job->parts != nullptr;
         p.job = job;
+        p.prepareMilliseconds = nowMs() - prepareStart;  // without an inline compute
         p.task = workers().submit(std::move(job));
-        p.prepareMilliseconds = nowMs() - prepareStart;
         pending_.push_back(std::move(p));
         return true;
       },
@@ -552,8 +564,11 @@ void SplitSystem::commitSplits(SplitWorld& w, uint64_t tick) {
   }
   // Request order (the order they were prepared in, which is the budget's total order).
   size_t done = 0;
-  for (; done < pending_.size() && pending_[done].job->commitTick <= tick; ++done)
+  for (; done < pending_.size() && pending_[done].job->commitTick <= tick; ++done) {
     events_.push_back(commit(w, pending_[done], tick));
+    const geometry::SplitStatus status = events_.back().status;
+    if (status != geometry::SplitStatus::Ok && status != geometry::SplitStatus::PlaneMissesMesh) budget_.recordFailure();
+  }
   pending_.erase(pending_.begin(), pending_.begin() + done);
   // Structural changes after the iteration: pieces appear, originals go.
   flush(w);
@@ -585,11 +600,17 @@ SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitR
   p.weldKnown = job->weld != nullptr;
   p.partsKnown = job->parts != nullptr;
   p.job = job;
+  p.prepareMilliseconds = nowMs() - start;
   SplitWorkers inline0(0);
   p.task = inline0.submit(std::move(job));
-  p.prepareMilliseconds = nowMs() - start;
   ev = commit(w, p, tick);
+  // The structural changes are main-thread work of this split too.
+  const double flushStart = nowMs();
   flush(w);
+  const double flushMs = nowMs() - flushStart;
+  ev.commitMilliseconds += flushMs;
+  ev.mainMilliseconds += flushMs;
+  ev.milliseconds += flushMs;
   return ev;
 }
 
@@ -657,6 +678,7 @@ bool SplitSystem::prepare(SplitWorld& w, const SplitRequest& request, uint64_t t
     job.jointMatrices = skin->jointMatrices;
     job.parts = nullptr;  // bind-space parts do not follow the pose
   }
+  job.packForGpu = w.renderer != nullptr;
   job.plane = geometry::Plane{request.planeNormal, request.planeOffset};
   job.options = optionsFor(*sp, hierarchy);
   job.settings = *sp;
@@ -766,7 +788,7 @@ void addHierarchyChildren(ecs::CommandBuffer& commands, SplitWorld& w, const Spl
     renderer.visible = part.visible;
     if (w.renderer) {
       const double uploadStart = nowMs();
-      renderer.gpu = w.renderer->uploadMesh(*childSpec.mesh);
+      renderer.gpu = childSpec.packed ? w.renderer->uploadPacked(*childSpec.packed) : w.renderer->uploadMesh(*childSpec.mesh);
       uploadMs += nowMs() - uploadStart;
     }
     commands.add<ecs::Transform>(child, ecs::Transform{});
@@ -858,7 +880,7 @@ void SplitSystem::commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome&
     ev.shapeMilliseconds += nowMs() - shapeStart;
     if (w.renderer) {
       const double uploadStart = nowMs();
-      renderer.gpu = w.renderer->uploadMesh(*spec.mesh);
+      renderer.gpu = spec.packed ? w.renderer->uploadPacked(*spec.packed) : w.renderer->uploadMesh(*spec.mesh);
       ev.uploadMilliseconds += nowMs() - uploadStart;
     }
     commands.add<ecs::Transform>(e, transform);

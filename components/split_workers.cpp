@@ -3,6 +3,12 @@
 #include <algorithm>
 #include <chrono>
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 namespace cleave::components {
 namespace {
 
@@ -62,6 +68,11 @@ void SplitWorkers::run(Task& task) {
 }
 
 void SplitWorkers::workerLoop() {
+#ifdef __linux__
+  // Workers yield to the main thread when there are more threads than cores: a commit waits for
+  // late jobs anyway, and the main thread's frame is what the player sees.
+  setpriority(PRIO_PROCESS, pid_t(syscall(SYS_gettid)), 10);
+#endif
   for (;;) {
     std::shared_ptr<Task> task;
     {

@@ -16,7 +16,7 @@ namespace {
 void decomposeInto(const MeshData& mesh, IMeshSplitter& splitter, int depth, ColliderPartSet& parts) {
   if (mesh.positions.size() < 4) return;
   auto wholeHull = [&] {
-    ConvexPolytope part = polytopeOfPoints(mesh.positions);
+    ConvexPolytope part = simplifyPolytope(polytopeOfPoints(mesh.positions), kMaxPartVertices);
     if (!part.empty()) parts.push_back(std::move(part));
   };
   if (depth <= 0 || nearlyConvex(mesh)) return wholeHull();
@@ -149,6 +149,7 @@ void clipPartsToPieces(const ColliderPartSet& parts, const Plane& plane, const S
       ConvexPolytope clipped = side > 0 ? clipPolytope(part, -plane.normal, -plane.offset, tolerance)
                                         : clipPolytope(part, plane.normal, plane.offset, tolerance);
       if (clipped.empty()) continue;
+      clipped = simplifyPolytope(clipped, kMaxPartVertices);
       const int piece = holdingPiece(result, side, polytopeCentroid(clipped), bounds);
       if (piece < 0) continue;
       const double volume = polytopeVolume(clipped);
@@ -164,6 +165,12 @@ void clipPartsToPieces(const ColliderPartSet& parts, const Plane& plane, const S
       if (keep && volume > 0.0) out[i].push_back(std::move(part));
     }
   }
+}
+
+double partsWork(const ColliderPartSet& parts) {
+  double work = 0.0;
+  for (const ConvexPolytope& part : parts) work += double(part.vertices.size()) * double(part.faces.size());
+  return work;
 }
 
 double partsVolume(const ColliderPartSet& parts) {

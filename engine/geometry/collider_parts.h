@@ -30,9 +30,14 @@ namespace cleave::geometry {
 // concavity. Smaller concavities are filled by the hull, by design. Open or empty meshes: false.
 bool nearlyConvex(const MeshData& mesh, double slack = 0.03);
 
+// Parts keep at most this many vertices (simplifyPolytope): a collider hull needs no more, and a
+// clip or a shrink costs in proportion to the part size.
+inline constexpr uint32_t kMaxPartVertices = 48;
+
 // Our own convex decomposition for colliders: the mesh is cut through the middle of its longest
 // bounding-box extent, recursively, until each part is nearly convex or `maxDepth` cuts are made;
-// each part's convex hull is one polytope (mesh space). Deterministic.
+// each part's convex hull, simplified to kMaxPartVertices, is one polytope (mesh space).
+// Deterministic.
 std::vector<ConvexPolytope> decomposeConvex(const MeshData& mesh, IMeshSplitter& splitter, int maxDepth = 4);
 
 // The immutable part set shared by a mesh's instances and carried by its pieces.
@@ -49,9 +54,15 @@ struct PartClipOptions {
 // Clips `parts` (mesh space) by `plane` (mesh space; above = dot(normal, x) > offset) and gives each
 // piece of `result` the clipped parts it holds: out[i] for result.pieces[i]. A clipped part goes to
 // the piece on its side whose bounds contain its centroid, the nearest such piece by vertex distance
-// when several do. A piece left without a part gets none (its caller decides on a fallback).
+// when several do; clipped parts are simplified to kMaxPartVertices again. A piece left without a
+// part gets none (its caller decides on a fallback).
 void clipPartsToPieces(const ColliderPartSet& parts, const Plane& plane, const SplitResult& result,
                        const PartClipOptions& options, std::vector<ColliderPartSet>& out);
+
+// What clipping and shrinking the parts costs, in units of one vertex-face pair (the shrink of a part
+// clips it once per face): the sum over parts of vertices x faces. The split budget's estimates
+// scale with it.
+double partsWork(const ColliderPartSet& parts);
 
 // Sum of the part volumes (overlaps counted twice; our parts do not overlap).
 double partsVolume(const ColliderPartSet& parts);

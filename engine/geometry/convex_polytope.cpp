@@ -58,36 +58,117 @@ void compact(ConvexPolytope& p) {
   p.vertices = std::move(kept);
 }
 
+// Reusable memory of the clips of one shrink (and of a single clip).
+struct ClipScratch {
+  std::vector<double> dist;
+  std::vector<uint32_t> kept;
+  std::vector<std::pair<uint64_t, uint32_t>> crossings;  // edge key -> section vertex
+  std::vector<uint32_t> section, loop, ring;
+  std::vector<std::pair<double, uint32_t>> byAngle;
+};
+
 // Orders the section points (indices into p.vertices, all on the plane) counter-clockwise seen from
-// the side `normal` points to, merging points closer than `tolerance`.
-std::vector<uint32_t> sectionRing(const ConvexPolytope& p, std::vector<uint32_t> points,
-                                  const glm::dvec3& normal, double tolerance) {
+// the side `normal` points to, merging points closer than `tolerance`, into s.ring.
+void sectionRing(const ConvexPolytope& p, ClipScratch& s, const glm::dvec3& n, double tolerance) {
+  std::vector<uint32_t>& points = s.section;
+  std::vector<uint32_t>& ring = s.ring;
+  ring.clear();
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
-  if (points.size() < 3) return {};
+  if (points.size() < 3) return;
   glm::dvec3 mean(0.0);
   for (uint32_t v : points) mean += p.vertices[v];
   mean /= double(points.size());
-  const glm::dvec3 n = glm::normalize(normal);
   const glm::dvec3 helper = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   const glm::dvec3 u = glm::normalize(glm::cross(helper, n));
   const glm::dvec3 w = glm::cross(n, u);
-  std::vector<std::pair<double, uint32_t>> byAngle;
-  byAngle.reserve(points.size());
+  s.byAngle.clear();
   for (uint32_t v : points) {
     const glm::dvec3 d = p.vertices[v] - mean;
-    byAngle.emplace_back(std::atan2(glm::dot(d, w), glm::dot(d, u)), v);
+    s.byAngle.emplace_back(std::atan2(glm::dot(d, w), glm::dot(d, u)), v);
   }
-  std::sort(byAngle.begin(), byAngle.end());
-  std::vector<uint32_t> ring;
-  for (const auto& [angle, v] : byAngle) {
+  std::sort(s.byAngle.begin(), s.byAngle.end());
+  for (const auto& [angle, v] : s.byAngle) {
     if (!ring.empty() && glm::length(p.vertices[v] - p.vertices[ring.back()]) <= tolerance) continue;
     ring.push_back(v);
   }
   while (ring.size() > 1 && glm::length(p.vertices[ring.front()] - p.vertices[ring.back()]) <= tolerance)
     ring.pop_back();
   if (ring.size() < 3) ring.clear();
-  return ring;
+}
+
+// clipPolytope into `out` (cleared first; its capacity is reused), with unit normal `n`.
+void clipInto(const ConvexPolytope& p, const glm::dvec3& n, double d, double tolerance, ConvexPolytope& out,
+              ClipScratch& s) {
+  out.vertices.clear();
+  out.corners.clear();
+  out.faces.clear();
+  s.dist.resize(p.vertices.size());
+  bool anyBelow = false, anyAbove = false;
+  for (size_t v = 0; v < p.vertices.size(); ++v) {
+    s.dist[v] = glm::dot(n, p.vertices[v]) - d;
+    anyBelow |= s.dist[v] < -tolerance;
+    anyAbove |= s.dist[v] > tolerance;
+  }
+  if (!anyBelow) return;
+  if (!anyAbove) {
+    out = p;
+    return;
+  }
+  constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+  s.kept.assign(p.vertices.size(), kNone);
+  for (size_t v = 0; v < p.vertices.size(); ++v) {
+    if (s.dist[v] > tolerance) continue;
+    s.kept[v] = uint32_t(out.vertices.size());
+    out.vertices.push_back(p.vertices[v]);
+  }
+  s.crossings.clear();
+  s.section.clear();
+  auto crossing = [&](uint32_t a, uint32_t b) {
+    const uint32_t lo = std::min(a, b), hi = std::max(a, b);
+    const uint64_t key = (uint64_t(lo) << 32) | hi;
+    for (const auto& [k, v] : s.crossings)
+      if (k == key) return v;
+    const double t = s.dist[lo] / (s.dist[lo] - s.dist[hi]);
+    const uint32_t v = uint32_t(out.vertices.size());
+    out.vertices.push_back(p.vertices[lo] + (p.vertices[hi] - p.vertices[lo]) * t);
+    s.crossings.emplace_back(key, v);
+    return v;
+  };
+  for (const ConvexPolytope::Face& face : p.faces) {
+    s.loop.clear();
+    for (uint32_t i = 0; i < face.count; ++i) {
+      const uint32_t a = p.corners[face.first + i];
+      const uint32_t b = p.corners[face.first + (i + 1 == face.count ? 0 : i + 1)];
+      const double da = s.dist[a], db = s.dist[b];
+      if (s.kept[a] != kNone) {
+        s.loop.push_back(s.kept[a]);
+        if (std::abs(da) <= tolerance) s.section.push_back(s.kept[a]);
+      }
+      if ((da < -tolerance && db > tolerance) || (da > tolerance && db < -tolerance)) {
+        const uint32_t c = crossing(a, b);
+        s.loop.push_back(c);
+        s.section.push_back(c);
+      }
+    }
+    if (s.loop.size() < 3) continue;
+    ConvexPolytope::Face clipped = face;
+    clipped.first = uint32_t(out.corners.size());
+    clipped.count = uint32_t(s.loop.size());
+    out.corners.insert(out.corners.end(), s.loop.begin(), s.loop.end());
+    out.faces.push_back(clipped);
+  }
+  sectionRing(out, s, n, tolerance);
+  if (s.ring.size() >= 3) {
+    ConvexPolytope::Face cap;
+    cap.normal = n;
+    cap.offset = d;
+    cap.first = uint32_t(out.corners.size());
+    cap.count = uint32_t(s.ring.size());
+    out.corners.insert(out.corners.end(), s.ring.begin(), s.ring.end());
+    out.faces.push_back(cap);
+  }
+  compact(out);
 }
 
 }  // namespace
@@ -112,75 +193,9 @@ ConvexPolytope clipPolytope(const ConvexPolytope& p, const glm::dvec3& normal, d
                             double tolerance) {
   const double length = glm::length(normal);
   if (p.empty() || !(length > 0.0) || !std::isfinite(offset)) return ConvexPolytope{};
-  const glm::dvec3 n = normal / length;
-  const double d = offset / length;
-  std::vector<double> dist(p.vertices.size());
-  bool anyBelow = false, anyAbove = false;
-  for (size_t v = 0; v < p.vertices.size(); ++v) {
-    dist[v] = glm::dot(n, p.vertices[v]) - d;
-    anyBelow |= dist[v] < -tolerance;
-    anyAbove |= dist[v] > tolerance;
-  }
-  if (!anyBelow) return ConvexPolytope{};
-  if (!anyAbove) return p;
-
   ConvexPolytope out;
-  constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
-  std::vector<uint32_t> kept(p.vertices.size(), kNone);
-  for (size_t v = 0; v < p.vertices.size(); ++v) {
-    if (dist[v] > tolerance) continue;
-    kept[v] = uint32_t(out.vertices.size());
-    out.vertices.push_back(p.vertices[v]);
-  }
-  std::vector<std::pair<uint64_t, uint32_t>> crossings;  // edge key -> section vertex
-  auto crossing = [&](uint32_t a, uint32_t b) {
-    const uint32_t lo = std::min(a, b), hi = std::max(a, b);
-    const uint64_t key = (uint64_t(lo) << 32) | hi;
-    for (const auto& [k, v] : crossings)
-      if (k == key) return v;
-    const double t = dist[lo] / (dist[lo] - dist[hi]);
-    const uint32_t v = uint32_t(out.vertices.size());
-    out.vertices.push_back(p.vertices[lo] + (p.vertices[hi] - p.vertices[lo]) * t);
-    crossings.emplace_back(key, v);
-    return v;
-  };
-  std::vector<uint32_t> section, loop;
-  for (const ConvexPolytope::Face& face : p.faces) {
-    loop.clear();
-    for (uint32_t i = 0; i < face.count; ++i) {
-      const uint32_t a = p.corners[face.first + i];
-      const uint32_t b = p.corners[face.first + (i + 1) % face.count];
-      if (kept[a] != kNone) {
-        loop.push_back(kept[a]);
-        if (std::abs(dist[a]) <= tolerance) section.push_back(kept[a]);
-      }
-      const bool crosses = (dist[a] < -tolerance && dist[b] > tolerance) ||
-                           (dist[a] > tolerance && dist[b] < -tolerance);
-      if (crosses) {
-        const uint32_t s = crossing(a, b);
-        loop.push_back(s);
-        section.push_back(s);
-      }
-    }
-    if (loop.size() < 3) continue;
-    const size_t first = out.corners.size();
-    out.corners.insert(out.corners.end(), loop.begin(), loop.end());
-    ConvexPolytope::Face clipped = face;
-    clipped.first = uint32_t(first);
-    clipped.count = uint32_t(loop.size());
-    out.faces.push_back(clipped);
-  }
-  const std::vector<uint32_t> ring = sectionRing(out, std::move(section), n, tolerance);
-  if (ring.size() >= 3) {
-    ConvexPolytope::Face cap;
-    cap.normal = n;
-    cap.offset = d;
-    cap.first = uint32_t(out.corners.size());
-    cap.count = uint32_t(ring.size());
-    out.corners.insert(out.corners.end(), ring.begin(), ring.end());
-    out.faces.push_back(cap);
-  }
-  compact(out);
+  ClipScratch scratch;
+  clipInto(p, normal / length, offset / length, tolerance, out, scratch);
   if (out.empty()) return ConvexPolytope{};
   return out;
 }
@@ -214,12 +229,50 @@ ConvexPolytope shrinkPolytope(const ConvexPolytope& p, double margin) {
   glm::dvec3 lo, hi;
   polytopeBounds(p, lo, hi);
   const double tolerance = 1e-9 * std::max(glm::length(hi - lo), 1e-30);
-  ConvexPolytope out = p;
+  ConvexPolytope current = p, next;
+  ClipScratch scratch;
   for (const auto& [n, o] : planes) {
-    out = clipPolytope(out, n, o - margin, tolerance);
-    if (out.empty()) return out;
+    clipInto(current, n, o - margin, tolerance, next, scratch);
+    if (next.empty()) return ConvexPolytope{};
+    std::swap(current, next);
   }
+  return current;
+}
+
+std::vector<uint32_t> extremeVertices(const ConvexPolytope& p, uint32_t count) {
+  std::vector<uint32_t> out;
+  if (p.vertices.size() <= count) {
+    for (uint32_t v = 0; v < p.vertices.size(); ++v) out.push_back(v);
+    return out;
+  }
+  std::vector<char> keep(p.vertices.size(), 0);
+  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+  for (uint32_t i = 0; i < count; ++i) {
+    const double z = 1.0 - 2.0 * (double(i) + 0.5) / double(count);
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const glm::dvec3 dir(r * std::cos(golden * double(i)), r * std::sin(golden * double(i)), z);
+    size_t best = 0;
+    double bestDot = -std::numeric_limits<double>::infinity();
+    for (size_t v = 0; v < p.vertices.size(); ++v) {
+      const double d = glm::dot(dir, p.vertices[v]);
+      if (d > bestDot) {  // strict: ties keep the lowest index
+        bestDot = d;
+        best = v;
+      }
+    }
+    keep[best] = 1;
+  }
+  for (uint32_t v = 0; v < p.vertices.size(); ++v)
+    if (keep[v]) out.push_back(v);
   return out;
+}
+
+ConvexPolytope simplifyPolytope(const ConvexPolytope& p, uint32_t maxVertices) {
+  if (p.empty() || p.vertices.size() <= maxVertices || maxVertices < 4) return p;
+  std::vector<glm::dvec3> kept;
+  for (uint32_t v : extremeVertices(p, maxVertices)) kept.push_back(p.vertices[v]);
+  ConvexPolytope simple = polytopeFromHull(computeConvexHull(std::span<const glm::dvec3>(kept)));
+  return simple.empty() ? p : simple;
 }
 
 double polytopeVolume(const ConvexPolytope& p) {

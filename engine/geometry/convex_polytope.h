@@ -60,6 +60,15 @@ ConvexPolytope transformPolytope(const ConvexPolytope& p, const glm::dmat4& m);
 // the width.
 ConvexPolytope shrinkPolytope(const ConvexPolytope& p, double margin);
 
+// `p` itself when it has at most `maxVertices` vertices, else the hull of its vertices that are
+// extreme along `maxVertices` directions spread evenly over the sphere: a subset of its vertices,
+// so the result lies inside `p` (a simplified collider never inflates). Deterministic.
+ConvexPolytope simplifyPolytope(const ConvexPolytope& p, uint32_t maxVertices);
+
+// The indices of the vertices of `p` that are extreme along `count` directions spread evenly over
+// the sphere (all of them, ascending, when there are at most `count`). Ties keep the lower index.
+std::vector<uint32_t> extremeVertices(const ConvexPolytope& p, uint32_t count);
+
 // Volume (units^3) and centroid; 0 and the vertex mean for an empty polytope.
 double polytopeVolume(const ConvexPolytope& p);
 glm::dvec3 polytopeCentroid(const ConvexPolytope& p);

@@ -264,44 +264,14 @@ bool Renderer::init(std::string* error) {
 }
 
 MeshHandle Renderer::uploadMesh(const geometry::MeshData& mesh, std::string* error) {
-  const size_t n = mesh.positions.size();
-  if (n == 0 || mesh.indices.empty() || mesh.indices.size() % 3 != 0) {
-    if (error) *error = "mesh has no triangles";
+  return uploadPacked(packMesh(mesh), error);
+}
+
+MeshHandle Renderer::uploadPacked(const PackedMesh& packed, std::string* error) {
+  if (!packed.ok() || packed.vertices.empty()) {
+    if (error) *error = packed.ok() ? "mesh has no triangles" : packed.error;
     return {};
   }
-  for (uint32_t i : mesh.indices) {
-    if (i >= n) {
-      if (error) *error = "mesh index out of range";
-      return {};
-    }
-  }
-  // Flat normals when the mesh has none: accumulate face normals per vertex.
-  std::vector<glm::vec3> normals = mesh.normals;
-  if (normals.size() != n) {
-    normals.assign(n, glm::vec3(0.f));
-    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-      const glm::vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
-                      c = mesh.positions[mesh.indices[t + 2]];
-      const glm::vec3 fn = glm::cross(b - a, c - a);
-      for (int k = 0; k < 3; ++k) normals[mesh.indices[t + k]] += fn;
-    }
-    for (auto& v : normals) {
-      const float len = glm::length(v);
-      v = len > 0.f ? v / len : glm::vec3(0, 1, 0);
-    }
-  }
-  std::vector<float> interleaved(n * 12);
-  for (size_t i = 0; i < n; ++i) {
-    float* v = &interleaved[i * 12];
-    std::memcpy(v, &mesh.positions[i], 12);
-    std::memcpy(v + 3, &normals[i], 12);
-    const glm::vec2 uv = mesh.uv0.size() == n ? mesh.uv0[i] : glm::vec2(0.f);
-    v[6] = uv.x;
-    v[7] = uv.y;
-    const glm::vec4 t = mesh.tangents.size() == n ? mesh.tangents[i] : glm::vec4(1, 0, 0, 1);
-    std::memcpy(v + 8, &t, 16);
-  }
-
   Impl& r = *impl_;
   uint32_t index;
   if (!r.freeMeshes.empty()) {
@@ -315,26 +285,19 @@ MeshHandle Renderer::uploadMesh(const geometry::MeshData& mesh, std::string* err
   g.generation = g.generation + 1;
   if (g.generation == 0) g.generation = 1;
   g.alive = true;
-  g.triangles = uint32_t(mesh.indices.size() / 3);
+  g.triangles = uint32_t(packed.indices.size() / 3);
   g.submeshes.clear();
-  if (mesh.submeshes.empty()) {
-    g.submeshes.push_back({0, uint32_t(mesh.indices.size()), 0});
-  } else {
-    for (const auto& s : mesh.submeshes) {
-      if (s.indexCount == 0 || uint64_t(s.firstIndex) + s.indexCount > mesh.indices.size()) continue;
-      g.submeshes.push_back({s.firstIndex, s.indexCount, s.materialId});
-    }
-  }
+  for (const auto& s : packed.submeshes) g.submeshes.push_back({s.firstIndex, s.indexCount, s.materialId});
   glGenVertexArrays(1, &g.vao);
   glGenBuffers(1, &g.vbo);
   glGenBuffers(1, &g.ibo);
   glBindVertexArray(g.vao);
   glBindBuffer(GL_ARRAY_BUFFER, g.vbo);
-  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data(),
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(packed.vertices.size() * sizeof(float)), packed.vertices.data(),
                GL_STATIC_DRAW);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.ibo);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)),
-               mesh.indices.data(), GL_STATIC_DRAW);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(packed.indices.size() * sizeof(uint32_t)),
+               packed.indices.data(), GL_STATIC_DRAW);
   const GLsizei stride = 12 * sizeof(float);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
@@ -345,21 +308,14 @@ MeshHandle Renderer::uploadMesh(const geometry::MeshData& mesh, std::string* err
   glEnableVertexAttribArray(3);
   glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(8 * sizeof(float)));
   g.skinVbo = 0;
-  if (mesh.joints.size() == n && mesh.weights.size() == n) {
+  if (!packed.skin.empty()) {
     // Skin: 4 unsigned shorts of joints, then 4 floats of weights, per vertex (24 bytes).
-    struct SkinVertex {
-      glm::u16vec4 joints;
-      glm::vec4 weights;
-    };
+    using SkinVertex = PackedMesh::SkinVertex;
     static_assert(sizeof(SkinVertex) == 24);
-    std::vector<SkinVertex> skin(n);
-    for (size_t i = 0; i < n; ++i) {
-      skin[i].joints = glm::min(mesh.joints[i], glm::u16vec4(uint16_t(kMaxSkinJoints - 1)));
-      skin[i].weights = mesh.weights[i];
-    }
     glGenBuffers(1, &g.skinVbo);
     glBindBuffer(GL_ARRAY_BUFFER, g.skinVbo);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(skin.size() * sizeof(SkinVertex)), skin.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(packed.skin.size() * sizeof(SkinVertex)), packed.skin.data(),
+                 GL_STATIC_DRAW);
     glEnableVertexAttribArray(4);
     glVertexAttribIPointer(4, 4, GL_UNSIGNED_SHORT, sizeof(SkinVertex), nullptr);
     glEnableVertexAttribArray(5);

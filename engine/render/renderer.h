@@ -17,12 +17,9 @@
 #include <glm/glm.hpp>
 
 #include "engine/geometry/mesh_data.h"
+#include "engine/render/packed_mesh.h"
 
 namespace cleave::render {
-
-// Joint matrices a skinned draw can use (the size of the shaders' uniform array). Joint ids at or
-// above it are clamped to the last one at upload; skeletons that large need splitting into parts.
-inline constexpr uint32_t kMaxSkinJoints = 128;
 
 struct MeshHandle {
   uint32_t index = 0;
@@ -96,6 +93,8 @@ class Renderer {
   // submesh runs, and the skin (joints and weights) when the mesh has one, for submitSkinned.
   // Returns an invalid handle (and a reason) for empty or malformed meshes.
   MeshHandle uploadMesh(const geometry::MeshData& mesh, std::string* error = nullptr);
+  // The same for a mesh packed before (packMesh, on any thread): only the GL buffers are made here.
+  MeshHandle uploadPacked(const PackedMesh& packed, std::string* error = nullptr);
   void destroyMesh(MeshHandle mesh);
   uint32_t liveMeshCount() const;
   uint32_t liveTextureCount() const;

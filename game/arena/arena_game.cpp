@@ -248,7 +248,7 @@ ecs::Entity ArenaGame::spawnDynamic(const std::string& name, geometry::MeshData 
   world.add<components::Splitable>(e, splitable);
   components::SplitWorld sw = splitWorld();
   std::string error;
-  if (!components::makeDynamicBody(sw, e, splitable.density, splitable.collider, &error)) {
+  if (!components::makeDynamicBody(sw, e, splitable.density, splitable.collider, &error, splits_)) {
     std::fprintf(stderr, "arena: %s has no body: %s\n", name.c_str(), error.c_str());
     removeEntity(e);
     return {};
@@ -325,6 +325,7 @@ bool ArenaGame::setup(app::App& app, std::string* error) {
   // the heavy part of a split (the cut, the collider parts, the ragdoll fits) runs on workers.
   components::SplitBudgetSettings budget;
   budget.millisecondsPerTick = 4.0;
+  budget.workerMillisecondsPerTick = 8.0;
   budget.maxSplitsPerTick = 8;
   budget.maxActivationsPerTick = 24;
   if (app.options().splitThreads >= 0) budget.threads = uint32_t(app.options().splitThreads);
@@ -828,6 +829,7 @@ void ArenaGame::committed(app::TickContext& c, const std::vector<components::Spl
   splitsThisTick_ = stats.executed;
   splitMsThisTick_ = splits_->lastTickMainMilliseconds();
   maxSplitMsInATick_ = std::max(maxSplitMsInATick_, splitMsThisTick_);
+  maxChargedMsInATick_ = std::max(maxChargedMsInATick_, stats.millisecondsCharged);
   splitMsHistory_.push_back(float(splitMsThisTick_));
   if (splitMsHistory_.size() > 120) splitMsHistory_.pop_front();
 }
@@ -1121,6 +1123,9 @@ void ArenaGame::dumpFrame(nlohmann::json& line) {
                     {"max_split_ms", stats.maxSplitMilliseconds},
                     {"max_split_ms_in_a_tick", maxSplitMsInATick_},
                     {"ms_per_tick", splits_->budget().settings().millisecondsPerTick},
+                    {"max_splits_per_tick", splits_->budget().settings().maxSplitsPerTick},
+                    {"max_charged_ms_in_a_tick", maxChargedMsInATick_},
+                    {"max_estimate_ms", stats.maxChargeMilliseconds},
                     {"queue", stats.queueLength}};
 }
 

@@ -215,6 +215,7 @@ class ArenaGame {
   uint32_t splitsThisTick_ = 0;
   double splitMsThisTick_ = 0.0;
   double maxSplitMsInATick_ = 0.0;
+  double maxChargedMsInATick_ = 0.0;  // main-thread split time the budget charged in one tick
   std::deque<float> splitMsHistory_;
 };
 

@@ -44,10 +44,15 @@ class DemoGame {
 
   components::SplitSystem& splits() { return *splits_; }
 
-  // Benchmark: spawns each object type `repeats` times away from the scene, cuts it through its
-  // centre by a tilted plane with splitNow (pieces created: mesh, upload, collider, body), and
-  // prints a Markdown table of median milliseconds per type (total, geometry, collider, upload).
-  void benchmarkSplits(int repeats);
+  // Benchmarks (demo_bench.cpp), not timed tests. benchmarkSplits: spawns each object type
+  // `repeats` times away from the scene, cuts it through its centre by a tilted plane with splitNow
+  // (compute inline, pieces committed), and prints medians per type: main-thread ms (prepare +
+  // commit), worker ms (compute), collider ms and the collider fit, as a Markdown table or JSON.
+  void benchmarkSplits(int repeats, bool json);
+  // benchmarkBurst: fifty cubes and a hundred generated characters (ragdoll pieces), each lot cut
+  // in one tick; prints the ticks until the last piece is committed and the most main-thread
+  // split time in any tick, as a table or JSON.
+  void benchmarkBurst(bool json);
   physics::PhysicsWorld& physics() { return *physics_; }
 
  private:

@@ -1,5 +1,6 @@
 // cleave-demo: the tech demo. In a window: WASD, mouse look, hold Space and drag to cut. Headless:
 // plays a replay and writes screenshots (see --help).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -10,13 +11,17 @@
 int main(int argc, char** argv) {
   cleave::app::AppOptions options;
   options.sceneName = "demo";
-  const auto parsed = cleave::app::parseAppOptions(argc, argv, options, {{"--bench-splits", 1}});
+  const auto parsed = cleave::app::parseAppOptions(argc, argv, options, {{"--bench-splits", 1}, {"--bench-burst", 0}, {"--json", 0}});
   if (!parsed.ok) {
     std::fprintf(stderr, "cleave-demo: %s\n", parsed.error.c_str());
     return 2;
   }
   if (parsed.helpRequested) {
     std::printf("usage: cleave-demo [options]\n\n%s", cleave::app::appOptionsUsage().c_str());
+    std::printf("demo options:\n"
+                "  --bench-splits N           cut each demo object N times, print median stage times\n"
+                "  --bench-burst              cut 50 cubes, then 100 characters, each lot in one tick\n"
+                "  --json                     benchmarks print JSON instead of a table\n");
     return 0;
   }
   cleave::app::App app;
@@ -30,14 +35,20 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "cleave-demo: %s\n", error.c_str());
     return 1;
   }
-  for (size_t i = 0; i + 1 < options.extra.size(); ++i) {
-    if (options.extra[i] != "--bench-splits") continue;
-    const int repeats = std::atoi(options.extra[i + 1].c_str());
+  const auto& extra = options.extra;
+  const bool json = std::find(extra.begin(), extra.end(), "--json") != extra.end();
+  for (size_t i = 0; i < extra.size(); ++i) {
+    if (extra[i] == "--bench-burst") {
+      game.benchmarkBurst(json);
+      return 0;
+    }
+    if (extra[i] != "--bench-splits" || i + 1 >= extra.size()) continue;
+    const int repeats = std::atoi(extra[i + 1].c_str());
     if (repeats <= 0) {
       std::fprintf(stderr, "cleave-demo: --bench-splits needs a positive count\n");
       return 2;
     }
-    game.benchmarkSplits(repeats);
+    game.benchmarkSplits(repeats, json);
     return 0;
   }
   if (!app.platform().headless()) app.platform().setCursorMode(cleave::app::CursorMode::Captured);

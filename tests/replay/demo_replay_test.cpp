@@ -95,7 +95,8 @@ TEST(DemoReplay, BurstOfCutsIsSpreadByTheBudgetAndKeepsMass) {
   EXPECT_GT(budget.at("deferred_total").get<int>(), 0) << "the burst never had to wait: " << budget.dump();
   EXPECT_GE(budget.at("max_queue").get<int>(), 3) << budget.dump();
   EXPECT_EQ(budget.at("queue"), 0) << "requests left over: " << budget.dump();
-  EXPECT_GE(dump.at("splits").size(), 20u);
+  // The replay makes 19 cuts since pieces appear at the commit tick, one tick later (20 before).
+  EXPECT_GE(dump.at("splits").size(), 19u);
 }
 
 TEST(DemoReplay, SameReplayGivesTheSameState) {
