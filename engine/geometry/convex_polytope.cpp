@@ -177,8 +177,54 @@ ConvexPolytope polytopeFromHull(const ConvexHull& hull) {
   ConvexPolytope p;
   if (hull.status != HullStatus::Ok || hull.indices.size() < 12) return p;
   p.vertices = hull.positions;
-  for (size_t i = 0; i + 2 < hull.indices.size(); i += 3)
-    addFace(p, {hull.indices[i], hull.indices[i + 1], hull.indices[i + 2]});
+  // Coplanar hull triangles become one polygon face (a box has six faces, not twelve), so a clip adds
+  // no section point on a triangle's diagonal and a shrink clips once per plane.
+  const size_t triangles = hull.indices.size() / 3;
+  std::vector<glm::dvec3> normals(triangles);
+  std::vector<double> offsets(triangles);
+  for (size_t t = 0; t < triangles; ++t) {
+    const glm::dvec3& a = p.vertices[hull.indices[3 * t]];
+    const glm::dvec3 n = glm::cross(p.vertices[hull.indices[3 * t + 1]] - a, p.vertices[hull.indices[3 * t + 2]] - a);
+    const double length = glm::length(n);
+    normals[t] = length > 0.0 ? n / length : glm::dvec3(0.0);
+    offsets[t] = glm::dot(normals[t], a);
+  }
+  glm::dvec3 lo, hi;
+  polytopeBounds(p, lo, hi);
+  const double tolerance = 1e-9 * std::max(glm::length(hi - lo), 1e-30);
+  std::vector<char> used(triangles, 0);
+  std::vector<std::pair<uint32_t, uint32_t>> edges;  // directed edges of one coplanar group
+  std::vector<uint32_t> loop;
+  for (size_t t = 0; t < triangles; ++t) {
+    if (used[t] || normals[t] == glm::dvec3(0.0)) continue;
+    edges.clear();
+    for (size_t u = t; u < triangles; ++u) {
+      if (used[u] || glm::dot(normals[u], normals[t]) < 1.0 - 1e-12 || std::abs(offsets[u] - offsets[t]) > tolerance)
+        continue;
+      used[u] = 1;
+      for (int k = 0; k < 3; ++k) edges.emplace_back(hull.indices[3 * u + k], hull.indices[3 * u + (k + 1) % 3]);
+    }
+    // The boundary: directed edges whose reverse is not in the group, chained into one loop.
+    std::vector<std::pair<uint32_t, uint32_t>> boundary;
+    for (const auto& [a, b] : edges)
+      if (std::find(edges.begin(), edges.end(), std::make_pair(b, a)) == edges.end()) boundary.emplace_back(a, b);
+    loop.clear();
+    if (boundary.empty()) continue;
+    loop.push_back(boundary[0].first);
+    uint32_t at = boundary[0].second;
+    for (size_t guard = 0; at != loop[0] && guard < boundary.size(); ++guard) {
+      loop.push_back(at);
+      const auto next = std::find_if(boundary.begin(), boundary.end(), [&](const auto& e) { return e.first == at; });
+      if (next == boundary.end()) break;
+      at = next->second;
+    }
+    if (at == loop[0] && loop.size() == boundary.size()) {
+      addFace(p, loop);
+      continue;
+    }
+    // Not one simple loop (triangles only nearly coplanar): keep the group's triangles as faces.
+    for (size_t e = 0; e + 2 < edges.size(); e += 3) addFace(p, {edges[e].first, edges[e + 1].first, edges[e + 2].first});
+  }
   compact(p);
   if (p.empty()) return ConvexPolytope{};
   return p;

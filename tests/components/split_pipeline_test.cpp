@@ -1,0 +1,190 @@
+// The split pipeline in the engine: prepare, compute on workers, commit at a fixed tick. Threads
+// never change a result; the commit tick is prepare + commitDelayTicks; a target gone before its
+// commit leaves nothing behind; a custom handler edits the pieces or keeps the original whole; and
+// pieces carry their collider parts into their own cuts.
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "tests/components/sim_harness.h"
+
+namespace cleave::components {
+namespace {
+
+using testing::scenePath;
+using testing::Sim;
+
+// FNV-1a over every entity's index, generation, position and rotation bits, in entity order.
+uint64_t stateHash(Sim& sim) {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](const void* p, size_t n) {
+    const auto* b = static_cast<const uint8_t*>(p);
+    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  for (ecs::Entity e : sim.world.entities()) {
+    const auto* t = sim.world.tryGet<ecs::Transform>(e);
+    if (!t) continue;
+    mix(&e.index, sizeof(e.index));
+    mix(&e.generation, sizeof(e.generation));
+    mix(&t->position, sizeof(t->position));
+    mix(&t->rotation, sizeof(t->rotation));
+  }
+  return h;
+}
+
+void setThreads(Sim& sim, uint32_t threads, uint32_t delay = 1) {
+  SplitBudgetSettings s = sim.splits.budget().settings();
+  s.threads = threads;
+  s.commitDelayTicks = delay;
+  sim.splits.budget().setSettings(s);
+}
+
+TEST(SplitPipeline, ThreadsNeverChangeTheOutcome) {
+  std::vector<uint64_t> hashes;
+  std::vector<size_t> pieces;
+  for (uint32_t threads : {0u, 1u, 3u}) {
+    for (const char* scene : {"fifty_cubes.json", "torus_cut.json", "u_shape.json"}) {
+      Sim sim;
+      ASSERT_TRUE(sim.load(scenePath(scene))) << sim.scene.error;
+      setThreads(sim, threads);
+      sim.runUntil(120);
+      hashes.push_back(stateHash(sim));
+      pieces.push_back(size_t(sim.splits.totalPiecesCreated()));
+    }
+  }
+  for (size_t i = 3; i < hashes.size(); ++i) {
+    EXPECT_EQ(hashes[i], hashes[i % 3]) << "scene " << i % 3 << ", run " << i / 3;
+    EXPECT_EQ(pieces[i], pieces[i % 3]);
+  }
+  EXPECT_GT(pieces[0], 50u);
+}
+
+TEST(SplitPipeline, JobsCommitCommitDelayTicksAfterTheirPrepare) {
+  for (uint32_t delay : {0u, 1u, 3u}) {
+    Sim sim;
+    ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+    setThreads(sim, 1, delay);
+    uint64_t committedAt = 0, preparedAt = 0;
+    while (sim.tick < 60 && committedAt == 0) {
+      const uint64_t tick = sim.tick;
+      sim.step();
+      for (const SplitEvent& ev : sim.splits.lastEvents()) {
+        if (ev.status != geometry::SplitStatus::Ok) continue;
+        committedAt = tick;
+        preparedAt = ev.preparedTick;
+        EXPECT_EQ(ev.tick, tick);
+      }
+      if (committedAt == 0 && sim.tick > 33) {
+        EXPECT_EQ(sim.splits.jobsInFlight(), delay > 0 ? 1u : 0u) << "tick " << tick;
+      }
+    }
+    ASSERT_GT(committedAt, 0u) << "delay " << delay;
+    EXPECT_EQ(preparedAt, 32u);  // fired at 30, its step touches at 30, gathered at 31, prepared at 32
+    EXPECT_EQ(committedAt, preparedAt + delay);
+  }
+}
+
+TEST(SplitPipeline, TargetGoneBeforeItsCommitLeavesNothingBehind) {
+  Sim sim;
+  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+  setThreads(sim, 1, 2);
+  const ecs::Entity torus = sim.scene.find("torus");
+  while (sim.splits.jobsInFlight() == 0 && sim.tick < 60) sim.step();
+  ASSERT_EQ(sim.splits.jobsInFlight(), 1u);
+  // Gameplay destroys the object while its split computes.
+  SplitWorld w = sim.sw();
+  releaseEntityResources(w, torus);
+  sim.world.destroy(torus);
+  const size_t entities = sim.world.entities().size();
+  std::vector<SplitEvent> events = sim.runUntil(sim.tick + 3);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_NE(events[0].status, geometry::SplitStatus::Ok);
+  EXPECT_NE(events[0].message.find("gone"), std::string::npos) << events[0].message;
+  EXPECT_TRUE(events[0].pieces.empty());
+  EXPECT_EQ(sim.world.entities().size(), entities);
+  EXPECT_EQ(sim.splits.totalPiecesCreated(), 0u);
+}
+
+TEST(SplitPipeline, HandlerEditsThePiecesOrKeepsTheOriginalWhole) {
+  for (bool keep : {false, true}) {
+    Sim sim;
+    ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+    const ecs::Entity torus = sim.scene.find("torus");
+    sim.world.get<Splitable>(torus).handler = "test.handler";
+    int calls = 0;
+    sim.splits.registerHandler("test.handler", [&](const SplitJob& job, SplitOutcome& out) {
+      ++calls;
+      EXPECT_EQ(job.request.target, torus);
+      EXPECT_EQ(out.pieces.size(), 2u);
+      if (keep) return HandlerDecision::KeepOriginal;
+      // The upper ring flies up; the lower one becomes debris.
+      for (PieceSpec& p : out.pieces) {
+        if (p.side > 0) p.impulse += glm::dvec3(0.0, 2.0, 0.0);
+        if (p.side < 0) p.kind = PieceKind::Debris;
+      }
+      return HandlerDecision::Commit;
+    });
+    const double mass = sim.world.get<MassInfo>(torus).mass;
+    std::vector<SplitEvent> events;
+    while (events.empty() && sim.tick < 60) {
+      sim.step();  // stops right after the commit: the pieces have their first step's motion only
+      events = sim.splits.lastEvents();
+    }
+    ASSERT_EQ(calls, 1);
+    ASSERT_EQ(events.size(), 1u);
+    if (keep) {
+      EXPECT_TRUE(events[0].pieces.empty());
+      EXPECT_TRUE(sim.world.alive(torus));
+      EXPECT_DOUBLE_EQ(sim.world.get<MassInfo>(torus).mass, mass);
+      continue;
+    }
+    ASSERT_EQ(events[0].pieces.size(), 2u);
+    EXPECT_FALSE(sim.world.alive(torus));
+    EXPECT_NEAR(events[0].piecesMass, mass, 1e-6 * mass);
+    for (size_t i = 0; i < 2; ++i) {
+      const ecs::Entity piece = events[0].pieces[i];
+      if (events[0].kinds[i] == PieceKind::Debris) {
+        EXPECT_TRUE(sim.world.has<Debris>(piece));
+        EXPECT_FALSE(sim.world.has<RigidBody>(piece));
+      } else {
+        const auto state = sim.physics.bodyState(sim.world.get<RigidBody>(piece).body);
+        ASSERT_TRUE(state);
+        EXPECT_GT(state->linearVelocity.y, 1.5f);
+      }
+    }
+  }
+}
+
+TEST(SplitPipeline, PiecesCarryTheirPartsAndCutsOnlyClipThem) {
+  Sim sim;
+  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+  const ecs::Entity torus = sim.scene.find("torus");
+  ASSERT_TRUE(sim.world.has<ColliderParts>(torus));  // decomposed once, when its body was made
+  std::vector<SplitEvent> events = sim.runUntil(40);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_TRUE(events[0].partsKnown);
+  for (size_t i = 0; i < events[0].pieces.size(); ++i) {
+    EXPECT_TRUE(sim.world.has<ColliderParts>(events[0].pieces[i]));
+    EXPECT_LE(events[0].colliderFit[i], 1.5) << "piece " << i;
+    EXPECT_GE(events[0].colliderFit[i], 0.8) << "piece " << i;
+  }
+  // Cut a ring again, vertically: its own parts are clipped, nothing is decomposed.
+  const ecs::Entity ring = events[0].pieces[0];
+  SplitRequest r;
+  r.target = ring;
+  r.planeNormal = glm::dvec3(1, 0, 0);
+  r.planeOffset = double(sim.world.get<ecs::Transform>(ring).position.x);
+  SplitWorld w = sim.sw();
+  const SplitEvent again = sim.splits.splitNow(w, ring, r, sim.tick);
+  ASSERT_EQ(again.status, geometry::SplitStatus::Ok) << again.message;
+  EXPECT_TRUE(again.partsKnown);
+  EXPECT_TRUE(again.weldKnown);
+  EXPECT_EQ(again.pieces.size(), 2u);
+  for (double fit : again.colliderFit) EXPECT_LE(fit, 1.5);
+}
+
+}  // namespace
+}  // namespace cleave::components
