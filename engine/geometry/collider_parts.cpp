@@ -19,7 +19,7 @@ void decomposeInto(const MeshData& mesh, IMeshSplitter& splitter, int depth, Col
     ConvexPolytope part = simplifyPolytope(polytopeOfPoints(mesh.positions), kMaxPartVertices);
     if (!part.empty()) parts.push_back(std::move(part));
   };
-  if (depth <= 0 || nearlyConvex(mesh)) return wholeHull();
+  if (depth <= 0 || isConvex(mesh, kPartConvexTolerance)) return wholeHull();
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (const glm::vec3& p : mesh.positions) {
     lo = glm::min(lo, p);
@@ -83,41 +83,6 @@ int holdingPiece(const SplitResult& result, int side, const glm::dvec3& c,
 }
 
 }  // namespace
-
-bool nearlyConvex(const MeshData& mesh, double slack) {
-  const size_t n = mesh.positions.size();
-  if (n < 4 || mesh.indices.size() < 12) return false;
-  const MassProperties props = computeMassProperties(mesh, glm::dmat4(1.0));
-  if (!props.closed || !(props.volume > 0.0)) return false;
-  constexpr int kDirections = 64;
-  std::vector<uint32_t> extreme;
-  extreme.reserve(kDirections);
-  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < kDirections; ++i) {
-    const double z = 1.0 - 2.0 * (double(i) + 0.5) / double(kDirections);
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const glm::dvec3 dir(r * std::cos(golden * i), r * std::sin(golden * i), z);
-    uint32_t best = 0;
-    double bestDot = -std::numeric_limits<double>::infinity();
-    for (uint32_t v = 0; v < n; ++v) {
-      const double d = glm::dot(dir, glm::dvec3(mesh.positions[v]));
-      if (d > bestDot) {
-        bestDot = d;
-        best = v;
-      }
-    }
-    extreme.push_back(best);
-  }
-  std::sort(extreme.begin(), extreme.end());
-  extreme.erase(std::unique(extreme.begin(), extreme.end()), extreme.end());
-  std::vector<glm::dvec3> points;
-  points.reserve(extreme.size());
-  for (uint32_t v : extreme) points.push_back(glm::dvec3(mesh.positions[v]));
-  const ConvexHull hull = computeConvexHull(std::span<const glm::dvec3>(points));
-  if (hull.status != HullStatus::Ok) return false;
-  const MassProperties hullProps = computeMassProperties(std::span<const glm::dvec3>(hull.positions), hull.indices);
-  return hullProps.volume <= props.volume * (1.0 + slack);
-}
 
 std::vector<ConvexPolytope> decomposeConvex(const MeshData& mesh, IMeshSplitter& splitter, int maxDepth) {
   ColliderPartSet parts;

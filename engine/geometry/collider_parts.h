@@ -24,18 +24,17 @@
 
 namespace cleave::geometry {
 
-// Is the closed mesh convex enough that its convex hull is a faithful collider? The hull of the
-// points extreme along 64 spread directions lies inside the true hull; when even that inscribed hull
-// exceeds the mesh volume by more than `slack` (a share of the volume), the mesh has a real
-// concavity. Smaller concavities are filled by the hull, by design. Open or empty meshes: false.
-bool nearlyConvex(const MeshData& mesh, double slack = 0.03);
+// A part is convex enough to be its own hull when geometry::isConvex holds with this relative
+// tolerance (a dent shallower than 0.2% of the part's size is filled by the hull, by design).
+inline constexpr double kPartConvexTolerance = 2e-3;
 
 // Parts keep at most this many vertices (simplifyPolytope): a collider hull needs no more, and a
 // clip or a shrink costs in proportion to the part size.
 inline constexpr uint32_t kMaxPartVertices = 48;
 
 // Our own convex decomposition for colliders: the mesh is cut through the middle of its longest
-// bounding-box extent, recursively, until each part is nearly convex or `maxDepth` cuts are made;
+// bounding-box extent, recursively, until each part is convex (isConvex within
+// kPartConvexTolerance) or `maxDepth` cuts are made;
 // each part's convex hull, simplified to kMaxPartVertices, is one polytope (mesh space).
 // Deterministic.
 std::vector<ConvexPolytope> decomposeConvex(const MeshData& mesh, IMeshSplitter& splitter, int maxDepth = 4);

@@ -50,10 +50,11 @@ struct HeadlessGlContext::Impl {
 
 namespace {
 
-#if defined(CLEAVE_SANITIZE)
+#if defined(CLEAVE_SANITIZE) || defined(CLEAVE_TSAN)
 // LeakSanitizer cannot symbolise leaks inside a driver that was unloaded at eglTerminate, and its
-// tracer can crash on the stale TLS ranges the driver leaves. Keeping the software driver mapped for
-// the life of the process avoids both (see docs/architecture.md, sanitizers).
+// tracer can crash on the stale TLS ranges the driver leaves; ThreadSanitizer refuses to see a
+// library its suppressions name unloaded. Keeping the software driver mapped for the life of the
+// process avoids all three (see docs/architecture.md, sanitizers).
 void pinMesaDriver() {
   static bool pinned = false;
   if (pinned) return;

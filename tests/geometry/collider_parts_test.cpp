@@ -33,10 +33,10 @@ Cut cutWithParts(const MeshData& mesh, const ColliderPartSet& parts, const Plane
 TEST(ColliderParts, ConvexMeshIsOnePartAndTorusSeveral) {
   auto splitter = makeConcaveSplitter();
   const MeshData ball = primitives::uvSphere(0.5f, 24, 12);
-  EXPECT_TRUE(nearlyConvex(ball));
+  EXPECT_TRUE(isConvex(ball, kPartConvexTolerance));
   EXPECT_EQ(decomposeConvex(ball, *splitter).size(), 1u);
   const MeshData ring = primitives::torus(0.5f, 0.15f, 48, 24);
-  EXPECT_FALSE(nearlyConvex(ring));
+  EXPECT_FALSE(isConvex(ring, kPartConvexTolerance));
   const ColliderPartSet parts = decomposeConvex(ring, *splitter);
   EXPECT_GE(parts.size(), 8u);
   for (const ConvexPolytope& p : parts) EXPECT_LE(p.vertices.size(), kMaxPartVertices);
