@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "components/simulation.h"
 #include "components/skinned.h"
 #include "components/split_system.h"
 #include "engine/anim/animation_clip.h"
@@ -205,9 +206,9 @@ void BM_SkinnedCharacterSplitSystem(benchmark::State& state) {
   auto mesh = std::make_shared<const MeshData>(character.mesh);
   const auto mode = SkinnedPieceMode(state.range(0));
   ecs::World world;
-  physics::PhysicsWorld physics;
-  SplitSystem splits;
-  SplitWorld w{world, physics, nullptr};
+  Simulation sim(world);
+  SplitSystem& splits = sim.splits();
+  SplitWorld w = sim.splitWorld();
   size_t pieces = 0;
   float time = 0.f;
   for (auto _ : state) {
