@@ -755,7 +755,7 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
   return finish(geometry::SplitStatus::Ok, {});
 }
 
-namespace {
+namespace detail {
 
 // The parent's motion from prepare to commit, applied to the specs' prepare-tick poses.
 struct Moved {
@@ -774,158 +774,192 @@ struct Moved {
   }
 };
 
-void addHierarchyChildren(ecs::CommandBuffer& commands, SplitWorld& w, const SplitJob& job, const PieceSpec& spec,
-                          ecs::Entity e, const ecs::Transform& transform, double& uploadMs) {
+// What the pieces of one commit share.
+struct CommitContext {
+  SplitWorld& w;
+  const SplitJob& job;
+  ecs::CommandBuffer& commands;
+  Moved m;
+  const SkinnedMesh* skin = nullptr;  // the target's, for skinned jobs
+  SplitEvent& ev;
+};
+
+}  // namespace detail
+
+namespace {
+
+using detail::CommitContext;
+
+// A ragdoll piece: its bones and joints; the entity frame is the anchor bone's body frame and the
+// joint matrices are relative to it. False (nothing created) when no bone could be made.
+bool attachRagdoll(CommitContext& c, const PieceSpec& spec, ecs::Entity e, ecs::Transform& transform,
+                   MeshRenderer& renderer, RigidBody& rb) {
+  Ragdoll ragdoll;
+  if (!createRagdoll(c.w.physics, spec.ragdoll, c.m.motion, c.m.now.velocity, c.m.now.angularVelocity, c.m.now.centre,
+                     toUserData(e), toUserData(e) | (1ull << 63), ragdoll))
+    return false;
+  const RagdollBone& anchor = ragdoll.bones[ragdoll.anchor];
+  const physics::BodyTransform at = *c.w.physics.bodyTransform(anchor.body);
+  transform.position = at.position;
+  transform.rotation = at.rotation;
+  renderer.meshOffset = glm::mat4(1.f);
+  rb = RigidBody{anchor.body, anchor.shape};
+  SkinnedMesh pieceSkin = *c.skin;
+  pieceSkin.jointMatrices = spec.ragdoll.jointMatrices;
+  c.commands.add<SkinnedMesh>(e, std::move(pieceSkin));
+  c.commands.add<Ragdoll>(e, std::move(ragdoll));
+  return true;
+}
+
+void addHierarchyChildren(CommitContext& c, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform) {
   std::vector<ecs::Entity> children;
   const std::string suffix = spec.name.substr(spec.name.rfind('/'));
   for (const HierarchyChildSpec& childSpec : spec.children) {
-    const HierarchyPartData& part = job.hierarchyParts[childSpec.part];
-    const ecs::Entity child = commands.create();
+    const HierarchyPartData& part = c.job.hierarchyParts[childSpec.part];
+    const ecs::Entity child = c.commands.create();
     MeshRenderer renderer;
     renderer.source = childSpec.mesh;
     renderer.materials = part.materials;
     renderer.meshOffset = glm::mat4(spec.frame.meshOffset);  // merged space -> the piece's frame
     renderer.visible = part.visible;
-    if (w.renderer) {
+    if (c.w.renderer) {
       const double uploadStart = nowMs();
-      renderer.gpu = childSpec.packed ? w.renderer->uploadPacked(*childSpec.packed) : w.renderer->uploadMesh(*childSpec.mesh);
-      uploadMs += nowMs() - uploadStart;
+      renderer.gpu = childSpec.packed ? c.w.renderer->uploadPacked(*childSpec.packed)
+                                      : c.w.renderer->uploadMesh(*childSpec.mesh);
+      c.ev.uploadMilliseconds += nowMs() - uploadStart;
     }
-    commands.add<ecs::Transform>(child, ecs::Transform{});
-    commands.add<ecs::WorldTransform>(child, ecs::WorldTransform{ecs::localMatrix(transform)});
-    commands.add<ecs::Name>(child, ecs::Name{(part.name.empty() ? std::string("part") : part.name) + suffix});
-    commands.add<ecs::Parent>(child, ecs::Parent{e});
-    commands.add<MeshRenderer>(child, std::move(renderer));
+    c.commands.add<ecs::Transform>(child, ecs::Transform{});
+    c.commands.add<ecs::WorldTransform>(child, ecs::WorldTransform{ecs::localMatrix(transform)});
+    c.commands.add<ecs::Name>(child, ecs::Name{(part.name.empty() ? std::string("part") : part.name) + suffix});
+    c.commands.add<ecs::Parent>(child, ecs::Parent{e});
+    c.commands.add<MeshRenderer>(child, std::move(renderer));
     children.push_back(child);
   }
-  commands.add<ecs::Children>(e, ecs::Children{std::move(children)});
+  c.commands.add<ecs::Children>(e, ecs::Children{std::move(children)});
+}
+
+// The components every piece gets (and a debris piece's motion).
+void addPieceComponents(CommitContext& c, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform,
+                        MeshRenderer renderer, const glm::dvec3& velocity) {
+  c.commands.add<ecs::Transform>(e, transform);
+  c.commands.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(transform)});
+  c.commands.add<ecs::Name>(e, ecs::Name{spec.name});
+  c.commands.add<MeshRenderer>(e, std::move(renderer));
+  MassInfo info;
+  info.mass = spec.mass;
+  info.volume = spec.volume;
+  info.density = spec.volume > 0.0 ? spec.mass / spec.volume : 0.0;
+  info.closed = spec.closed;
+  c.commands.add<MassInfo>(e, info);
+  SplitOrigin so;
+  so.parent = c.job.request.target;
+  so.parentId = toUserData(c.job.request.target);
+  so.generation = c.job.depth;
+  c.commands.add<SplitOrigin>(e, so);
+  if (c.job.hasMaterialChoice) c.commands.add<MaterialChoice>(e, MaterialChoice{c.job.materialChoice});
+  // A piece drawn with its skin (KeepAnimating, or debris a handler made of a ragdoll piece): the
+  // copy of the animator keeps playing in the body's frame.
+  if (spec.kind != PieceKind::Ragdoll && c.skin && !spec.mesh->joints.empty()) c.commands.add<SkinnedMesh>(e, *c.skin);
+  if (spec.kind == PieceKind::Debris) {
+    Debris d;
+    d.velocity = glm::vec3(velocity);
+    d.angularVelocity = glm::vec3(c.m.now.angularVelocity);
+    c.commands.add<Debris>(e, d);
+  }
 }
 
 }  // namespace
 
+// The rigid body of a piece with a collider, woken now or queued for a later tick. Null (and no
+// shape left behind) when the bridge refuses it.
+RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs::Entity e,
+                                       const ecs::Transform& transform, const glm::dvec3& velocity,
+                                       const glm::dvec3& angularVelocity) {
+  std::string reason;
+  const physics::ShapeId shape =
+      createPlannedShape(w.physics, spec.hulls, spec.concavePositions, spec.concaveIndices, &reason);
+  if (shape.isNull()) return {};  // a flat sliver: no hull can hold it
+  physics::BodyDef def;
+  def.shape = shape;
+  def.mass = float(std::max(spec.mass, 1e-6));
+  def.position = transform.position;
+  def.rotation = transform.rotation;
+  def.linearVelocity = glm::vec3(velocity);
+  def.angularVelocity = glm::vec3(angularVelocity);
+  def.localInertia = glm::vec3(spec.frame.moments);
+  def.userData = toUserData(e);
+  const bool awakeNow = scratch_->activationsThisTick < budget_.settings().maxActivationsPerTick;
+  def.startAwake = awakeNow;
+  auto created = w.physics.createBody(def);
+  if (!created.ok()) {
+    w.physics.destroyShape(shape);
+    return {};
+  }
+  const physics::BodyId body = created.value();
+  if (awakeNow) {
+    scratch_->activationsThisTick++;
+  } else {
+    budget_.queueActivation((uint64_t(body.generation) << 32) | body.index);
+  }
+  return RigidBody{body, shape};
+}
+
+void SplitSystem::commitPiece(CommitContext& c, PieceSpec& spec) {
+  const ecs::Entity e = c.commands.create();
+  const glm::dvec3 velocity = c.m.velocity(spec);
+  ecs::Transform transform;
+  transform.position = glm::vec3(c.m.position(spec.frame.position));
+  transform.rotation = glm::quat(c.m.rotation(spec.frame.rotation));
+  transform.scale = glm::vec3(1.f);
+  MeshRenderer renderer;
+  renderer.source = spec.mesh;
+  renderer.materials = c.job.materials;
+  renderer.meshOffset = glm::mat4(spec.frame.meshOffset);
+  RigidBody rb;
+  const double shapeStart = nowMs();
+  if (spec.kind == PieceKind::Ragdoll) {
+    if (!attachRagdoll(c, spec, e, transform, renderer, rb)) spec.kind = PieceKind::Debris;  // the skin falls
+  } else if (spec.kind != PieceKind::Debris) {
+    rb = createPieceBody(c.w, spec, e, transform, velocity, c.m.now.angularVelocity);
+    if (rb.body.isNull()) spec.kind = PieceKind::Debris;
+  }
+  c.ev.shapeMilliseconds += nowMs() - shapeStart;
+  if (c.w.renderer) {
+    const double uploadStart = nowMs();
+    renderer.gpu = spec.packed ? c.w.renderer->uploadPacked(*spec.packed) : c.w.renderer->uploadMesh(*spec.mesh);
+    c.ev.uploadMilliseconds += nowMs() - uploadStart;
+  }
+  addPieceComponents(c, spec, e, transform, std::move(renderer), velocity);
+  if (spec.kind != PieceKind::Debris) {
+    c.commands.add<RigidBody>(e, rb);
+    if (c.job.depth < c.job.settings.maxDepth) {
+      c.commands.add<Splitable>(e, c.job.settings);
+      if (spec.parts) c.commands.add<ColliderParts>(e, ColliderParts{spec.parts});
+      if (spec.weld || spec.parts) {  // known when the piece is cut: no weld, no decomposition
+        Scratch::Known& k = scratch_->entry(spec.mesh);
+        k.weld = spec.weld;
+        k.parts = spec.parts;
+      }
+    }
+  }
+  if (c.job.hierarchy()) addHierarchyChildren(c, spec, e, transform);
+  c.ev.pieces.push_back(e);
+  c.ev.capLoops.push_back(spec.capLoops);
+  c.ev.kinds.push_back(spec.kind);
+  c.ev.colliderFit.push_back(spec.volume > 0.0 && spec.kind != PieceKind::Debris ? spec.colliderVolume / spec.volume : 0.0);
+  c.ev.piecesMass += spec.mass;
+}
+
 void SplitSystem::commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome& outcome, SplitEvent& ev) {
   Scratch& s = *scratch_;
-  ecs::CommandBuffer& commands = commandsFor(s.commands, s.commandsWorld, w.world);
   const ecs::Entity target = job.request.target;
-  Moved m;
-  m.now = motionOf(w, target);
-  m.motion = motionBetween(job.parent, m.now);
-  m.moved = m.motion != glm::dmat4(1.0);
-  m.turn = glm::dmat3(m.motion);
-  const SkinnedMesh* skin = job.skinned() ? w.world.tryGet<SkinnedMesh>(target) : nullptr;
-  for (PieceSpec& spec : outcome.pieces) {
-    const ecs::Entity e = commands.create();
-    const glm::dvec3 velocity = m.velocity(spec);
-    ecs::Transform transform;
-    transform.position = glm::vec3(m.position(spec.frame.position));
-    transform.rotation = glm::quat(m.rotation(spec.frame.rotation));
-    transform.scale = glm::vec3(1.f);
-    MeshRenderer renderer;
-    renderer.source = spec.mesh;
-    renderer.materials = job.materials;
-    renderer.meshOffset = glm::mat4(spec.frame.meshOffset);
-    physics::ShapeId shape;
-    physics::BodyId body;
-    const double shapeStart = nowMs();
-    if (spec.kind == PieceKind::Ragdoll) {
-      Ragdoll ragdoll;
-      if (createRagdoll(w.physics, spec.ragdoll, m.motion, m.now.velocity, m.now.angularVelocity, m.now.centre,
-                        toUserData(e), toUserData(e) | (1ull << 63), ragdoll)) {
-        // The entity frame is the anchor bone's body frame; joint matrices are relative to it.
-        const RagdollBone& anchor = ragdoll.bones[ragdoll.anchor];
-        const physics::BodyTransform at = *w.physics.bodyTransform(anchor.body);
-        transform.position = at.position;
-        transform.rotation = at.rotation;
-        renderer.meshOffset = glm::mat4(1.f);
-        shape = anchor.shape;
-        body = anchor.body;
-        SkinnedMesh pieceSkin = *skin;
-        pieceSkin.jointMatrices = spec.ragdoll.jointMatrices;
-        commands.add<SkinnedMesh>(e, std::move(pieceSkin));
-        commands.add<Ragdoll>(e, std::move(ragdoll));
-      } else {
-        spec.kind = PieceKind::Debris;  // no bone could be made: the skin falls as debris
-      }
-    } else if (spec.kind != PieceKind::Debris) {
-      std::string reason;
-      shape = createPlannedShape(w.physics, spec.hulls, spec.concavePositions, spec.concaveIndices, &reason);
-      if (shape.isNull()) spec.kind = PieceKind::Debris;  // a flat sliver: no hull can hold it
-    }
-    if (!shape.isNull() && spec.kind != PieceKind::Ragdoll) {
-      physics::BodyDef def;
-      def.shape = shape;
-      def.mass = float(std::max(spec.mass, 1e-6));
-      def.position = transform.position;
-      def.rotation = transform.rotation;
-      def.linearVelocity = glm::vec3(velocity);
-      def.angularVelocity = glm::vec3(m.now.angularVelocity);
-      def.localInertia = glm::vec3(spec.frame.moments);
-      def.userData = toUserData(e);
-      const bool awakeNow = s.activationsThisTick < budget_.settings().maxActivationsPerTick;
-      def.startAwake = awakeNow;
-      auto created = w.physics.createBody(def);
-      if (created.ok()) {
-        body = created.value();
-        if (awakeNow) {
-          s.activationsThisTick++;
-        } else {
-          budget_.queueActivation((uint64_t(body.generation) << 32) | body.index);
-        }
-      } else {
-        w.physics.destroyShape(shape);
-        shape = {};
-        spec.kind = PieceKind::Debris;
-      }
-    }
-    ev.shapeMilliseconds += nowMs() - shapeStart;
-    if (w.renderer) {
-      const double uploadStart = nowMs();
-      renderer.gpu = spec.packed ? w.renderer->uploadPacked(*spec.packed) : w.renderer->uploadMesh(*spec.mesh);
-      ev.uploadMilliseconds += nowMs() - uploadStart;
-    }
-    commands.add<ecs::Transform>(e, transform);
-    commands.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(transform)});
-    commands.add<ecs::Name>(e, ecs::Name{spec.name});
-    commands.add<MeshRenderer>(e, std::move(renderer));
-    MassInfo info;
-    info.mass = spec.mass;
-    info.volume = spec.volume;
-    info.density = spec.volume > 0.0 ? spec.mass / spec.volume : 0.0;
-    info.closed = spec.closed;
-    commands.add<MassInfo>(e, info);
-    SplitOrigin so;
-    so.parent = target;
-    so.parentId = toUserData(target);
-    so.generation = job.depth;
-    commands.add<SplitOrigin>(e, so);
-    if (job.hasMaterialChoice) commands.add<MaterialChoice>(e, MaterialChoice{job.materialChoice});
-    // A piece drawn with its skin (KeepAnimating, or debris a handler made of a ragdoll piece): the
-    // copy of the animator keeps playing in the body's frame.
-    if (spec.kind != PieceKind::Ragdoll && skin && !spec.mesh->joints.empty()) commands.add<SkinnedMesh>(e, *skin);
-    if (spec.kind == PieceKind::Debris) {
-      Debris d;
-      d.velocity = glm::vec3(velocity);
-      d.angularVelocity = glm::vec3(m.now.angularVelocity);
-      commands.add<Debris>(e, d);
-    } else {
-      commands.add<RigidBody>(e, RigidBody{body, shape});
-      if (job.depth < job.settings.maxDepth) {
-        commands.add<Splitable>(e, job.settings);
-        if (spec.parts) commands.add<ColliderParts>(e, ColliderParts{spec.parts});
-        if (spec.weld || spec.parts) {
-          Scratch::Known& k = s.entry(spec.mesh);
-          k.weld = spec.weld;
-          k.parts = spec.parts;
-        }
-      }
-    }
-    if (job.hierarchy()) addHierarchyChildren(commands, w, job, spec, e, transform, ev.uploadMilliseconds);
-    ev.pieces.push_back(e);
-    ev.capLoops.push_back(spec.capLoops);
-    ev.kinds.push_back(spec.kind);
-    ev.colliderFit.push_back(spec.volume > 0.0 && spec.kind != PieceKind::Debris ? spec.colliderVolume / spec.volume : 0.0);
-    ev.piecesMass += spec.mass;
-  }
+  CommitContext c{w, job, commandsFor(s.commands, s.commandsWorld, w.world), detail::Moved{}, nullptr, ev};
+  c.m.now = motionOf(w, target);
+  c.m.motion = motionBetween(job.parent, c.m.now);
+  c.m.moved = c.m.motion != glm::dmat4(1.0);
+  c.m.turn = glm::dmat3(c.m.motion);
+  if (job.skinned()) c.skin = w.world.tryGet<SkinnedMesh>(target);
+  for (PieceSpec& spec : outcome.pieces) commitPiece(c, spec);
   // A persistent splitter does not cut the pieces of its own cut again during this pass.
   if (auto* blade = w.world.tryGet<Splitter>(job.request.splitter);
       blade && blade->lifetime == SplitterLifetime::Persistent) {
@@ -936,9 +970,9 @@ void SplitSystem::commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome&
     // The original subtree goes with its GPU meshes; the pieces carry copies of its parts.
     for (const HierarchyPartData& part : job.hierarchyParts)
       if (part.entity != target) s.doomed.push_back(part.entity);
-    commands.destroyRecursive(target);
+    c.commands.destroyRecursive(target);
   } else {
-    commands.destroy(target);
+    c.commands.destroy(target);
   }
   s.doomed.push_back(target);
   totalPieces_ += ev.pieces.size();

@@ -33,6 +33,7 @@
 #include "components/split_job.h"
 #include "components/split_workers.h"
 #include "components/splitable.h"
+#include "engine/ecs/hierarchy.h"
 #include "engine/ecs/world.h"
 #include "engine/geometry/mesh_splitter.h"
 #include "engine/physics/physics_world.h"
@@ -82,6 +83,10 @@ struct SplitEvent {
   double shapeMilliseconds = 0.0;     // of commit: physics shapes and bodies
   double uploadMilliseconds = 0.0;    // of commit: GPU mesh upload
 };
+
+namespace detail {
+struct CommitContext;  // split_system.cpp
+}
 
 class SplitSystem {
  public:
@@ -148,6 +153,9 @@ class SplitSystem {
   // Commit: creates the pieces of a computed job (their structural changes wait in the batch).
   SplitEvent commit(SplitWorld& w, Pending& pending, uint64_t tick);
   void commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome& outcome, SplitEvent& ev);
+  void commitPiece(detail::CommitContext& c, PieceSpec& spec);
+  RigidBody createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform,
+                            const glm::dvec3& velocity, const glm::dvec3& angularVelocity);
   SplitWorkers& workers();
   // Frees the resources of the entities the batch destroys, then applies the batch.
   void flush(SplitWorld& w);
