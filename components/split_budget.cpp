@@ -86,6 +86,7 @@ void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition
     // A second request for a target split this tick waits; next tick its target is gone and the
     // request is dropped as stale (the pieces are new entities).
     if (std::find(splitThisTick.begin(), splitThisTick.end(), r.target) != splitThisTick.end()) continue;
+    if (busy_ && busy_(r.target)) continue;  // its split is in flight: it waits
     const SplitCost estimate = estimator_ ? estimator_(r) : SplitCost{settings_.millisecondsPerTick, 0.0};
     const double start = nowMilliseconds();
     const bool ok = execute(r);

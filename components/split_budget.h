@@ -119,6 +119,10 @@ class SplitBudget {
     estimator_ = std::move(estimator);
   }
 
+  // A target that is busy (its split is in flight) keeps its further requests queued: they run once
+  // it is free (or are dropped as stale once it is gone). Without a check nothing is busy.
+  void setBusyCheck(std::function<bool(ecs::Entity)> busy) { busy_ = std::move(busy); }
+
   // Bodies created by splits wait here and are activated by takeActivations, a few per tick.
   void queueActivation(uint64_t bodyKey) { activations_.push_back(bodyKey); }
   // Returns up to maxActivationsPerTick keys in creation order and removes them from the queue.
@@ -138,6 +142,7 @@ class SplitBudget {
   std::vector<uint64_t> activations_;
   uint64_t nextSequence_ = 0;
   std::function<SplitCost(const SplitRequest&)> estimator_;
+  std::function<bool(ecs::Entity)> busy_;
   double chargedMilliseconds_ = 0.0;
 };
 

@@ -25,6 +25,7 @@ double nowMs() {
 }
 
 constexpr double kMinPartWidth = 1e-5;  // metres: flatter parts hold nothing
+constexpr uint32_t kNoPart = ~0u;      // extractPart: no part's triangles, the caps only
 constexpr uint32_t kMaxHullVertices = 48;  // per collider hull, as the bridge would reduce it
 
 // The triangles of `piece` whose tag says they belong to part `part` (and the caps, for `withCaps`),
@@ -114,7 +115,8 @@ void planHierarchyChildren(const PieceContext& c, geometry::MeshData& whole, Pie
     auto mesh = std::make_shared<geometry::MeshData>(std::move(child));
     std::shared_ptr<const render::PackedMesh> packed;
     if (c.job.packForGpu) packed = std::make_shared<render::PackedMesh>(render::packMesh(*mesh));
-    spec.children.push_back({part, std::move(mesh), std::move(packed)});
+    const geometry::MeshData* from = packed ? mesh.get() : nullptr;
+    spec.children.push_back({part, std::move(mesh), std::move(packed), from});
   }
 }
 
@@ -153,14 +155,20 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
   geometry::MeshData whole;
   if (job.hierarchy()) {
     whole = std::move(piece.mesh);
-    piece.mesh = extractPart(whole, 0, true, sp.capMaterialId);
+    // Part 0 is the target's own mesh when it has one; a target without a mesh of its own draws the
+    // caps only (its parts are its children).
+    const bool ownMesh = job.hierarchyParts[0].entity == job.request.target;
+    piece.mesh = extractPart(whole, ownMesh ? 0u : kNoPart, true, sp.capMaterialId);
     planHierarchyChildren(c, whole, spec);
   }
   const bool weldKnown = !job.hierarchy() && (keepSkin || !job.skinned()) && !piece.weld.positionIds.empty();
   if (weldKnown && job.depth < sp.maxDepth) spec.weld = std::make_shared<geometry::MeshWeld>(std::move(piece.weld));
   auto drawn = std::make_shared<geometry::MeshData>(job.skinned() && !keepSkin ? std::move(posed) : std::move(piece.mesh));
   spec.mesh = drawn;
-  if (job.packForGpu) spec.packed = std::make_shared<render::PackedMesh>(render::packMesh(*drawn));
+  if (job.packForGpu) {
+    spec.packed = std::make_shared<render::PackedMesh>(render::packMesh(*drawn));
+    spec.packedFrom = drawn.get();
+  }
   if (spec.kind == PieceKind::Debris || spec.kind == PieceKind::Ragdoll) return true;
 
   // The collider: carried parts for rigid pieces of a static mesh, planned from the mesh otherwise.
@@ -199,7 +207,8 @@ void clipCarriedParts(PieceContext& c, SplitOutcome& out) {
       decomposed = geometry::decomposeConvex(*job.mesh, *c.scratch.concave);
     }
     parts = std::make_shared<const geometry::ColliderPartSet>(std::move(decomposed));
-    out.sourceParts = parts;
+    // Kept for the mesh's other instances, unless it is one hull only because this Splitable says so.
+    if (!sp.convexHint) out.sourceParts = parts;
   }
   geometry::clipPartsToPieces(*parts, planeInMeshSpace(job.plane, job.model), c.scratch.result, {}, c.clipped);
   c.carried = true;

@@ -75,7 +75,7 @@ struct HierarchyPartData {
 };
 
 struct SplitJob {
-  uint64_t sequence = 0;       // the request's arrival order: commits go in this order
+  uint64_t sequence = 0;       // the request's arrival order (commits go in prepare order: the budget's)
   uint64_t preparedTick = 0;
   uint64_t commitTick = 0;     // preparedTick + commitDelayTicks
   SplitRequest request;
@@ -136,6 +136,7 @@ struct HierarchyChildSpec {
   size_t part = 0;  // index into SplitJob::hierarchyParts
   std::shared_ptr<const geometry::MeshData> mesh;
   std::shared_ptr<const render::PackedMesh> packed;  // when the job packs for the GPU
+  const geometry::MeshData* packedFrom = nullptr;     // the mesh `packed` was made from
 };
 
 struct PieceSpec {
@@ -143,7 +144,10 @@ struct PieceSpec {
   int side = 0;                  // +1 above the plane, -1 below
   uint32_t capLoops = 0;
   std::shared_ptr<const geometry::MeshData> mesh;  // drawn (bind space when the skin is kept)
-  std::shared_ptr<const render::PackedMesh> packed;  // `mesh` packed for upload (SplitJob::packForGpu)
+  // `mesh` packed for upload (SplitJob::packForGpu). Commit uploads it only while `mesh` is still the
+  // mesh it was made from (packedFrom): a handler that replaces the mesh gets its new mesh drawn.
+  std::shared_ptr<const render::PackedMesh> packed;
+  const geometry::MeshData* packedFrom = nullptr;
   std::shared_ptr<const geometry::MeshWeld> weld;  // null: unknown (welded anew if cut again)
   double volume = 0.0, mass = 0.0;
   bool closed = true;

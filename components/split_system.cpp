@@ -514,6 +514,7 @@ void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& 
   auto inFlight = [this](ecs::Entity e) {
     return std::any_of(pending_.begin(), pending_.end(), [&](const Pending& p) { return p.job->request.target == e; });
   };
+  budget_.setBusyCheck(inFlight);
   budget_.setCostEstimator([&w, this](const SplitRequest& r) {
     const geometry::ColliderPartSet* parts = nullptr;
     if (const auto* cp = w.world.tryGet<ColliderParts>(r.target); cp && cp->parts) {
@@ -525,7 +526,7 @@ void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& 
   });
   budget_.runTick(
       tick, cameraPosition,
-      [&](ecs::Entity e) { return w.world.alive(e) && w.world.has<Splitable>(e) && !inFlight(e); },
+      [&](ecs::Entity e) { return w.world.alive(e) && w.world.has<Splitable>(e); },
       [&](ecs::Entity e) {
         const auto* t = w.world.tryGet<ecs::Transform>(e);
         return t ? glm::dvec3(t->position) : glm::dvec3(0.0);
@@ -550,6 +551,7 @@ void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& 
       },
       nowMs);
   budget_.setCostEstimator({});  // it refers to `w`, which only lives for this call
+  budget_.setBusyCheck({});
   flush(w);
   if (tickOfMainMs_ != tick) tickMainMs_ = 0.0;
   tickOfMainMs_ = tick;
@@ -562,14 +564,18 @@ void SplitSystem::commitSplits(SplitWorld& w, uint64_t tick) {
     events_.clear();
     tickMainMs_ = 0.0;
   }
-  // Request order (the order they were prepared in, which is the budget's total order).
-  size_t done = 0;
-  for (; done < pending_.size() && pending_[done].job->commitTick <= tick; ++done) {
-    events_.push_back(commit(w, pending_[done], tick));
+  // Every job due, in the order they were prepared in (the budget's total order); the others wait.
+  std::vector<Pending> later;
+  for (Pending& p : pending_) {
+    if (p.job->commitTick > tick) {
+      later.push_back(std::move(p));
+      continue;
+    }
+    events_.push_back(commit(w, p, tick));
     const geometry::SplitStatus status = events_.back().status;
     if (status != geometry::SplitStatus::Ok && status != geometry::SplitStatus::PlaneMissesMesh) budget_.recordFailure();
   }
-  pending_.erase(pending_.begin(), pending_.begin() + done);
+  pending_ = std::move(later);
   // Structural changes after the iteration: pieces appear, originals go.
   flush(w);
   tickOfMainMs_ = tick;
@@ -583,7 +589,7 @@ void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& came
 
 SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitRequest& request,
                                  uint64_t tick) {
-  for (Pending& p : pending_) commit(w, p, tick);
+  for (Pending& p : pending_) events_.push_back(commit(w, p, tick));  // jobs in flight go first
   pending_.clear();
   flush(w);
   const double start = nowMs();
@@ -744,12 +750,25 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
     return finish(geometry::SplitStatus::InvalidInput, "the target was gone before its pieces were committed");
   if (job.skinned() && !w.world.has<SkinnedMesh>(target))
     return finish(geometry::SplitStatus::InvalidInput, "the target lost its skin before its pieces were committed");
+  for (const HierarchyPartData& part : job.hierarchyParts) {
+    const auto* mr = w.world.tryGet<MeshRenderer>(part.entity);
+    const bool same = w.world.alive(part.entity) && mr && mr->source == part.mesh &&
+                      (part.entity == target || !w.world.has<RigidBody>(part.entity));
+    if (!same) return finish(geometry::SplitStatus::InvalidInput, "a part of the target changed before its pieces were committed");
+  }
   if (!job.settings.handler.empty()) {
     const auto it = handlers_.find(job.settings.handler);
     if (it == handlers_.end())
       return finish(geometry::SplitStatus::InvalidInput, "no split handler named '" + job.settings.handler + "'");
     if (it->second(job, outcome) == HandlerDecision::KeepOriginal)
       return finish(geometry::SplitStatus::Ok, "the custom handler kept the original");
+    for (const PieceSpec& p : outcome.pieces)
+      if (!p.mesh)
+        return finish(geometry::SplitStatus::InvalidInput, "the custom handler gave a piece without a mesh");
+    for (const PieceSpec& p : outcome.pieces)
+      for (const HierarchyChildSpec& child : p.children)
+        if (!child.mesh || child.part >= job.hierarchyParts.size())
+          return finish(geometry::SplitStatus::InvalidInput, "the custom handler gave a child part without a mesh");
   }
   commitPieces(w, job, outcome, ev);
   return finish(geometry::SplitStatus::Ok, {});
@@ -813,7 +832,8 @@ bool attachRagdoll(CommitContext& c, const PieceSpec& spec, ecs::Entity e, ecs::
 
 void addHierarchyChildren(CommitContext& c, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform) {
   std::vector<ecs::Entity> children;
-  const std::string suffix = spec.name.substr(spec.name.rfind('/'));
+  const size_t slash = spec.name.rfind('/');
+  const std::string suffix = slash == std::string::npos ? std::string() : spec.name.substr(slash);
   for (const HierarchyChildSpec& childSpec : spec.children) {
     const HierarchyPartData& part = c.job.hierarchyParts[childSpec.part];
     const ecs::Entity child = c.commands.create();
@@ -824,8 +844,9 @@ void addHierarchyChildren(CommitContext& c, const PieceSpec& spec, ecs::Entity e
     renderer.visible = part.visible;
     if (c.w.renderer) {
       const double uploadStart = nowMs();
-      renderer.gpu = childSpec.packed ? c.w.renderer->uploadPacked(*childSpec.packed)
-                                      : c.w.renderer->uploadMesh(*childSpec.mesh);
+      renderer.gpu = childSpec.packed && childSpec.packedFrom == childSpec.mesh.get()
+                         ? c.w.renderer->uploadPacked(*childSpec.packed)
+                         : c.w.renderer->uploadMesh(*childSpec.mesh);
       c.ev.uploadMilliseconds += nowMs() - uploadStart;
     }
     c.commands.add<ecs::Transform>(child, ecs::Transform{});
@@ -926,7 +947,8 @@ void SplitSystem::commitPiece(CommitContext& c, PieceSpec& spec) {
   c.ev.shapeMilliseconds += nowMs() - shapeStart;
   if (c.w.renderer) {
     const double uploadStart = nowMs();
-    renderer.gpu = spec.packed ? c.w.renderer->uploadPacked(*spec.packed) : c.w.renderer->uploadMesh(*spec.mesh);
+    renderer.gpu = spec.packed && spec.packedFrom == spec.mesh.get() ? c.w.renderer->uploadPacked(*spec.packed)
+                                                                     : c.w.renderer->uploadMesh(*spec.mesh);
     c.ev.uploadMilliseconds += nowMs() - uploadStart;
   }
   addPieceComponents(c, spec, e, transform, std::move(renderer), velocity);

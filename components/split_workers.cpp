@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
+#include <string>
 
 #ifdef __linux__
 #include <sys/resource.h>
@@ -58,8 +60,14 @@ void SplitWorkers::giveScratch(std::unique_ptr<SplitComputeScratch> scratch) {
 
 void SplitWorkers::run(Task& task) {
   auto scratch = takeScratch();
-  computeSplit(*task.job, *scratch, task.outcome);
-  giveScratch(std::move(scratch));
+  try {
+    computeSplit(*task.job, *scratch, task.outcome);
+    giveScratch(std::move(scratch));
+  } catch (const std::exception& e) {  // out of memory, say: the split fails, the game goes on
+    task.outcome = SplitOutcome{};
+    task.outcome.status = geometry::SplitStatus::InvalidInput;
+    task.outcome.message = std::string("the split could not be computed: ") + e.what();
+  }
   {
     std::lock_guard<std::mutex> lock(task.mutex);
     task.done = true;
@@ -93,7 +101,10 @@ std::shared_ptr<SplitWorkers::Task> SplitWorkers::submit(std::shared_ptr<const S
   task->job = std::move(job);
   inFlight_.push_back(task);
   if (executor_) {
-    executor_([this, task] {
+    // A weak pointer: a task the host runs late, after it was waited for, keeps nothing alive.
+    executor_([this, weak = std::weak_ptr<Task>(task)] {
+      const std::shared_ptr<Task> task = weak.lock();
+      if (!task) return;
       {
         std::lock_guard<std::mutex> lock(task->mutex);
         if (task->started) return;  // the waiting thread took it

@@ -28,9 +28,11 @@ enum class SmallPieceMode : uint8_t {
 };
 
 enum class ColliderMode : uint8_t {
-  Auto,        // convex hull when the piece is convex within tolerance, else compound
-  ConvexHull,  // always the convex hull (cheapest, fills concavities)
-  Compound,    // convex parts from our own decomposition (recursive cuts until each part is convex)
+  // The convex collider parts carried with the mesh (ColliderParts): decomposed once per authored
+  // mesh, clipped by every cut's plane into the pieces; a convex mesh is one part.
+  Auto,
+  ConvexHull,  // always the convex hull of the piece (cheapest, fills concavities)
+  Compound,    // the carried parts too (the name scenes used for the decomposition)
   ConcaveMesh, // GImpact triangle mesh (exact, slowest)
 };
 

@@ -159,7 +159,11 @@ void clipInto(const ConvexPolytope& p, const glm::dvec3& n, double d, double tol
     out.faces.push_back(clipped);
   }
   sectionRing(out, s, n, tolerance);
-  if (s.ring.size() >= 3) {
+  if (s.ring.size() < 3) {  // the cut-off part is a sliver whose section collapses: keep `p` whole
+    out = p;
+    return;
+  }
+  {
     ConvexPolytope::Face cap;
     cap.normal = n;
     cap.offset = d;

@@ -158,6 +158,34 @@ TEST(SplitPipeline, HandlerEditsThePiecesOrKeepsTheOriginalWhole) {
   }
 }
 
+TEST(SplitPipeline, ASecondCutOfATargetInFlightWaitsAndRunsIfTheFirstKeptItWhole) {
+  Sim sim;
+  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+  setThreads(sim, 1, 2);
+  const ecs::Entity torus = sim.scene.find("torus");
+  sim.world.get<Splitable>(torus).handler = "test.second";
+  int calls = 0;
+  sim.splits.registerHandler("test.second", [&](const SplitJob&, SplitOutcome&) {
+    return ++calls == 1 ? HandlerDecision::KeepOriginal : HandlerDecision::Commit;
+  });
+  while (sim.splits.jobsInFlight() == 0 && sim.tick < 60) sim.step();
+  ASSERT_EQ(sim.splits.jobsInFlight(), 1u);
+  // Another cut while the first computes: it must wait in the queue, not be dropped.
+  SplitRequest r;
+  r.target = torus;
+  r.planeNormal = glm::dvec3(1, 0, 0);
+  r.planeOffset = 0.0;
+  r.requestedTick = sim.tick;
+  sim.splits.request(r);
+  std::vector<SplitEvent> events = sim.runUntil(sim.tick + 8);
+  ASSERT_EQ(calls, 2);
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_TRUE(events[0].pieces.empty());  // the first kept the torus whole
+  EXPECT_EQ(events[1].pieces.size(), 2u);  // the second cut it, after the first was committed
+  EXPECT_GT(events[1].preparedTick, events[0].tick - 1);
+  EXPECT_FALSE(sim.world.alive(torus));
+}
+
 TEST(SplitPipeline, PiecesCarryTheirPartsAndCutsOnlyClipThem) {
   Sim sim;
   ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
