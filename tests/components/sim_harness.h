@@ -50,6 +50,16 @@ struct Sim {
     return scene.ok;
   }
 
+  // Queues a cut of `target` by the world plane {x : dot(normal, x) = offset}, requested this tick.
+  void requestCut(ecs::Entity target, const glm::dvec3& normal, double offset) {
+    SplitRequest r;
+    r.target = target;
+    r.planeNormal = normal;
+    r.planeOffset = offset;
+    r.requestedTick = tick;
+    splits.request(r);
+  }
+
   // One tick. `afterSplit` runs between the Split and the PhysicsStep phases (the state right after
   // the pieces appeared); `afterStep` after the physics step, before the sync.
   void step(const std::function<void()>& afterSplit = {}, const std::function<void()>& afterStep = {}) {

@@ -171,12 +171,7 @@ TEST(SplitPipeline, ASecondCutOfATargetInFlightWaitsAndRunsIfTheFirstKeptItWhole
   while (sim.splits.jobsInFlight() == 0 && sim.tick < 60) sim.step();
   ASSERT_EQ(sim.splits.jobsInFlight(), 1u);
   // Another cut while the first computes: it must wait in the queue, not be dropped.
-  SplitRequest r;
-  r.target = torus;
-  r.planeNormal = glm::dvec3(1, 0, 0);
-  r.planeOffset = 0.0;
-  r.requestedTick = sim.tick;
-  sim.splits.request(r);
+  sim.requestCut(torus, glm::dvec3(1, 0, 0), 0.0);
   std::vector<SplitEvent> events = sim.runUntil(sim.tick + 8);
   ASSERT_EQ(calls, 2);
   ASSERT_EQ(events.size(), 2u);

@@ -240,12 +240,7 @@ TEST(SplitFailure, OpenMeshKeepsTheOriginalWholeWithItsMassAndMomentum) {
   sim.physics.setVelocity(body, glm::vec3(1.f, 0.f, 0.5f), glm::vec3(0.f, 2.f, 1.f));
   const double mass = sim.world.get<MassInfo>(e).mass;
 
-  SplitRequest r;
-  r.target = e;
-  r.planeNormal = glm::dvec3(0, 1, 0);
-  r.planeOffset = 3.0;
-  r.requestedTick = sim.tick;
-  sim.splits.request(r);
+  sim.requestCut(e, glm::dvec3(0, 1, 0), 3.0);
   sim.step();
   EXPECT_TRUE(sim.splits.lastEvents().empty());  // requested in this tick: prepared in the next one
   sim.step();
