@@ -64,15 +64,15 @@ struct SplitBudgetSettings {
   // per triangle, per unit of collider-part work (geometry::partsWork: clipping and shrinking), and
   // per triangle again when the collider parts are decomposed in the cut (a mesh's first cut, and
   // skinned pieces on a rigid body, whose posed pieces are decomposed every cut).
-  double estimatedMainMilliseconds = 0.011;
+  double estimatedMainMilliseconds = 0.006;
   double estimatedMainMillisecondsPerPart = 0.006;
   double estimatedMainMillisecondsPerTriangle = 0.00002;
   double estimatedSkinnedMainMilliseconds = 0.02;
-  double estimatedRagdollMainMilliseconds = 0.05;
-  double estimatedSkinnedMainMillisecondsPerTriangle = 0.000023;
+  double estimatedRagdollMainMilliseconds = 0.03;
+  double estimatedSkinnedMainMillisecondsPerTriangle = 0.000018;
   double estimatedWorkerMilliseconds = 0.01;
   double estimatedWorkerMillisecondsPerTriangle = 0.00012;
-  double estimatedWorkerMillisecondsPerPartWork = 0.0001;
+  double estimatedWorkerMillisecondsPerPartWork = 0.00004;
   double estimatedDecomposeMillisecondsPerTriangle = 0.004;
 };
 

@@ -134,7 +134,7 @@ void clipPartsToPieces(const ColliderPartSet& parts, const Plane& plane, const S
 
 double partsWork(const ColliderPartSet& parts) {
   double work = 0.0;
-  for (const ConvexPolytope& part : parts) work += double(part.vertices.size()) * double(part.faces.size());
+  for (const ConvexPolytope& part : parts) work += double(part.vertices.size()) * double(part.corners.size());
   return work;
 }
 

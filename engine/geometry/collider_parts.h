@@ -58,9 +58,9 @@ struct PartClipOptions {
 void clipPartsToPieces(const ColliderPartSet& parts, const Plane& plane, const SplitResult& result,
                        const PartClipOptions& options, std::vector<ColliderPartSet>& out);
 
-// What clipping and shrinking the parts costs, in units of one vertex-face pair (the shrink of a part
-// clips it once per face): the sum over parts of vertices x faces. The split budget's estimates
-// scale with it.
+// What clipping and shrinking the parts costs, in units of one vertex-corner pair (the shrink of a
+// part clips it once per face plane, each clip walks every face corner): the sum over parts of
+// vertices x face corners. The split budget's estimates scale with it.
 double partsWork(const ColliderPartSet& parts);
 
 // Sum of the part volumes (overlaps counted twice; our parts do not overlap).

@@ -390,10 +390,10 @@ bool DemoGame::setup(app::App& app, std::string* error) {
   app_ = &app;
   components::SplitBudgetSettings budget;
   // Main-thread split work is kept under 4 ms a tick: the estimates are fitted to single cuts and
-  // run 2-3x low in a burst (many uploads and bodies at once), so the budget is 1.5 ms of estimate.
+  // run 2-3x low in a burst (many uploads and bodies at once), so the budget is 1 ms of estimate.
   // 6 ms of compute is started per tick (a third of a frame on one worker). Charged by estimate, so
   // replays are the same on any machine and thread count.
-  budget.millisecondsPerTick = 1.5;
+  budget.millisecondsPerTick = 1.0;
   budget.workerMillisecondsPerTick = 6.0;
   budget.maxSplitsPerTick = 32;
   if (app.options().splitThreads >= 0) budget.threads = uint32_t(app.options().splitThreads);
