@@ -337,6 +337,7 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
     out.computeMilliseconds = nowMs() - start;
     return;
   }
+  out.openChains = s.result.openChains;
   PieceContext c{job, s, 0.0, false, glm::dvec3(0.0), {}, {}, false};
   for (const auto& piece : s.result.pieces) c.totalVolume += std::max(piece.mass.volume, 0.0);
   if (!(c.totalVolume > 0.0)) {

@@ -170,6 +170,7 @@ struct SplitOutcome {
   geometry::SplitStatus status = geometry::SplitStatus::Ok;
   std::string message;
   std::vector<PieceSpec> pieces;
+  uint32_t openChains = 0;  // section chains left open (geometry::SplitResult::openChains)
   // Worked out for the source in compute, for the split system to keep (null: nothing new).
   std::shared_ptr<const geometry::MeshWeld> sourceWeld;
   geometry::SharedColliderParts sourceParts;

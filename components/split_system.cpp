@@ -634,6 +634,7 @@ geometry::SplitOptions optionsFor(const Splitable& sp, bool hierarchy) {
   // The parts of a hierarchy are usually disjoint meshes (a head above a body) that form one
   // object: each side stays one piece.
   options.separateIslands = sp.separateIslands && !hierarchy;
+  options.openSections = sp.openSections;
   return options;
 }
 
@@ -721,6 +722,7 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
   ev.setupMilliseconds = outcome.setupMilliseconds;
   ev.geometryMilliseconds = outcome.geometryMilliseconds;
   ev.colliderMilliseconds = outcome.colliderMilliseconds;
+  ev.openChains = outcome.openChains;
   // What compute worked out for the source is kept whatever happens next.
   if (job.mesh && (outcome.sourceWeld || outcome.sourceParts)) {
     Scratch::Known& k = scratch_->entry(job.mesh);

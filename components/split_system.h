@@ -63,6 +63,7 @@ struct SplitEvent {
   std::vector<uint32_t> capLoops;  // per piece: boundary loops capped on it (2 for an annulus)
   std::vector<PieceKind> kinds;    // per piece
   std::vector<double> colliderFit; // per piece: collider volume / piece volume (0 without collider)
+  uint32_t openChains = 0;         // section chains left open (art not watertight where cut)
   geometry::SplitStatus status = geometry::SplitStatus::Ok;
   std::string message;
   double parentMass = 0.0;

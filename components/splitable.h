@@ -66,6 +66,9 @@ struct Splitable {
   double minPieceVolume = 1e-6;             // m^3
   SmallPieceMode smallPieces = SmallPieceMode::Debris;
   bool separateIslands = true;
+  // Art that is not watertight where it is cut: cut anyway, capping the closed loops (default), or
+  // keep the object whole.
+  geometry::OpenSectionMode openSections = geometry::OpenSectionMode::CapClosedLoops;
   ColliderMode collider = ColliderMode::Auto;
   uint32_t maxDepth = 12;                   // pieces this many cuts deep are no longer splitable
   std::string handler;                      // a custom split handler registered under this name

@@ -238,6 +238,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint32_t> capTriangles_;  // into loopIds_, counter-clockwise seen from +normal
   std::vector<std::pair<double, uint32_t>> angular_;
   uint32_t openChains_ = 0;
+  bool piecesClosed_ = false;  // this split's pieces are closed on their weld ids
   uint32_t closedLoops_ = 0;
   uint32_t slotCount_ = 0;  // output runs of the input
   uint32_t capSlot_ = 0;
@@ -311,6 +312,8 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   result.status = SplitStatus::Ok;
   result.message.clear();
   result.sectionLoops = 0;
+  result.openChains = 0;
+  result.sidesDisagree = false;
   container_ = &container;
   mesh_ = &container.mesh();
   const MeshData& mesh = *mesh_;
@@ -453,11 +456,13 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   for (uint64_t k : boundary_[1]) segments_.push_back(directedKey(keyTo(k), keyFrom(k)));
   std::sort(segments_.begin(), segments_.end());
   const bool sidesAgree = segments_ == boundary_[0];
-  if (options.cap && !sidesAgree) {
+  const bool refuseOpen = options.openSections == OpenSectionMode::Refuse;
+  if (options.cap && !sidesAgree && refuseOpen) {
     return fail(result, SplitStatus::OpenSection,
                 "the section differs between the two sides of the plane: the mesh is non-manifold or "
                 "self-intersecting where it is cut");
   }
+  result.sidesDisagree = !sidesAgree;
   // The projection basis depends on the normal only, so world-planar cap UVs line up across cuts.
   {
     const glm::dvec3 an = glm::abs(normal_);
@@ -472,11 +477,14 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   }
   buildLoops();
   result.sectionLoops = closedLoops_;
-  if (options.cap && openChains_ > 0) {
+  result.openChains = options.cap ? openChains_ : 0;
+  // Pieces are closed on their ids only when the source is and every section loop closes.
+  piecesClosed_ = options.cap && container_->closed() && openChains_ == 0 && sidesAgree;
+  if (options.cap && openChains_ > 0 && refuseOpen) {
     return fail(result, SplitStatus::OpenSection,
                 "the section has " + std::to_string(openChains_) +
-                    " open chain(s): the mesh is open or non-manifold where it is cut (use cap = false for "
-                    "a hollow split)");
+                    " open chain(s): the mesh is open or non-manifold where it is cut (a hollow split, or "
+                    "OpenSectionMode::CapClosedLoops, cuts it anyway)");
   }
 
   // 5. Caps.
@@ -651,7 +659,7 @@ void Splitter::buildLoops() {
       at = keyTo(segments_[next]);
     }
     if (!closed) {
-      ++openChains_;
+      ++openChains_;  // a fragment; the chains are counted by their starts below
       loopIds_.resize(begin);
       continue;
     }
@@ -660,6 +668,18 @@ void Splitter::buildLoops() {
     loop.begin = begin;
     loop.end = static_cast<uint32_t>(loopIds_.size());
     loops_.push_back(loop);
+  }
+  if (openChains_ > 0) {
+    // A walk that starts inside an open chain stops at its end and leaves the part before it as a
+    // fragment of its own: count the chains by their starts (a segment no other segment leads to).
+    std::vector<uint32_t> ends;
+    ends.reserve(segments_.size());
+    for (uint64_t k : segments_) ends.push_back(keyTo(k));
+    std::sort(ends.begin(), ends.end());
+    openChains_ = 0;
+    for (uint64_t k : segments_)
+      if (!std::binary_search(ends.begin(), ends.end(), keyFrom(k))) ++openChains_;
+    openChains_ = std::max<uint32_t>(openChains_, 1);
   }
   // The scale of float rounding at the section: cut points are computed from float source positions,
   // so re-cut sections carry zig-zag runs and near-coincident points a few ulps of the coordinates
@@ -1246,7 +1266,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
       }
       gatherVertices(m);
       if (weldKnown) {
-        pieceWeld(out.weld, options.cap && container_->closed());
+        pieceWeld(out.weld, piecesClosed_);
       } else {
         out.weld.positionIds.clear();
         out.weld.representatives.clear();
@@ -1257,7 +1277,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
       }
       collectUsedJoints(m, out.joints);
       if (options.computeMass) {
-        if (options.cap && container_->closed()) {
+        if (piecesClosed_) {
           out.mass = integrateClosedSurface(pieceCut_, m.indices, mirrored_, true);
         } else {
           std::span<const uint32_t> indices = m.indices;

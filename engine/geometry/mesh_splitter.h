@@ -49,8 +49,18 @@ enum class CapUvMode : uint8_t {
   NormalizedBounds,  // u,v in [0,1] over the bounds of the cap (per border or per cap), as in the thesis
 };
 
+// What a capped split does with a section that is not made of closed loops only (art that is not
+// watertight, or non-manifold where it is cut).
+enum class OpenSectionMode : uint8_t {
+  Refuse,          // the split fails with OpenSection; the caller keeps its object whole
+  CapClosedLoops,  // cut everything, cap the closed loops, leave the open chains uncapped (reported
+                   // in SplitResult::openChains); pieces along an open chain are open, and their mass
+                   // properties come from their convex hull (MassProperties::fromConvexHull)
+};
+
 struct SplitOptions {
   bool cap = true;                      // false: hollow mode, no cap triangles, open sections allowed
+  OpenSectionMode openSections = OpenSectionMode::CapClosedLoops;
   uint32_t capMaterialId = 1;           // material of the cap submesh (reused if the mesh already has it)
   CapUvMode uvMode = CapUvMode::WorldPlanar;
   double uvPerMetre = 1.0;              // WorldPlanar scale: UV units per metre of cut space
@@ -95,6 +105,8 @@ struct SplitResult {
   std::string message;          // a reason a person can act on, empty when Ok
   std::vector<SplitPiece> pieces;  // above pieces first, then below; each side ordered deterministically
   uint32_t sectionLoops = 0;    // closed loops found in the section
+  uint32_t openChains = 0;      // open chains of the section, left uncapped (CapClosedLoops)
+  bool sidesDisagree = false;   // the section differed between the two sides (non-manifold where cut)
 };
 
 // The thesis's MeshContainer: caches the source arrays, welds vertices by position into position ids

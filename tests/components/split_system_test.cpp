@@ -208,9 +208,8 @@ TEST(Splitters, OneTickSplitterCutsOnlyWhatItTouchesInItsTick) {
   EXPECT_EQ(sim.dynamicBodies().size(), 6u);
 }
 
-TEST(SplitFailure, OpenMeshKeepsTheOriginalWholeWithItsMassAndMomentum) {
-  Sim sim;
-  // A box without its +x face: open, so a cap cannot close the section of a horizontal cut.
+// A box without its +x face: open, so a cap cannot close the section of a horizontal cut.
+geometry::MeshData openBox() {
   geometry::MeshData open = geometry::primitives::box(glm::vec3(0.3f));
   std::vector<uint32_t> kept;
   for (size_t t = 0; t + 2 < open.indices.size(); t += 3) {
@@ -219,9 +218,14 @@ TEST(SplitFailure, OpenMeshKeepsTheOriginalWholeWithItsMassAndMomentum) {
     if (glm::normalize(glm::cross(b - a, c - a)).x > 0.9f) continue;
     kept.insert(kept.end(), {open.indices[t], open.indices[t + 1], open.indices[t + 2]});
   }
-  ASSERT_EQ(kept.size(), open.indices.size() - 6);
+  EXPECT_EQ(kept.size(), open.indices.size() - 6);
   open.indices = kept;
+  return open;
+}
 
+// An open box on a dynamic body at height 3, its Splitable with `mode`.
+ecs::Entity addOpenBox(Sim& sim, geometry::OpenSectionMode mode) {
+  const geometry::MeshData open = openBox();
   const ecs::Entity e = sim.world.create();
   ecs::Transform t;
   t.position = glm::vec3(0.f, 3.f, 0.f);
@@ -232,10 +236,19 @@ TEST(SplitFailure, OpenMeshKeepsTheOriginalWholeWithItsMassAndMomentum) {
   mr.source = std::make_shared<geometry::MeshData>(open);
   mr.materials = {render::Material{}};
   sim.world.add<MeshRenderer>(e, mr);
-  sim.world.add<Splitable>(e, Splitable{});
+  Splitable sp;
+  sp.openSections = mode;
+  sim.world.add<Splitable>(e, sp);
   SplitWorld sw = sim.sw();
   std::string error;
-  ASSERT_TRUE(makeDynamicBody(sw, e, 500.0, ColliderMode::Auto, &error)) << error;
+  EXPECT_TRUE(makeDynamicBody(sw, e, 500.0, ColliderMode::Auto, &error)) << error;
+  return e;
+}
+
+TEST(SplitFailure, OpenMeshKeepsTheOriginalWholeWithItsMassAndMomentumWhenAskedToRefuse) {
+  Sim sim;
+  const ecs::Entity e = addOpenBox(sim, geometry::OpenSectionMode::Refuse);
+  ASSERT_TRUE(sim.world.has<RigidBody>(e));
   const physics::BodyId body = sim.world.get<RigidBody>(e).body;
   sim.physics.setVelocity(body, glm::vec3(1.f, 0.f, 0.5f), glm::vec3(0.f, 2.f, 1.f));
   const double mass = sim.world.get<MassInfo>(e).mass;
@@ -261,6 +274,28 @@ TEST(SplitFailure, OpenMeshKeepsTheOriginalWholeWithItsMassAndMomentum) {
   EXPECT_EQ(post.mass, pre.mass);
   EXPECT_EQ(post.linear, pre.linear);
   EXPECT_EQ(post.angular, pre.angular);
+}
+
+TEST(SplitOpenArt, OpenMeshIsCutByDefaultWithItsOpenChainReported) {
+  Sim sim;
+  const ecs::Entity e = addOpenBox(sim, geometry::OpenSectionMode::CapClosedLoops);
+  ASSERT_TRUE(sim.world.has<RigidBody>(e));
+  sim.requestCut(e, glm::dvec3(0, 1, 0), 3.0);
+  std::vector<SplitEvent> events = sim.runUntil(sim.tick + 3);
+  ASSERT_EQ(events.size(), 1u);
+  const SplitEvent& ev = events[0];
+  ASSERT_EQ(ev.status, geometry::SplitStatus::Ok) << ev.message;
+  EXPECT_EQ(ev.openChains, 1u);
+  ASSERT_EQ(ev.pieces.size(), 2u);
+  EXPECT_FALSE(sim.world.alive(e));
+  double volume = 0.0;
+  for (ecs::Entity piece : ev.pieces) {
+    const MassInfo& info = sim.world.get<MassInfo>(piece);
+    EXPECT_FALSE(info.closed);  // open along the chain: the mass of its convex hull
+    volume += info.volume;
+    EXPECT_TRUE(sim.world.has<RigidBody>(piece));
+  }
+  EXPECT_NEAR(volume, 0.6 * 0.6 * 0.6, 1e-6);  // the hulls of two boxes: the whole box
 }
 
 struct BudgetRun {

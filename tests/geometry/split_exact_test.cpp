@@ -518,13 +518,67 @@ TEST(ConcaveSplitter, HollowModeMakesNoCapsAndAllowsOpenSections) {
   }
   MeshData open = seamCube();
   open.indices.resize(open.indices.size() - 6);  // drop the z = 0 face
-  s = run(open, planeOf({1, 0, 0}, 0.5));
+  SplitOptions refuse;
+  refuse.openSections = OpenSectionMode::Refuse;
+  s = run(open, planeOf({1, 0, 0}, 0.5), refuse);
   EXPECT_EQ(s.status, SplitStatus::OpenSection);
   EXPECT_TRUE(s.result.pieces.empty());
   EXPECT_FALSE(s.result.message.empty());
   s = run(open, planeOf({1, 0, 0}, 0.5), hollow);
   EXPECT_EQ(s.status, SplitStatus::Ok);
   EXPECT_EQ(s.result.pieces.size(), 2u);
+}
+
+// Art that is not watertight is cut anyway (the default, OpenSectionMode::CapClosedLoops): the
+// closed loops of the section are capped, the open chains are left open and counted, and pieces
+// along an open chain are open (weld not closed, mass from the hull).
+TEST(ConcaveSplitter, OpenArtIsCutWithItsClosedLoopsCappedAndItsOpenChainsReported) {
+  MeshData open = seamCube();
+  open.indices.resize(open.indices.size() - 6);  // drop the z = 0 face
+  Split s = run(open, planeOf({1, 0, 0}, 0.5));
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  ASSERT_EQ(s.result.pieces.size(), 2u);
+  EXPECT_EQ(s.result.openChains, 1u);
+  EXPECT_EQ(s.result.sectionLoops, 0u);
+  for (const SplitPiece& piece : s.result.pieces) {
+    EXPECT_EQ(piece.capTriangles, 0u);
+    EXPECT_FALSE(piece.weld.closed);
+    EXPECT_TRUE(piece.mass.fromConvexHull);
+    EXPECT_NEAR(piece.mass.volume, 0.5, 1e-12);  // the hull of half a cube
+  }
+  // Parallel to the missing face: the section is a closed loop and is capped.
+  s = run(open, planeOf({0, 0, 1}, 0.25));
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  EXPECT_EQ(s.result.openChains, 0u);
+  EXPECT_EQ(s.result.sectionLoops, 1u);
+  for (const SplitPiece& piece : s.result.pieces) EXPECT_EQ(piece.capLoops, 1u);
+
+  // A closed sphere and an open one cut together: the closed one's loop is capped, the other's chain
+  // reported.
+  MeshData closedBall = primitives::uvSphere(0.5f, 16, 8);
+  MeshData openBall = primitives::uvSphere(0.5f, 16, 8);
+  primitives::transform(openBall, glm::translate(glm::mat4(1.f), glm::vec3(2.f, 0.f, 0.f)));
+  std::vector<uint32_t> kept;
+  for (size_t t = 0; t + 2 < openBall.indices.size(); t += 3) {
+    const glm::vec3 c = (openBall.positions[openBall.indices[t]] + openBall.positions[openBall.indices[t + 1]] +
+                         openBall.positions[openBall.indices[t + 2]]) / 3.f;
+    if (c.z > 0.3f && std::abs(c.y) < 0.2f) continue;  // a window across the equator
+    kept.insert(kept.end(), {openBall.indices[t], openBall.indices[t + 1], openBall.indices[t + 2]});
+  }
+  ASSERT_LT(kept.size(), openBall.indices.size());
+  openBall.indices = kept;
+  s = run(primitives::merge(closedBall, openBall), planeOf({0, 1, 0}, 0.01));
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  EXPECT_EQ(s.result.openChains, 1u);
+  EXPECT_EQ(s.result.sectionLoops, 1u);
+  size_t capped = 0;
+  for (const SplitPiece& piece : s.result.pieces) capped += piece.capLoops;
+  EXPECT_EQ(capped, 2u);  // the closed sphere's loop, on both of its halves
+  SplitOptions refuse;
+  refuse.openSections = OpenSectionMode::Refuse;
+  s = run(primitives::merge(closedBall, openBall), planeOf({0, 1, 0}, 0.01), refuse);
+  EXPECT_EQ(s.status, SplitStatus::OpenSection);
+  EXPECT_TRUE(s.result.pieces.empty());
 }
 
 // Islands of an open sheet (hollow mode): triangles joined only at a vertex are one island. The

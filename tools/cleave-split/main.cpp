@@ -39,8 +39,8 @@ constexpr int kMaxRepeat = 1000000;
 
 constexpr const char* kUsage =
     "usage: cleave-split INPUT --plane NX NY NZ D [--out DIR] [--format obj|glb] [--hollow]\n"
-    "                    [--no-islands] [--uv world|bounds] [--pose CLIP:SECONDS] [--repeat N]\n"
-    "                    [--json]\n"
+    "                    [--open refuse|cap-closed] [--no-islands] [--uv world|bounds]\n"
+    "                    [--pose CLIP:SECONDS] [--repeat N] [--json]\n"
     "\n"
     "Cuts the mesh in INPUT (.obj .off .stl .ply .gltf .glb) by the plane {x : dot(n, x) = D}.\n"
     "The normal n is normalised (and D scaled with it); 'above' means dot(n, x) > D.\n"
@@ -49,6 +49,8 @@ constexpr const char* kUsage =
     "  --out DIR           write piece_<k>_<above|below>.<format> per piece into DIR\n"
     "  --format obj|glb    output format for --out (default obj)\n"
     "  --hollow            do not cap the cut (open sections allowed)\n"
+    "  --open MODE         a section that is not all closed loops (open art): cap-closed (default)\n"
+    "                      caps the closed loops and leaves the open chains open; refuse fails\n"
     "  --no-islands        keep each side as one piece even when it falls apart\n"
     "  --uv world|bounds   cap texture coordinates: world-planar (default) or normalised bounds\n"
     "  --pose CLIP:SECONDS cut the skinned mesh of a glTF model posed by clip CLIP (name or index)\n"
@@ -70,6 +72,7 @@ struct Arguments {
   std::optional<std::string> outDir;
   std::string format = "obj";
   bool hollow = false;
+  geometry::OpenSectionMode open = geometry::OpenSectionMode::CapClosedLoops;
   bool islands = true;
   geometry::CapUvMode uvMode = geometry::CapUvMode::WorldPlanar;
   int repeat = 1;
@@ -140,6 +143,16 @@ bool parseArguments(int argc, char** argv, Arguments& args, std::string& error) 
       }
     } else if (arg == "--hollow") {
       args.hollow = true;
+    } else if (arg == "--open") {
+      const std::string mode = i + 1 < list.size() ? std::string(list[++i]) : std::string();
+      if (mode == "refuse") {
+        args.open = geometry::OpenSectionMode::Refuse;
+      } else if (mode == "cap-closed") {
+        args.open = geometry::OpenSectionMode::CapClosedLoops;
+      } else {
+        error = "--open must be refuse or cap-closed, not '" + mode + "'";
+        return false;
+      }
     } else if (arg == "--no-islands") {
       args.islands = false;
     } else if (arg == "--uv") {
@@ -325,6 +338,7 @@ int main(int argc, char** argv) {
 
   geometry::SplitOptions options;
   options.cap = !args.hollow;
+  options.openSections = args.open;
   options.separateIslands = args.islands;
   options.uvMode = args.uvMode;
   options.computeMass = true;
@@ -442,6 +456,7 @@ int main(int argc, char** argv) {
     out["status"] = geometry::toString(result.status);
     if (!splitOk) out["message"] = result.message;
     out["section_loops"] = result.sectionLoops;
+    out["open_chains"] = result.openChains;
     nlohmann::ordered_json pieces = nlohmann::ordered_json::array();
     for (const geometry::SplitPiece& piece : result.pieces) {
       nlohmann::ordered_json p;
@@ -478,6 +493,9 @@ int main(int argc, char** argv) {
                 plane.normal.z, plane.offset);
     std::printf("status: %s%s%s\n", geometry::toString(result.status), splitOk ? "" : ": ",
                 splitOk ? "" : result.message.c_str());
+    if (result.openChains > 0)
+      std::printf("section: %u closed loop(s) capped, %u open chain(s) left open (the mesh is open or "
+                  "non-manifold where it is cut)\n", result.sectionLoops, result.openChains);
     double total = 0.0;
     for (size_t k = 0; k < result.pieces.size(); ++k) {
       const geometry::SplitPiece& piece = result.pieces[k];
@@ -496,9 +514,12 @@ int main(int argc, char** argv) {
                 medianMs, minMs, times.size(), times.size() == 1 ? "" : "s", median(setupTimes));
   }
   if (!splitOk) {
-    std::fprintf(stderr, "cleave-split: %s: split failed: %s%s%s\n", args.input.c_str(),
+    const char* hint = result.status == geometry::SplitStatus::OpenSection
+                           ? " (--open cap-closed cuts it and leaves the open chains open; --hollow cuts it uncapped)"
+                           : "";
+    std::fprintf(stderr, "cleave-split: %s: split failed: %s%s%s%s\n", args.input.c_str(),
                  geometry::toString(result.status), result.message.empty() ? "" : ": ",
-                 result.message.c_str());
+                 result.message.c_str(), hint);
     return kExitData;
   }
   return 0;
