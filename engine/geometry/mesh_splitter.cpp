@@ -483,8 +483,7 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   if (options.cap && openChains_ > 0 && refuseOpen) {
     return fail(result, SplitStatus::OpenSection,
                 "the section has " + std::to_string(openChains_) +
-                    " open chain(s): the mesh is open or non-manifold where it is cut (a hollow split, or "
-                    "OpenSectionMode::CapClosedLoops, cuts it anyway)");
+                    " open chain(s): the mesh is open or non-manifold where it is cut");
   }
 
   // 5. Caps.
