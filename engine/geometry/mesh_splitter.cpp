@@ -239,6 +239,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<std::pair<double, uint32_t>> angular_;
   uint32_t openChains_ = 0;
   bool piecesClosed_ = false;  // this split's pieces are closed on their weld ids
+  uint32_t uncappedLoops_ = 0;  // closed loops of open art left open (they could not be capped)
   uint32_t closedLoops_ = 0;
   uint32_t slotCount_ = 0;  // output runs of the input
   uint32_t capSlot_ = 0;
@@ -313,6 +314,7 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   result.message.clear();
   result.sectionLoops = 0;
   result.openChains = 0;
+  result.uncappedLoops = 0;
   result.sidesDisagree = false;
   container_ = &container;
   mesh_ = &container.mesh();
@@ -492,6 +494,7 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   if (options.cap) {
     std::string why;
     if (!capSection(options, why)) return fail(result, SplitStatus::TriangulationFailed, why);
+    result.uncappedLoops = uncappedLoops_;
     makeCapVertices(options);
     const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
     for (size_t k = 0; k < capTriangles_.size(); k += 3) {
@@ -827,7 +830,9 @@ bool Splitter::tryConvexCap() {
 }
 
 bool Splitter::capSection(const SplitOptions& options, std::string& why) {
-  (void)options;
+  // Pieces that are open anyway (open art) keep what cannot be capped open instead of failing.
+  const bool lenient = options.openSections == OpenSectionMode::CapClosedLoops && !piecesClosed_;
+  uncappedLoops_ = 0;
   if (convexFastPath_ && tryConvexCap()) {
     loops_[0].capped = true;
     return true;
@@ -854,6 +859,11 @@ bool Splitter::capSection(const SplitOptions& options, std::string& why) {
       hole.outer = static_cast<uint32_t>(o);
     }
     if (hole.outer == kNone) {
+      if (lenient) {  // open art wound both ways: this loop stays open, the rest is capped
+        hole.capped = false;
+        ++uncappedLoops_;
+        continue;
+      }
       why = "cap triangulation failed: a hole loop of the section lies outside every outer loop "
             "(inconsistent winding of the input)";
       return false;
@@ -867,7 +877,17 @@ bool Splitter::capSection(const SplitOptions& options, std::string& why) {
     for (const LoopInfo& hole : loops_) {
       if (hole.capped && hole.outer == o) rings_.push_back({hole.begin, hole.end});
     }
+    const size_t before = capTriangles_.size();
     if (!triangulator_.triangulate(points_, rings_, capTriangles_, capTolerance_)) {
+      if (lenient) {  // open art that overlaps itself here: this border and its holes stay open
+        capTriangles_.resize(before);
+        for (LoopInfo& loop : loops_) {
+          if (&loop != &outer && loop.outer != o) continue;
+          loop.capped = false;
+          ++uncappedLoops_;
+        }
+        continue;
+      }
       why = "cap triangulation failed for a border of " + std::to_string(outer.end - outer.begin) + " points with " +
             std::to_string(rings_.size() - 1) + " hole(s): the section polygon overlaps itself";
       return false;

@@ -55,7 +55,9 @@ enum class OpenSectionMode : uint8_t {
   Refuse,          // the split fails with OpenSection; the caller keeps its object whole
   CapClosedLoops,  // cut everything, cap the closed loops, leave the open chains uncapped (reported
                    // in SplitResult::openChains); pieces along an open chain are open, and their mass
-                   // properties come from their convex hull (MassProperties::fromConvexHull)
+                   // properties come from their convex hull (MassProperties::fromConvexHull). When
+                   // the pieces are open anyway, a loop that cannot be capped is left open too
+                   // (SplitResult::uncappedLoops) instead of failing the split.
 };
 
 struct SplitOptions {
@@ -106,6 +108,9 @@ struct SplitResult {
   std::vector<SplitPiece> pieces;  // above pieces first, then below; each side ordered deterministically
   uint32_t sectionLoops = 0;    // closed loops found in the section
   uint32_t openChains = 0;      // open chains of the section, left uncapped (CapClosedLoops)
+  // Closed loops of open art that could not be capped (wound against the others, or overlapping
+  // themselves) and were left open instead of failing the split (CapClosedLoops, open pieces only).
+  uint32_t uncappedLoops = 0;
   bool sidesDisagree = false;   // the section differed between the two sides (non-manifold where cut)
 };
 

@@ -581,6 +581,37 @@ TEST(ConcaveSplitter, OpenArtIsCutWithItsClosedLoopsCappedAndItsOpenChainsReport
   EXPECT_TRUE(s.result.pieces.empty());
 }
 
+// Open art whose shells are wound both ways: a loop that cannot be capped (it would be a hole outside
+// every border) is left open and counted, the others are capped; the strict mode refuses the cut.
+TEST(ConcaveSplitter, OpenArtLeavesALoopThatCannotBeCappedOpen) {
+  MeshData windowed = primitives::uvSphere(0.5f, 16, 8);
+  std::vector<uint32_t> kept;
+  for (size_t t = 0; t + 2 < windowed.indices.size(); t += 3) {
+    const glm::vec3 c = (windowed.positions[windowed.indices[t]] + windowed.positions[windowed.indices[t + 1]] +
+                         windowed.positions[windowed.indices[t + 2]]) / 3.f;
+    if (c.y > 0.4f) continue;  // open at the top, far from the cut
+    kept.insert(kept.end(), {windowed.indices[t], windowed.indices[t + 1], windowed.indices[t + 2]});
+  }
+  windowed.indices = kept;
+  MeshData inward = primitives::uvSphere(0.5f, 16, 8);
+  primitives::transform(inward, glm::translate(glm::mat4(1.f), glm::vec3(2.f, 0.f, 0.f)));
+  for (size_t t = 0; t + 2 < inward.indices.size(); t += 3) std::swap(inward.indices[t + 1], inward.indices[t + 2]);
+  const MeshData art = primitives::merge(windowed, inward);
+  Split s = run(art, planeOf({0, 1, 0}, 0.01));
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  EXPECT_EQ(s.result.sectionLoops, 2u);
+  EXPECT_EQ(s.result.uncappedLoops, 1u);
+  EXPECT_EQ(s.result.openChains, 0u);
+  size_t capped = 0;
+  for (const SplitPiece& piece : s.result.pieces) capped += piece.capLoops;
+  EXPECT_EQ(capped, 2u);  // the outward sphere's loop, on both halves
+  SplitOptions refuse;
+  refuse.openSections = OpenSectionMode::Refuse;
+  s = run(art, planeOf({0, 1, 0}, 0.01), refuse);
+  EXPECT_EQ(s.status, SplitStatus::TriangulationFailed);
+  EXPECT_TRUE(s.result.pieces.empty());
+}
+
 // Islands of an open sheet (hollow mode): triangles joined only at a vertex are one island. The
 // first triangle lists its corners with ids 2, 0, 1, so its union links 2 to 0 and then 2 to 1; the
 // second shares only vertex 0 with it. Linking a vertex that is no longer a root would drop the link

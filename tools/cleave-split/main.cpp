@@ -457,6 +457,7 @@ int main(int argc, char** argv) {
     if (!splitOk) out["message"] = result.message;
     out["section_loops"] = result.sectionLoops;
     out["open_chains"] = result.openChains;
+    out["uncapped_loops"] = result.uncappedLoops;
     nlohmann::ordered_json pieces = nlohmann::ordered_json::array();
     for (const geometry::SplitPiece& piece : result.pieces) {
       nlohmann::ordered_json p;
@@ -493,9 +494,9 @@ int main(int argc, char** argv) {
                 plane.normal.z, plane.offset);
     std::printf("status: %s%s%s\n", geometry::toString(result.status), splitOk ? "" : ": ",
                 splitOk ? "" : result.message.c_str());
-    if (result.openChains > 0)
-      std::printf("section: %u closed loop(s) capped, %u open chain(s) left open (the mesh is open or "
-                  "non-manifold where it is cut)\n", result.sectionLoops, result.openChains);
+    if (result.openChains > 0 || result.uncappedLoops > 0)
+      std::printf("section: %u closed loop(s), %u left open; %u open chain(s) left open (the mesh is open or "
+                  "non-manifold where it is cut)\n", result.sectionLoops, result.uncappedLoops, result.openChains);
     double total = 0.0;
     for (size_t k = 0; k < result.pieces.size(); ++k) {
       const geometry::SplitPiece& piece = result.pieces[k];
