@@ -1320,6 +1320,21 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
 }  // namespace
 
 std::unique_ptr<IMeshSplitter> makeConcaveSplitter() { return std::make_unique<Splitter>(false); }
+
+SplitResult splitMesh(const MeshData& mesh, const glm::mat4& model, const Plane& plane, const SplitOptions& options) {
+  SplitResult result;
+  MeshContainer container;
+  std::string message;
+  if (container.setMesh(mesh, &message) != SplitStatus::Ok) {
+    result.status = SplitStatus::InvalidInput;
+    result.message = message;
+    return result;
+  }
+  container.setTransform(model);
+  Splitter splitter(false);
+  splitter.split(container, plane, options, result);
+  return result;
+}
 std::unique_ptr<IMeshSplitter> makeConvexSplitter() { return std::make_unique<Splitter>(true); }
 
 }  // namespace cleave::geometry

@@ -612,6 +612,27 @@ TEST(ConcaveSplitter, OpenArtLeavesALoopThatCannotBeCappedOpen) {
   EXPECT_TRUE(s.result.pieces.empty());
 }
 
+// The one-call API gives what a container and a splitter give.
+TEST(SplitMesh, OneCallCutsLikeAContainerAndASplitter) {
+  const glm::mat4 model = glm::translate(glm::mat4(1.f), glm::vec3(1.f, 2.f, 3.f));
+  const SplitResult one = splitMesh(seamCube(), model, planeOf({1, 0, 0}, 1.3));
+  ASSERT_EQ(one.status, SplitStatus::Ok) << one.message;
+  const Split two = run(seamCube(), planeOf({1, 0, 0}, 1.3), {}, model);
+  ASSERT_EQ(one.pieces.size(), two.result.pieces.size());
+  for (size_t i = 0; i < one.pieces.size(); ++i) {
+    EXPECT_EQ(one.pieces[i].mesh.positions, two.result.pieces[i].mesh.positions);
+    EXPECT_EQ(one.pieces[i].mesh.indices, two.result.pieces[i].mesh.indices);
+    EXPECT_EQ(one.pieces[i].mass.volume, two.result.pieces[i].mass.volume);
+  }
+  EXPECT_NEAR(one.pieces[0].mass.volume + one.pieces[1].mass.volume, 1.0, 1e-12);
+  MeshData bad = seamCube();
+  bad.indices.push_back(999);
+  const SplitResult refused = splitMesh(bad, model, planeOf({1, 0, 0}, 1.3));
+  EXPECT_EQ(refused.status, SplitStatus::InvalidInput);
+  EXPECT_FALSE(refused.message.empty());
+  EXPECT_TRUE(refused.pieces.empty());
+}
+
 // Islands of an open sheet (hollow mode): triangles joined only at a vertex are one island. The
 // first triangle lists its corners with ids 2, 0, 1, so its union links 2 to 0 and then 2 to 1; the
 // second shares only vertex 0 with it. Linking a vertex that is no longer a root would drop the link
