@@ -2,9 +2,9 @@
 // (carried parts clipped by the plane, hulls shrunk by their margin) and, for skinned ragdoll pieces,
 // its bones and joints planned. Nothing here touches the world, physics or the renderer.
 #include "components/split_compute.h"
+#include "components/split_clock.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -18,11 +18,6 @@
 
 namespace cleave::components {
 namespace {
-
-double nowMs() {
-  using namespace std::chrono;
-  return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
-}
 
 constexpr double kMinPartWidth = 1e-5;  // metres: flatter parts hold nothing
 constexpr uint32_t kNoPart = ~0u;      // extractPart: no part's triangles, the caps only
@@ -318,23 +313,23 @@ ColliderPlan planCollider(const geometry::MeshData& mesh, const glm::dmat4& mesh
 }
 
 void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out) {
-  const double start = nowMs();
+  const double start = nowMilliseconds();
   out = SplitOutcome{};
   geometry::MeshData merged;
   if (job.hierarchy()) merged = mergeHierarchyParts(job.hierarchyParts);
   if (!setUpContainer(job, job.hierarchy() ? &merged : nullptr, s, out)) {
-    out.computeMilliseconds = out.setupMilliseconds = nowMs() - start;
+    out.computeMilliseconds = out.setupMilliseconds = nowMilliseconds() - start;
     return;
   }
-  out.setupMilliseconds = nowMs() - start;
-  const double geometryStart = nowMs();
+  out.setupMilliseconds = nowMilliseconds() - start;
+  const double geometryStart = nowMilliseconds();
   geometry::IMeshSplitter& splitter = job.settings.convexHint ? *s.convex : *s.concave;
   out.status = splitter.split(s.container, job.plane, job.options, s.result);
   s.container.release();  // do not keep the (doomed) target's mesh alive
-  out.geometryMilliseconds = nowMs() - geometryStart;
+  out.geometryMilliseconds = nowMilliseconds() - geometryStart;
   if (out.status != geometry::SplitStatus::Ok) {
     out.message = s.result.message;
-    out.computeMilliseconds = nowMs() - start;
+    out.computeMilliseconds = nowMilliseconds() - start;
     return;
   }
   out.openChains = s.result.openChains;
@@ -343,10 +338,10 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
   if (!(c.totalVolume > 0.0)) {
     out.status = geometry::SplitStatus::InvalidInput;
     out.message = "pieces enclose no volume";
-    out.computeMilliseconds = nowMs() - start;
+    out.computeMilliseconds = nowMilliseconds() - start;
     return;
   }
-  const double colliderStart = nowMs();
+  const double colliderStart = nowMilliseconds();
   c.normal = glm::normalize(job.plane.normal);
   // Skinned targets share the parent's mass by posed volume whatever the mass mode: skinning does not
   // keep volume exactly, so density x posed volume would make the mass drift with the pose.
@@ -361,8 +356,8 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
     out.pieces.push_back(std::move(spec));
     ++k;
   }
-  out.colliderMilliseconds = nowMs() - colliderStart;
-  out.computeMilliseconds = nowMs() - start;
+  out.colliderMilliseconds = nowMilliseconds() - colliderStart;
+  out.computeMilliseconds = nowMilliseconds() - start;
 }
 
 }  // namespace cleave::components

@@ -1,8 +1,8 @@
 #include "components/split_system.h"
+#include "components/split_clock.h"
 #include "components/skinned.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -20,15 +20,6 @@
 #include "engine/geometry/mass_properties.h"
 
 namespace cleave::components {
-
-namespace {
-
-double nowMs() {
-  using namespace std::chrono;
-  return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
 
 void placeOnBody(SplitWorld& w, ecs::Entity e, const physics::BodyDef& def, physics::BodyId body,
                  physics::ShapeId shape, double mass, const geometry::MassProperties& props, double density) {
@@ -508,7 +499,7 @@ SplitCost estimateSplit(SplitWorld& w, const SplitBudgetSettings& s, const Split
 }  // namespace
 
 void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
-  const double start = nowMs();
+  const double start = nowMilliseconds();
   events_.clear();
   activatePending(w);
   auto inFlight = [this](ecs::Entity e) {
@@ -532,11 +523,11 @@ void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& 
         return t ? glm::dvec3(t->position) : glm::dvec3(0.0);
       },
       [&](const SplitRequest& r) {
-        const double prepareStart = nowMs();
+        const double prepareStart = nowMilliseconds();
         auto job = std::make_shared<SplitJob>();
         SplitEvent failed;
         if (!prepare(w, r, tick, *job, failed)) {
-          failed.prepareMilliseconds = failed.mainMilliseconds = failed.milliseconds = nowMs() - prepareStart;
+          failed.prepareMilliseconds = failed.mainMilliseconds = failed.milliseconds = nowMilliseconds() - prepareStart;
           events_.push_back(std::move(failed));
           return false;
         }
@@ -544,22 +535,22 @@ void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& 
         p.weldKnown = job->weld != nullptr;
         p.partsKnown = job->parts != nullptr;
         p.job = job;
-        p.prepareMilliseconds = nowMs() - prepareStart;  // without an inline compute
+        p.prepareMilliseconds = nowMilliseconds() - prepareStart;  // without an inline compute
         p.task = workers().submit(std::move(job));
         pending_.push_back(std::move(p));
         return true;
       },
-      nowMs);
+      nowMilliseconds);
   budget_.setCostEstimator({});  // it refers to `w`, which only lives for this call
   budget_.setBusyCheck({});
   flush(w);
   if (tickOfMainMs_ != tick) tickMainMs_ = 0.0;
   tickOfMainMs_ = tick;
-  tickMainMs_ += nowMs() - start;
+  tickMainMs_ += nowMilliseconds() - start;
 }
 
 void SplitSystem::commitSplits(SplitWorld& w, uint64_t tick) {
-  const double start = nowMs();
+  const double start = nowMilliseconds();
   if (tickOfMainMs_ != tick) {
     events_.clear();
     tickMainMs_ = 0.0;
@@ -579,7 +570,7 @@ void SplitSystem::commitSplits(SplitWorld& w, uint64_t tick) {
   // Structural changes after the iteration: pieces appear, originals go.
   flush(w);
   tickOfMainMs_ = tick;
-  tickMainMs_ += nowMs() - start;
+  tickMainMs_ += nowMilliseconds() - start;
 }
 
 void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
@@ -592,13 +583,13 @@ SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitR
   for (Pending& p : pending_) events_.push_back(commit(w, p, tick));  // jobs in flight go first
   pending_.clear();
   flush(w);
-  const double start = nowMs();
+  const double start = nowMilliseconds();
   auto job = std::make_shared<SplitJob>();
   SplitEvent ev;
   SplitRequest r = request;
   r.target = target;
   if (!prepare(w, r, tick, *job, ev)) {
-    ev.prepareMilliseconds = ev.mainMilliseconds = ev.milliseconds = nowMs() - start;
+    ev.prepareMilliseconds = ev.mainMilliseconds = ev.milliseconds = nowMilliseconds() - start;
     return ev;
   }
   job->commitTick = tick;
@@ -606,14 +597,14 @@ SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitR
   p.weldKnown = job->weld != nullptr;
   p.partsKnown = job->parts != nullptr;
   p.job = job;
-  p.prepareMilliseconds = nowMs() - start;
+  p.prepareMilliseconds = nowMilliseconds() - start;
   SplitWorkers inline0(0);
   p.task = inline0.submit(std::move(job));
   ev = commit(w, p, tick);
   // The structural changes are main-thread work of this split too.
-  const double flushStart = nowMs();
+  const double flushStart = nowMilliseconds();
   flush(w);
-  const double flushMs = nowMs() - flushStart;
+  const double flushMs = nowMilliseconds() - flushStart;
   ev.commitMilliseconds += flushMs;
   ev.mainMilliseconds += flushMs;
   ev.milliseconds += flushMs;
@@ -703,9 +694,9 @@ bool SplitSystem::prepare(SplitWorld& w, const SplitRequest& request, uint64_t t
 }
 
 SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
-  const double start = nowMs();
+  const double start = nowMilliseconds();
   workers().wait(*pending.task);
-  const double waited = nowMs() - start;
+  const double waited = nowMilliseconds() - start;
   const SplitJob& job = *pending.job;
   SplitOutcome& outcome = pending.task->outcome;
   SplitEvent ev;
@@ -736,7 +727,7 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
       std::fprintf(stderr, "cleave: split of %s (entity %u) at tick %llu kept whole: %s\n",
                    ev.originalName.empty() ? "an object" : ev.originalName.c_str(), ev.original.index,
                    static_cast<unsigned long long>(tick), message.c_str());
-    ev.commitMilliseconds = nowMs() - start - waited;
+    ev.commitMilliseconds = nowMilliseconds() - start - waited;
     ev.mainMilliseconds = ev.prepareMilliseconds + ev.commitMilliseconds;
     ev.milliseconds = ev.mainMilliseconds + ev.computeMilliseconds;
     return ev;
@@ -845,11 +836,11 @@ void addHierarchyChildren(CommitContext& c, const PieceSpec& spec, ecs::Entity e
     renderer.meshOffset = glm::mat4(spec.frame.meshOffset);  // merged space -> the piece's frame
     renderer.visible = part.visible;
     if (c.w.renderer) {
-      const double uploadStart = nowMs();
+      const double uploadStart = nowMilliseconds();
       renderer.gpu = childSpec.packed && childSpec.packedFrom == childSpec.mesh.get()
                          ? c.w.renderer->uploadPacked(*childSpec.packed)
                          : c.w.renderer->uploadMesh(*childSpec.mesh);
-      c.ev.uploadMilliseconds += nowMs() - uploadStart;
+      c.ev.uploadMilliseconds += nowMilliseconds() - uploadStart;
     }
     c.commands.add<ecs::Transform>(child, ecs::Transform{});
     c.commands.add<ecs::WorldTransform>(child, ecs::WorldTransform{ecs::localMatrix(transform)});
@@ -939,19 +930,19 @@ void SplitSystem::commitPiece(CommitContext& c, PieceSpec& spec) {
   renderer.materials = c.job.materials;
   renderer.meshOffset = glm::mat4(spec.frame.meshOffset);
   RigidBody rb;
-  const double shapeStart = nowMs();
+  const double shapeStart = nowMilliseconds();
   if (spec.kind == PieceKind::Ragdoll) {
     if (!attachRagdoll(c, spec, e, transform, renderer, rb)) spec.kind = PieceKind::Debris;  // the skin falls
   } else if (spec.kind != PieceKind::Debris) {
     rb = createPieceBody(c.w, spec, e, transform, velocity, c.m.now.angularVelocity);
     if (rb.body.isNull()) spec.kind = PieceKind::Debris;
   }
-  c.ev.shapeMilliseconds += nowMs() - shapeStart;
+  c.ev.shapeMilliseconds += nowMilliseconds() - shapeStart;
   if (c.w.renderer) {
-    const double uploadStart = nowMs();
+    const double uploadStart = nowMilliseconds();
     renderer.gpu = spec.packed && spec.packedFrom == spec.mesh.get() ? c.w.renderer->uploadPacked(*spec.packed)
                                                                      : c.w.renderer->uploadMesh(*spec.mesh);
-    c.ev.uploadMilliseconds += nowMs() - uploadStart;
+    c.ev.uploadMilliseconds += nowMilliseconds() - uploadStart;
   }
   addPieceComponents(c, spec, e, transform, std::move(renderer), velocity);
   if (spec.kind != PieceKind::Debris) {

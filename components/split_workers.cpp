@@ -1,7 +1,7 @@
 #include "components/split_workers.h"
+#include "components/split_clock.h"
 
 #include <algorithm>
-#include <chrono>
 #include <exception>
 #include <string>
 
@@ -12,15 +12,6 @@
 #endif
 
 namespace cleave::components {
-namespace {
-
-double nowMs() {
-  using namespace std::chrono;
-  return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
-
 SplitWorkers::SplitWorkers(uint32_t threads) {
   threads_.reserve(threads);
   for (uint32_t i = 0; i < threads; ++i) threads_.emplace_back([this] { workerLoop(); });
@@ -126,7 +117,7 @@ std::shared_ptr<SplitWorkers::Task> SplitWorkers::submit(std::shared_ptr<const S
 }
 
 void SplitWorkers::wait(Task& task) {
-  const double start = nowMs();
+  const double start = nowMilliseconds();
   bool runHere = false;
   {
     // Our queue first (a worker takes a task under the queue lock), then the task's own flag (a
@@ -147,7 +138,7 @@ void SplitWorkers::wait(Task& task) {
     std::unique_lock<std::mutex> lock(task.mutex);
     task.doneSignal.wait(lock, [&] { return task.done; });
   }
-  task.waitedMilliseconds = nowMs() - start;
+  task.waitedMilliseconds = nowMilliseconds() - start;
   std::erase_if(inFlight_, [&](const auto& t) { return t.get() == &task; });
 }
 

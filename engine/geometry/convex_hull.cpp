@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <unordered_map>
 
@@ -352,6 +353,31 @@ MeshData toMeshData(const ConvexHull& hull) {
   for (const glm::dvec3& p : hull.positions) mesh.positions.emplace_back(p);
   mesh.indices = hull.indices;
   return mesh;
+}
+
+std::vector<uint32_t> extremePoints(std::span<const glm::dvec3> points, uint32_t count) {
+  std::vector<char> keep(points.size(), 0);
+  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+  for (uint32_t i = 0; i < count && !points.empty(); ++i) {
+    const double z = 1.0 - 2.0 * (double(i) + 0.5) / double(count);
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = golden * double(i);
+    const glm::dvec3 dir(r * std::cos(phi), r * std::sin(phi), z);
+    size_t best = 0;
+    double bestDot = -std::numeric_limits<double>::infinity();
+    for (size_t v = 0; v < points.size(); ++v) {
+      const double d = dir.x * points[v].x + dir.y * points[v].y + dir.z * points[v].z;
+      if (d > bestDot) {  // strict: ties keep the lowest index
+        bestDot = d;
+        best = v;
+      }
+    }
+    keep[best] = 1;
+  }
+  std::vector<uint32_t> out;
+  for (uint32_t v = 0; v < points.size(); ++v)
+    if (keep[v]) out.push_back(v);
+  return out;
 }
 
 bool isConvex(const MeshData& mesh, double relativeTolerance) {

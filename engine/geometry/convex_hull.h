@@ -42,6 +42,11 @@ struct ConvexHull {
 ConvexHull computeConvexHull(std::span<const glm::dvec3> points, double relativeTolerance = 1e-9);
 ConvexHull computeConvexHull(std::span<const glm::vec3> points, double relativeTolerance = 1e-9);
 
+// The indices, ascending, of the points that are extreme along `count` directions spread evenly
+// over the sphere (a Fibonacci lattice); ties keep the lower index. A subset of the points, so their
+// hull lies inside the hull of all of them: the way a dense hull is reduced without growing.
+std::vector<uint32_t> extremePoints(std::span<const glm::dvec3> points, uint32_t count);
+
 // The hull as a MeshData (positions and indices only; float positions).
 MeshData toMeshData(const ConvexHull& hull);
 

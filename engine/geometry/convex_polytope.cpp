@@ -290,31 +290,10 @@ ConvexPolytope shrinkPolytope(const ConvexPolytope& p, double margin) {
 }
 
 std::vector<uint32_t> extremeVertices(const ConvexPolytope& p, uint32_t count) {
-  std::vector<uint32_t> out;
-  if (p.vertices.size() <= count) {
-    for (uint32_t v = 0; v < p.vertices.size(); ++v) out.push_back(v);
-    return out;
-  }
-  std::vector<char> keep(p.vertices.size(), 0);
-  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
-  for (uint32_t i = 0; i < count; ++i) {
-    const double z = 1.0 - 2.0 * (double(i) + 0.5) / double(count);
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const glm::dvec3 dir(r * std::cos(golden * double(i)), r * std::sin(golden * double(i)), z);
-    size_t best = 0;
-    double bestDot = -std::numeric_limits<double>::infinity();
-    for (size_t v = 0; v < p.vertices.size(); ++v) {
-      const double d = glm::dot(dir, p.vertices[v]);
-      if (d > bestDot) {  // strict: ties keep the lowest index
-        bestDot = d;
-        best = v;
-      }
-    }
-    keep[best] = 1;
-  }
-  for (uint32_t v = 0; v < p.vertices.size(); ++v)
-    if (keep[v]) out.push_back(v);
-  return out;
+  if (p.vertices.size() > count) return extremePoints(p.vertices, count);
+  std::vector<uint32_t> all(p.vertices.size());
+  for (uint32_t v = 0; v < all.size(); ++v) all[v] = v;
+  return all;
 }
 
 ConvexPolytope simplifyPolytope(const ConvexPolytope& p, uint32_t maxVertices) {

@@ -14,6 +14,7 @@
 #include <BulletCollision/Gimpact/btGImpactShape.h>
 #include <LinearMath/btConvexHullComputer.h>
 
+#include "engine/geometry/convex_hull.h"
 #include "engine/physics/detail/bullet_convert.h"
 
 namespace cleave::physics::detail {
@@ -79,30 +80,13 @@ double minFaceWidth(const btConvexHullComputer& hc) {
 }
 
 // Keeps the vertices that are extreme along `count` directions spread evenly over the sphere
-// (Fibonacci lattice). The result is a subset of the input, so its hull lies inside the input hull.
+// (geometry::extremePoints). The result is a subset of the input, so its hull lies inside the input hull.
 std::vector<btVector3> reduceBySupport(const std::vector<btVector3>& vertices, uint32_t count) {
-  std::vector<char> keep(vertices.size(), 0);
-  const double goldenAngle = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
-  for (uint32_t i = 0; i < count; ++i) {
-    const double z = 1.0 - 2.0 * (double(i) + 0.5) / double(count);
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const double phi = goldenAngle * double(i);
-    const glm::dvec3 dir(r * std::cos(phi), r * std::sin(phi), z);
-    size_t bestIndex = 0;
-    double bestDot = -std::numeric_limits<double>::infinity();
-    for (size_t v = 0; v < vertices.size(); ++v) {
-      const double d = dir.x * vertices[v].x() + dir.y * vertices[v].y() + dir.z * vertices[v].z();
-      if (d > bestDot) {  // strict: ties keep the lowest index
-        bestDot = d;
-        bestIndex = v;
-      }
-    }
-    keep[bestIndex] = 1;
-  }
+  std::vector<glm::dvec3> points;
+  points.reserve(vertices.size());
+  for (const btVector3& v : vertices) points.emplace_back(v.x(), v.y(), v.z());
   std::vector<btVector3> kept;
-  for (size_t v = 0; v < vertices.size(); ++v) {
-    if (keep[v]) kept.push_back(vertices[v]);
-  }
+  for (uint32_t v : geometry::extremePoints(points, count)) kept.push_back(vertices[v]);
   return kept;
 }
 

@@ -1,7 +1,6 @@
 // The demo's split benchmarks (cleave-demo --bench-splits N, --bench-burst; docs/performance.md).
 // They measure, they do not test: medians of wall times on this machine, printed as a table or JSON.
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <cmath>
 #include <cstdio>
@@ -11,15 +10,11 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/ecs/hierarchy.h"
+#include "components/split_clock.h"
 #include "game/demo/demo_game.h"
 
 namespace cleave::demo {
 namespace {
-
-double nowMs() {
-  using namespace std::chrono;
-  return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -126,11 +121,11 @@ void DemoGame::benchmarkBurst(bool json) {
     BurstRun run;
     uint64_t tick = start + 1;
     for (; tick < start + 2000 && run.splits < targets.size(); ++tick) {
-      const double t0 = nowMs();
+      const double t0 = components::nowMilliseconds();
       sim_->prepare(tick, glm::dvec3(200.0, 2.0, 190.0));
-      const double t1 = nowMs();
+      const double t1 = components::nowMilliseconds();
       sim_->commit(tick);
-      const double t2 = nowMs();
+      const double t2 = components::nowMilliseconds();
       if (std::getenv("CLEAVE_BENCH_TRACE")) {
         double shapes = 0.0, uploads = 0.0, commits = 0.0, waits = 0.0;
         for (const components::SplitEvent& ev : splits_->lastEvents()) {
