@@ -244,19 +244,8 @@ TEST(ArenaReplay, SameReplayGivesTheSameState) {
 }
 
 TEST(ArenaReplay, EveryReplayGivesTheSameStateOnZeroOneAndThreeSplitThreads) {
-  for (const char* name : {"arena_match.replay", "arena_burst.replay", "arena_quit.replay"}) {
-    std::vector<std::string> hashes;
-    for (int threads : {0, 1, 3}) {
-      const RunResult r = run("--headless --replay " + replay(name) + " --split-threads " + std::to_string(threads) +
-                              " --print-state-hash");
-      ASSERT_EQ(r.exitCode, 0) << r.output;
-      hashes.push_back(stateHash(r.output));
-      ASSERT_EQ(hashes.back().size(), 16u) << r.output;
-    }
-    std::printf("[threads] %s: %s %s %s\n", name, hashes[0].c_str(), hashes[1].c_str(), hashes[2].c_str());
-    EXPECT_EQ(hashes[1], hashes[0]) << name;
-    EXPECT_EQ(hashes[2], hashes[0]) << name;
-  }
+  for (const char* name : {"arena_match.replay", "arena_burst.replay", "arena_quit.replay"})
+    cleave::testing::expectSameStateOnZeroOneAndThreeSplitThreads(run, "--headless --replay " + replay(name), name);
 }
 
 TEST(ArenaReplay, RecordedRunReplaysToTheSameState) {

@@ -20,6 +20,12 @@ struct Cut {
   std::vector<ColliderPartSet> parts;
 };
 
+// The decomposition of `mesh` with a splitter of its own.
+ColliderPartSet partsOf(const MeshData& mesh) {
+  auto splitter = makeConcaveSplitter();
+  return decomposeConvex(mesh, *splitter);
+}
+
 Cut cutWithParts(const MeshData& mesh, const ColliderPartSet& parts, const Plane& plane) {
   Cut c;
   MeshContainer container;
@@ -49,8 +55,7 @@ TEST(ColliderParts, ConvexMeshIsOnePartAndTorusSeveral) {
 
 TEST(ColliderParts, BoxPartsClipToExactlyThePieces) {
   const MeshData box = primitives::box(glm::vec3(0.5f, 0.3f, 0.2f));
-  auto splitter = makeConcaveSplitter();
-  const ColliderPartSet parts = decomposeConvex(box, *splitter);
+  const ColliderPartSet parts = partsOf(box);
   ASSERT_EQ(parts.size(), 1u);
   const Cut c = cutWithParts(box, parts, Plane{glm::dvec3(1, 0.2, 0), 0.1});
   ASSERT_EQ(c.result.pieces.size(), 2u);
@@ -62,8 +67,7 @@ TEST(ColliderParts, BoxPartsClipToExactlyThePieces) {
 
 TEST(ColliderParts, TorusHalvesKeepTheirPartsAndFitWithinOneAndAHalf) {
   const MeshData ring = primitives::torus(0.5f, 0.15f, 48, 24);
-  auto splitter = makeConcaveSplitter();
-  const ColliderPartSet parts = decomposeConvex(ring, *splitter);
+  const ColliderPartSet parts = partsOf(ring);
   for (const Plane& plane : {Plane{glm::dvec3(1, 0, 0), 0.0}, Plane{glm::dvec3(0, 1, 0), 0.02},
                              Plane{glm::dvec3(0.3, 0.2, 1), 0.1}}) {
     const Cut c = cutWithParts(ring, parts, plane);
@@ -85,8 +89,7 @@ TEST(ColliderParts, TorusHalvesKeepTheirPartsAndFitWithinOneAndAHalf) {
 TEST(ColliderParts, IslandsOfOneSideEachGetTheirOwnParts) {
   // Two spheres side by side: decomposed into one part each, cut across both, four islands.
   const MeshData pair = primitives::twoDisjointSpheres(0.4f, 0.3f, 24, 12);
-  auto splitter = makeConcaveSplitter();
-  const ColliderPartSet parts = decomposeConvex(pair, *splitter);
+  const ColliderPartSet parts = partsOf(pair);
   ASSERT_EQ(parts.size(), 2u);
   const Cut c = cutWithParts(pair, parts, Plane{glm::dvec3(0.1, 1, 0.05), 0.1});
   ASSERT_EQ(c.result.pieces.size(), 4u);

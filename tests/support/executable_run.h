@@ -1,5 +1,5 @@
 // Running the engine's executables from tests: capture the output and exit status, a clean scratch
-// folder per test, the printed state hash, the last line of a JSON-lines state dump, and the
+// folder per test, the printed state hash (and its check over split thread counts), the last line of a JSON-lines state dump, and the
 // per-cut mass check on a dump's split log (components/split_log.h).
 #pragma once
 
@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -49,6 +50,23 @@ inline std::string stateHash(const std::string& output) {
   const size_t at = output.rfind(key);
   if (at == std::string::npos) return {};
   return output.substr(at + key.size(), 16);
+}
+
+// Runs `replayArguments` (a --replay and its options) with --split-threads 0, 1 and 3 through
+// `run` and expects the same printed state hash each time: threads never change a result.
+template <typename Run>
+void expectSameStateOnZeroOneAndThreeSplitThreads(const Run& run, const std::string& replayArguments,
+                                                 const std::string& name) {
+  std::vector<std::string> hashes;
+  for (int threads : {0, 1, 3}) {
+    const RunResult r = run(replayArguments + " --split-threads " + std::to_string(threads) + " --print-state-hash");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    hashes.push_back(stateHash(r.output));
+    ASSERT_EQ(hashes.back().size(), 16u) << r.output;
+  }
+  std::printf("[threads] %s: %s %s %s\n", name.c_str(), hashes[0].c_str(), hashes[1].c_str(), hashes[2].c_str());
+  EXPECT_EQ(hashes[1], hashes[0]) << name;
+  EXPECT_EQ(hashes[2], hashes[0]) << name;
 }
 
 inline nlohmann::json lastDumpLine(const std::filesystem::path& path) {
