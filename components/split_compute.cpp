@@ -86,9 +86,7 @@ struct PieceContext {
 
 void planRagdollPiece(const PieceContext& c, const geometry::SplitPiece& piece, const geometry::MeshData& posed,
                       PieceSpec& spec) {
-  std::vector<glm::vec3> world;
-  world.reserve(posed.positions.size());
-  for (const glm::vec3& p : posed.positions) world.push_back(glm::vec3(c.job.model * glm::dvec4(glm::dvec3(p), 1.0)));
+  const std::vector<glm::vec3> world = transformedPoints(posed, c.job.model);
   std::string reason;
   if (!planRagdoll(piece.mesh, world, piece.joints, c.job.skin->skeleton, c.globals, std::max(spec.mass, 1e-6),
                    spec.ragdoll, &reason)) {
@@ -225,6 +223,13 @@ BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const
   return f;
 }
 
+std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const glm::dmat4& m) {
+  std::vector<glm::vec3> points;
+  points.reserve(mesh.positions.size());
+  for (const glm::vec3& p : mesh.positions) points.push_back(glm::vec3(m * glm::dvec4(p, 1.0)));
+  return points;
+}
+
 const char* toString(PieceKind kind) {
   switch (kind) {
     case PieceKind::Rigid: return "rigid";
@@ -293,8 +298,7 @@ ColliderPlan planCollider(const geometry::MeshData& mesh, const glm::dmat4& mesh
     return std::make_shared<const geometry::ColliderPartSet>(std::move(one));
   };
   if (mode == ColliderMode::ConcaveMesh) {
-    plan.concavePositions.reserve(mesh.positions.size());
-    for (const glm::vec3& p : mesh.positions) plan.concavePositions.push_back(glm::vec3(meshOffset * glm::dvec4(glm::dvec3(p), 1.0)));
+    plan.concavePositions = transformedPoints(mesh, meshOffset);
     plan.concaveIndices = mesh.indices;
     plan.parts = hullOfPoints();
   } else if (mode == ColliderMode::ConvexHull || (knownConvex && !(carried && !carried->empty()))) {

@@ -45,6 +45,9 @@ struct BodyFrame {
 };
 BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const glm::dmat4& model);
 
+// The mesh's positions mapped by `m` (a body frame's mesh offset, or a model matrix), as floats.
+std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const glm::dmat4& m);
+
 // What a piece becomes at commit.
 enum class PieceKind : uint8_t {
   Rigid,          // a dynamic rigid body with the spec's collider

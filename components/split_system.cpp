@@ -37,13 +37,6 @@ void placeOnBody(SplitWorld& w, ecs::Entity e, const physics::BodyDef& def, phys
   w.world.add<MassInfo>(e, info);
 }
 
-std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const glm::dmat4& m) {
-  std::vector<glm::vec3> points;
-  points.reserve(mesh.positions.size());
-  for (const glm::vec3& p : mesh.positions) points.push_back(glm::vec3(m * glm::dvec4(p, 1.0)));
-  return points;
-}
-
 namespace {
 
 // Writes the mesh of a failed split in cut space (an OBJ with the plane in its header) so the case

@@ -201,9 +201,6 @@ physics::ShapeId createPlannedShape(physics::PhysicsWorld& physics, const std::v
                                     const std::vector<glm::vec3>& concavePositions,
                                     const std::vector<uint32_t>& concaveIndices, std::string* reason);
 
-// The mesh's positions mapped by `m` (for example a body frame's mesh offset), as collider points.
-std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const glm::dmat4& m);
-
 // Puts an authored entity on the body just made for it: its Transform moves to the body's pose
 // (unit scale) and it gets RigidBody and MassInfo (mass, volume, density, closed from `props`).
 // The mesh offset is the caller's.
