@@ -226,6 +226,22 @@ void CapTriangulator::emit(int32_t a, int32_t b, int32_t c) {
   raw_.push_back(nodes_[c].i);
 }
 
+// An ear whose tip lies within the tolerance of the segment joining its neighbours, in a polygon of
+// more than three corners: clipped, it would be a sliver (three points that are collinear up to
+// the rounding of the section, as where earlier clips leave several points of one straight edge of
+// the section next to each other). Written as float, such a triangle has zero area.
+bool CapTriangulator::sliver(int32_t a, int32_t b, int32_t c) const {
+  if (!(tolerance_ > 0.0) || nodes_[c].next == a) return false;
+  const glm::dvec2 pa(nodes_[a].x, nodes_[a].y), pb(nodes_[b].x, nodes_[b].y), pc(nodes_[c].x, nodes_[c].y);
+  return segmentDistance2(pb, pa, pc) <= tolerance_ * tolerance_;
+}
+
+// Takes b off the polygon without a triangle: the triangle that later gets edge a -> c is split at b.
+void CapTriangulator::hide(int32_t a, int32_t b, int32_t c) {
+  hidden_.push_back({(uint64_t(nodes_[a].i) << 32) | nodes_[c].i, nodes_[b].i});
+  removeNode(b);
+}
+
 void CapTriangulator::earcutLinked(int32_t ear, int pass) {
   if (ear < 0) return;
   if (pass == 0 && hashed_) indexCurve(ear);
@@ -233,6 +249,11 @@ void CapTriangulator::earcutLinked(int32_t ear, int pass) {
   while (nodes_[ear].prev != nodes_[ear].next) {
     const int32_t prev = nodes_[ear].prev, next = nodes_[ear].next;
     if (hashed_ ? isEarHashed(ear) : isEar(ear)) {
+      if (sliver(prev, ear, next)) {  // the point before may now be one too: look at it again
+        hide(prev, ear, next);
+        ear = stop = prev;
+        continue;
+      }
       emit(prev, ear, next);
       removeNode(ear);
       // Skipping the next point gives fewer sliver triangles.
@@ -265,8 +286,13 @@ int32_t CapTriangulator::clipDegenerate(int32_t start) {
     const int32_t prev = nodes_[p].prev, next = nodes_[p].next;
     if (prev == next) break;
     if (equals(p, next) || area(prev, p, next) == 0.0) {
-      emit(prev, p, next);
-      removeNode(p);
+      const glm::dvec2 a(nodes_[prev].x, nodes_[prev].y), b(nodes_[p].x, nodes_[p].y), c(nodes_[next].x, nodes_[next].y);
+      if (!equals(p, next) && nodes_[next].next != prev && collinearForward(a, b, c)) {
+        hide(prev, p, next);  // a straight corner: fanned back in, never a zero-area triangle
+      } else {
+        emit(prev, p, next);
+        removeNode(p);
+      }
       p = end = prev;
       if (nodes_[p].next == nodes_[p].prev) break;
       again = true;
@@ -563,6 +589,7 @@ bool CapTriangulator::triangulate(std::span<const glm::dvec2> points, std::span<
   points_ = points;
   nodes_.clear();
   raw_.clear();
+  hidden_.clear();
   for (const CapRing& ring : rings) {
     if (ring.end < ring.begin + 3 || ring.end > points.size()) return false;
     prepareRing(points, ring);
@@ -604,6 +631,7 @@ bool CapTriangulator::triangulateConvex(std::span<const glm::dvec2> points, CapR
     ringNext_.resize(points.size());
   }
   raw_.clear();
+  hidden_.clear();
   prepareRing(points, ring);
   uint32_t first = ring.begin;
   while (!kept_[first]) ++first;
@@ -693,6 +721,12 @@ bool CapTriangulator::triangulateFace(std::span<const glm::vec3> corners,
 bool CapTriangulator::finish(std::span<const glm::dvec2> points, std::span<const CapRing> rings,
                              std::vector<uint32_t>& triangles, size_t outputStart) {
   stack_.clear();
+  std::sort(hidden_.begin(), hidden_.end());
+  auto hiddenAt = [&](uint32_t p, uint32_t q) {
+    const uint64_t key = (uint64_t(p) << 32) | q;
+    const auto it = std::lower_bound(hidden_.begin(), hidden_.end(), std::pair<uint64_t, uint32_t>{key, 0u});
+    return it != hidden_.end() && it->first == key ? it->second : UINT32_MAX;
+  };
   for (size_t k = raw_.size(); k >= 3; k -= 3) {  // reversed: the stack pops them in order
     stack_.push_back(raw_[k - 3]);
     stack_.push_back(raw_[k - 2]);
@@ -702,6 +736,15 @@ bool CapTriangulator::finish(std::span<const glm::dvec2> points, std::span<const
     const uint32_t t[3] = {stack_[stack_.size() - 3], stack_[stack_.size() - 2], stack_[stack_.size() - 1]};
     stack_.resize(stack_.size() - 3);
     bool split = false;
+    for (int e = 0; e < 3 && !split && !hidden_.empty(); ++e) {
+      const uint32_t p = t[e], q = t[(e + 1) % 3], x = t[(e + 2) % 3];
+      const uint32_t b = hiddenAt(p, q);
+      if (b == UINT32_MAX) continue;
+      // Edge p -> q was made by taking b off during clipping: (p, b, x) and (b, q, x) instead.
+      const uint32_t halves[6] = {b, q, x, p, b, x};
+      stack_.insert(stack_.end(), halves, halves + 6);
+      split = true;
+    }
     for (int e = 0; e < 3 && !split; ++e) {
       const uint32_t p = t[e], q = t[(e + 1) % 3], x = t[(e + 2) % 3];
       if (!kept_[p] || !kept_[q] || nextKept_[p] != q || nextPoint_[p] == q) continue;

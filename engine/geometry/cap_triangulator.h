@@ -98,6 +98,8 @@ class CapTriangulator {
   void indexCurve(int32_t start);
   void sortLinked(int32_t list);
   void emit(int32_t a, int32_t b, int32_t c);
+  bool sliver(int32_t a, int32_t b, int32_t c) const;
+  void hide(int32_t a, int32_t b, int32_t c);
   bool finish(std::span<const glm::dvec2> points, std::span<const CapRing> rings,
               std::vector<uint32_t>& triangles, size_t outputStart);
 
@@ -110,6 +112,10 @@ class CapTriangulator {
   std::vector<int32_t> holeQueue_;  // leftmost node of each hole
   std::vector<uint32_t> raw_;         // triangles of kept points, before fanning collinear points in
   std::vector<uint32_t> stack_;
+  // Points taken off the polygon during clipping without a triangle of their own (a sliver ear, or
+  // an exactly collinear corner): edge a -> c of a later triangle hides b; finish() fans b back in.
+  // Key a << 32 | c, value b; sorted before finish() looks them up.
+  std::vector<std::pair<uint64_t, uint32_t>> hidden_;
   double minX_ = 0.0, minY_ = 0.0, invSize_ = 0.0;
   bool hashed_ = false;
   double tolerance_ = 0.0;  // of the current call

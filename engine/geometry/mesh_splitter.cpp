@@ -25,7 +25,12 @@
 //     depth), and each border with its holes triangulated by CapTriangulator. The convex splitter
 //     first tries the thesis's fast path: one loop, in angular order around its centroid, strictly
 //     convex once collinear points are removed, fanned; anything else takes the general path.
-//  6. Islands: union-find over welded ids (cap triangles included) on each side; pieces are ordered
+//     Cap triangles flat on the float positions they are written with are flipped with their
+//     neighbour across their longest edge.
+//  6. Exact float output: the parts of cut triangles (and caps) whose corners round to one float
+//     position are dropped and those corners welded into one id, so the pieces are closed on their
+//     float positions as on their ids; a side with nothing left is a miss.
+//     Islands: union-find over welded ids (cap triangles included) on each side; pieces are ordered
 //     by their smallest source triangle. Each piece is written in source space with its own vertex
 //     remap, submesh runs in input order (cap triangles join an existing run of the cap material).
 //  7. Mass properties per piece on the cut-space positions.
@@ -179,6 +184,14 @@ class Splitter final : public IMeshSplitter {
   bool capSection(const SplitOptions& options, std::string& why);
   bool tryConvexCap();
   void makeCapVertices(const SplitOptions& options);
+  void linkWelded(uint32_t a, uint32_t b);
+  glm::vec3 outputPosition(uint32_t ref) const {
+    return ref < sourceCount_ ? mesh_->positions[ref] : extra_.positions[ref - sourceCount_];
+  }
+  void dropCollapsedTriangles();
+  void flipFlatCapTriangles();
+  bool flatCapTriangle(size_t t) const;
+  bool flipCapTriangle(uint32_t t);
   uint32_t find(uint32_t x);
   uint32_t weldedOfAny(uint32_t ref) const;
   glm::dvec3 cutOfAny(uint32_t ref) const;
@@ -224,6 +237,8 @@ class Splitter final : public IMeshSplitter {
   uint32_t capBase_ = 0;               // first cap vertex reference
   std::vector<SideTriangle> sideTris_[2];  // [0] above, [1] below
   std::vector<uint32_t> planeTris_[2];     // per side: the triangles that may have an on-plane edge
+  std::vector<uint32_t> cutTris_[2];       // per side: the triangles made by cutting one (not whole ones)
+  size_t capStart_[2] = {0, 0};            // per side: the first cap triangle
   std::vector<uint32_t> bucket_;           // counting sort of the output triangles
   std::vector<uint32_t> vertexRefs_;       // the vertex references of the piece being written, in order
   std::vector<uint64_t> boundary_[2];
@@ -237,6 +252,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<CapRing> rings_;
   std::vector<uint32_t> capTriangles_;  // into loopIds_, counter-clockwise seen from +normal
   std::vector<std::pair<double, uint32_t>> angular_;
+  std::vector<uint32_t> flatCaps_;                     // cap triangles flat on their float positions
   uint32_t openChains_ = 0;
   bool piecesClosed_ = false;  // this split's pieces are closed on their weld ids
   uint32_t uncappedLoops_ = 0;  // closed loops of open art left open (they could not be capped)
@@ -490,12 +506,15 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
 
   // 5. Caps.
   capTriangles_.clear();
+  capStart_[0] = sideTris_[0].size();
+  capStart_[1] = sideTris_[1].size();
   for (LoopInfo& loop : loops_) loop.capped = false;
   if (options.cap) {
     std::string why;
     if (!capSection(options, why)) return fail(result, SplitStatus::TriangulationFailed, why);
     result.uncappedLoops = uncappedLoops_;
     makeCapVertices(options);
+    flipFlatCapTriangles();
     const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
     for (size_t k = 0; k < capTriangles_.size(); k += 3) {
       const uint32_t a = capTriangles_[k], b = capTriangles_[k + 1], c = capTriangles_[k + 2];
@@ -507,6 +526,12 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   }
 
   // 6, 7. Islands, piece meshes, mass.
+  dropCollapsedTriangles();
+  if (sideTris_[0].empty() || sideTris_[1].empty()) {
+    return fail(result, SplitStatus::PlaneMissesMesh,
+                "the plane cuts off nothing that float positions can hold: every triangle on one side collapses "
+                "to zero area");
+  }
   writePieces(options, result);
   return SplitStatus::Ok;
 }
@@ -517,6 +542,8 @@ void Splitter::cutTriangles() {
   sideTris_[1].clear();
   planeTris_[0].clear();
   planeTris_[1].clear();
+  cutTris_[0].clear();
+  cutTris_[1].clear();
   const size_t triangleCount = mesh.indices.size() / 3;
   uint32_t run = 0;
   uint32_t runEnd = mesh.submeshes.empty() ? kNone : mesh.submeshes[0].firstIndex + mesh.submeshes[0].indexCount;
@@ -528,6 +555,16 @@ void Splitter::cutTriangles() {
     const int index = side > 0 ? 0 : 1;
     planeTris_[index].push_back(static_cast<uint32_t>(sideTris_[index].size()));
     sideTris_[index].push_back({{a, b, c}, source, run});
+  };
+  // A part of a cut triangle: its corners may meet at one float position (dropCollapsedTriangles).
+  auto pushCut = [&](bool planar, int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
+    const int index = side > 0 ? 0 : 1;
+    cutTris_[index].push_back(static_cast<uint32_t>(sideTris_[index].size()));
+    if (planar) {
+      pushPlanar(side, a, b, c, source);
+    } else {
+      push(side, a, b, c, source);
+    }
   };
   for (uint32_t t = 0; t < triangleCount; ++t) {
     while (runEnd != kNone && 3 * t >= runEnd && run + 1 < mesh.submeshes.size()) {
@@ -563,8 +600,8 @@ void Splitter::cutTriangles() {
       // Through the on-plane vertex: two triangles, one per side.
       const uint32_t o = g[zero], x = g[(zero + 1) % 3], y = g[(zero + 2) % 3];
       const uint32_t c = pairVertex(x, y);
-      pushPlanar(s[(zero + 1) % 3], o, x, c, t);
-      pushPlanar(s[(zero + 2) % 3], o, c, y, t);
+      pushCut(true, s[(zero + 1) % 3], o, x, c, t);
+      pushCut(true, s[(zero + 2) % 3], o, c, y, t);
       continue;
     }
     int lone = 0;
@@ -574,14 +611,14 @@ void Splitter::cutTriangles() {
     const uint32_t l = g[lone], a = g[(lone + 1) % 3], b = g[(lone + 2) % 3];
     const uint32_t ca = pairVertex(l, a), cb = pairVertex(l, b);
     const int loneSide = s[lone], otherSide = -s[lone];
-    pushPlanar(loneSide, l, ca, cb, t);
+    pushCut(true, loneSide, l, ca, cb, t);
     const glm::dvec3 d1 = cutOf(ca) - cutOf(b), d2 = cutOf(a) - cutOf(cb);
     if (glm::dot(d1, d1) <= glm::dot(d2, d2)) {
-      push(otherSide, ca, a, b, t);
-      pushPlanar(otherSide, ca, b, cb, t);
+      pushCut(false, otherSide, ca, a, b, t);
+      pushCut(true, otherSide, ca, b, cb, t);
     } else {
-      pushPlanar(otherSide, ca, a, cb, t);
-      push(otherSide, a, b, cb, t);
+      pushCut(true, otherSide, ca, a, cb, t);
+      pushCut(false, otherSide, a, b, cb, t);
     }
   }
 }
@@ -769,14 +806,7 @@ void Splitter::mergeNearPoints() {
             // The aliases form a forest: the root of the point is linked to the root of the run's
             // representative (a point can sit in two loops where the section touches itself, so
             // either may have been merged already). A source vertex is always a root.
-            const uint32_t from = aliasRoot(id), to = aliasRoot(rep);
-            if (from != to) {
-              if (from >= idCount_) {
-                alias_[from - idCount_] = to;
-              } else if (to >= idCount_) {
-                alias_[to - idCount_] = from;
-              }  // two source vertices stay apart
-            }
+            linkWelded(id, rep);
             edgeCut_[id - idCount_] = cut;
             edgeSource_[id - idCount_] = source;
             moved = true;
@@ -793,6 +823,118 @@ void Splitter::mergeNearPoints() {
   if (moved) {
     for (size_t k = 0; k < pairs_.size(); ++k) extra_.positions[k] = edgeSource_[pairEdge_[k]];
   }
+}
+
+// Links the alias roots of two welded ids: a cut point's root is linked to the other root; two
+// source vertices stay apart (they cannot move).
+void Splitter::linkWelded(uint32_t a, uint32_t b) {
+  const uint32_t from = aliasRoot(a), to = aliasRoot(b);
+  if (from == to) return;
+  if (from >= idCount_) {
+    alias_[from - idCount_] = to;
+  } else if (to >= idCount_) {
+    alias_[to - idCount_] = from;
+  }
+}
+
+// Where a cut point rounds to the same float position as another cut point or a vertex next to it
+// (points closer than float precision but farther apart than the merge tolerance, as on meshes
+// with many small handles or where the plane passes through a vertex of a flat region), the part
+// of a cut triangle between them has zero area in the written mesh, and the pieces would be closed
+// on their ids but not on their float positions. Such triangles (of the cut and of the caps) are
+// dropped and their coinciding corners welded into one id: their edges cancel in pairs, so the
+// pieces stay closed on both. Whole source triangles are never dropped.
+void Splitter::dropCollapsedTriangles() {
+  for (int side = 0; side < 2; ++side) {
+    std::vector<SideTriangle>& tris = sideTris_[side];
+    bool dropped = false;
+    auto check = [&](SideTriangle& tri) {
+      const glm::vec3 p[3] = {outputPosition(tri.v[0]), outputPosition(tri.v[1]), outputPosition(tri.v[2])};
+      bool collapsed = false;
+      for (int e = 0; e < 3; ++e) {
+        if (p[e] != p[(e + 1) % 3]) continue;
+        const uint32_t a = weldedOfAny(tri.v[e]), b = weldedOfAny(tri.v[(e + 1) % 3]);
+        linkWelded(a, b);
+        collapsed = collapsed || aliasRoot(a) == aliasRoot(b);
+      }
+      if (!collapsed) return;
+      tri.slot = kNone;
+      dropped = true;
+    };
+    for (uint32_t index : cutTris_[side]) check(tris[index]);
+    for (size_t index = capStart_[side]; index < tris.size(); ++index) check(tris[index]);
+    if (dropped) {
+      tris.erase(std::remove_if(tris.begin(), tris.end(), [](const SideTriangle& t) { return t.slot == kNone; }),
+                 tris.end());
+    }
+  }
+}
+
+// Whether cap triangle t (into capTriangles_) has collinear corners on the float positions it is
+// written with (exact: see the float weld check of the tests).
+bool Splitter::flatCapTriangle(size_t t) const {
+  const size_t base = capBase_ - sourceCount_;  // extra_ index of the below cap vertex of loop point 0
+  const glm::dvec3 a(extra_.positions[base + capTriangles_[3 * t]]);
+  const glm::dvec3 b(extra_.positions[base + capTriangles_[3 * t + 1]]);
+  const glm::dvec3 c(extra_.positions[base + capTriangles_[3 * t + 2]]);
+  return glm::cross(b - a, c - a) == glm::dvec3(0.0);
+}
+
+// A cap triangle can be thin enough in double to pass the triangulator and still be flat once its
+// corners are written as float: three points of one straight edge of the section (as where a plane
+// runs along a flat face), whose rounding in double kept them apart. Such a triangle is flipped with
+// its neighbour across its longest edge (p, q, m) + (q, p, d) -> (p, d, m) + (d, q, m): the middle
+// point m lies on p-q, so both new triangles have the area of the old pair. A longest edge on the
+// section's border has no neighbour in the cap and stays (the side triangles there are as flat).
+void Splitter::flipFlatCapTriangles() {
+  flatCaps_.clear();
+  const size_t count = capTriangles_.size() / 3;
+  for (size_t t = 0; t < count; ++t) {
+    if (flatCapTriangle(t)) flatCaps_.push_back(static_cast<uint32_t>(t));
+  }
+  if (flatCaps_.empty()) return;
+  // A flat neighbour cannot take the flip; once it is flipped away, the next pass can.
+  bool flipped = true;
+  for (int pass = 0; pass < 4 && flipped; ++pass) {
+    flipped = false;
+    for (uint32_t t : flatCaps_) flipped = flipCapTriangle(t) || flipped;
+  }
+}
+
+// Flips cap triangle t if it is flat on floats; flips are rare, so the neighbour is found by a scan.
+bool Splitter::flipCapTriangle(uint32_t t) {
+  if (!flatCapTriangle(t)) return false;  // not flat, or fixed by an earlier flip
+  const size_t base = capBase_ - sourceCount_;
+  auto twice = [&](uint32_t a, uint32_t b, uint32_t c) {
+    const glm::dvec2 u = points_[b] - points_[a], v = points_[c] - points_[a];
+    return u.x * v.y - u.y * v.x;
+  };
+  uint32_t* tri = &capTriangles_[3 * size_t(t)];
+  int longest = 0;
+  double best = -1.0;
+  for (int e = 0; e < 3; ++e) {
+    const glm::dvec3 d =
+        glm::dvec3(extra_.positions[base + tri[(e + 1) % 3]]) - glm::dvec3(extra_.positions[base + tri[e]]);
+    if (glm::dot(d, d) > best) {
+      best = glm::dot(d, d);
+      longest = e;
+    }
+  }
+  const uint32_t p = tri[longest], q = tri[(longest + 1) % 3], m = tri[(longest + 2) % 3];
+  for (size_t k = 0; k < capTriangles_.size(); k += 3) {
+    uint32_t* other = &capTriangles_[k];
+    int at = -1;  // the corner of `other` where its edge q -> p starts
+    for (int c = 0; c < 3; ++c) {
+      if (other[c] == q && other[(c + 1) % 3] == p) at = c;
+    }
+    if (at < 0) continue;
+    const uint32_t d = other[(at + 2) % 3];
+    if (!(twice(p, d, m) > 0.0) || !(twice(d, q, m) > 0.0)) return false;
+    tri[0] = p, tri[1] = d, tri[2] = m;
+    other[0] = d, other[1] = q, other[2] = m;
+    return true;
+  }
+  return false;
 }
 
 bool insideLoop(std::span<const glm::dvec2> points, uint32_t begin, uint32_t end, const glm::dvec2& q) {

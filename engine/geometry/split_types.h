@@ -24,7 +24,8 @@ struct Plane {
 
 enum class SplitStatus : uint8_t {
   Ok = 0,
-  PlaneMissesMesh,      // every vertex on one side (or on the plane): nothing to cut
+  PlaneMissesMesh,      // every vertex on one side (or on the plane), or all that lies on one side is
+                        // thinner than float precision: nothing to cut
   InvalidInput,         // NaN/Inf position, index out of range, index count not a multiple of 3, ...
   OpenSection,          // the section has open chains (open or non-manifold input) and caps were asked for
   TriangulationFailed,  // a cap polygon could not be triangulated without overlap

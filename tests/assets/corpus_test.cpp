@@ -13,7 +13,8 @@
 // each truncation of it must be rejected with a one-line error. A mesh that reads is split by
 // several planes through its bounding box (whether it is closed is the container's finding: the
 // bunny is closed, its scan holes filled):
-//  - closed input, with caps: either Ok, with every piece closed and consistently oriented, the
+//  - closed input, with caps: either Ok, with every piece closed and consistently oriented (and, when
+//    the input is closed on its exact float positions, the pieces too: see cutOnFloats), the
 //    piece volumes summing to the input volume within 1e-6 relative, the cap area on each side equal
 //    to the section area computed independently within 1e-6 relative, and no vertex on the wrong
 //    side beyond the tolerance; or a refusal (OpenSection, TriangulationFailed: real meshes can
@@ -348,6 +349,8 @@ void splitAndCheck(const std::string& name, const MeshData& mesh, Tally& tally) 
   const double diagonal = glm::length(hi - lo);
   if (!(diagonal > 0.0)) return;
   const bool closed = container.closed();
+  // Pieces of a mesh that is closed on its own float positions must be too (see cutOnFloats).
+  const bool closedOnFloats = closed && geometry::testing::floatWeldReport(mesh).manifold();
   ++(closed ? tally.closedMeshes : tally.openMeshes);
   ++tally.splitMeshes;
   const double inputVolume = geometry::integrateClosedSurface(cut, mesh.indices, false).volume;
@@ -405,6 +408,9 @@ void splitAndCheck(const std::string& name, const MeshData& mesh, Tally& tally) 
       EXPECT_LE(worst, tolerance + rounding + 1e-9 * diagonal) << "a vertex lies on the wrong side";
       if (closed) {
         EXPECT_TRUE(geometry::testing::closedAndOriented(p, piece.mesh.indices, 1e-7 * diagonal));
+        if (closedOnFloats) {
+          EXPECT_TRUE(geometry::testing::manifoldOnFloats(piece.mesh));
+        }
         volumeSum += piece.mass.volume;
         const double cap = geometry::testing::capArea(piece.mesh, options.capMaterialId, glm::dmat4(1.0));
         (piece.side > 0 ? capAbove : capBelow) += cap;
@@ -530,28 +536,27 @@ TEST(Corpus, MeshModuleParserReadsArraysOfTriplesAndRejectsMalformedText) {
   }
 }
 
+// CGAL's meshes, unpacked from the archive the package ships into `into`; a note on what was found.
+std::string unpackCgal(const fs::path& into, std::vector<fs::path>& files) {
+  if (!fs::exists(kCgalArchive)) return "libcgal-demo not installed (no " + std::string(kCgalArchive) + ")";
+  const std::string command = "tar -xzf '" + std::string(kCgalArchive) + "' -C '" + into.string() +
+                              "' --wildcards '*.off' '*.obj' '*.ply' '*.stl' 2>/dev/null";
+  // tar exits non-zero when one of the patterns matches nothing; what counts is what was unpacked.
+  const int status = std::system(command.c_str());
+  const size_t before = files.size();
+  collect(into, files);
+  if (files.size() == before) {
+    return "nothing unpacked from " + std::string(kCgalArchive) + " (tar status " + std::to_string(status) + ")";
+  }
+  return "libcgal-demo: " + std::to_string(files.size() - before) + " mesh files";
+}
+
 TEST(Corpus, PackagedRealModelsReadAndSplitWithTheInvariants) {
   std::vector<std::string> notes;
   std::vector<fs::path> files;
 
-  // CGAL's meshes, unpacked from the archive the package ships.
   test::TempDir unpacked;
-  if (fs::exists(kCgalArchive)) {
-    const std::string command = "tar -xzf '" + std::string(kCgalArchive) + "' -C '" + unpacked.path().string() +
-                                "' --wildcards '*.off' '*.obj' '*.ply' '*.stl' 2>/dev/null";
-    // tar exits non-zero when one of the patterns matches nothing; what counts is what was unpacked.
-    const int status = std::system(command.c_str());
-    const size_t before = files.size();
-    collect(unpacked.path(), files);
-    if (files.size() == before) {
-      notes.push_back("nothing unpacked from " + std::string(kCgalArchive) + " (tar status " +
-                      std::to_string(status) + ")");
-    } else {
-      notes.push_back("libcgal-demo: " + std::to_string(files.size() - before) + " mesh files");
-    }
-  } else {
-    notes.push_back("libcgal-demo not installed (no " + std::string(kCgalArchive) + ")");
-  }
+  notes.push_back(unpackCgal(unpacked.path(), files));
   if (fs::is_directory(kAssimpModels)) {
     const size_t before = files.size();
     collect(kAssimpModels, files);
@@ -602,6 +607,84 @@ TEST(Corpus, PackagedRealModelsReadAndSplitWithTheInvariants) {
   RecordProperty("pieces_checked", static_cast<int>(tally.piecesChecked));
   EXPECT_GT(tally.loaded + tally.modules, 0u);
   EXPECT_GT(tally.splitsOk, 0u);
+}
+
+// Exact float output. Every closed CGAL mesh that is itself closed and free of zero-area triangles
+// on its float positions is cut by 30 seeded random planes, one in five exactly through one of its
+// vertices; each piece, welded by exact float position as a file written from it would be, must have
+// every edge used once in each direction and no triangle of zero area. The counts are printed.
+struct FloatTally {
+  size_t meshes = 0, skippedInput = 0, cuts = 0, throughVertex = 0, refused = 0, pieces = 0;
+  size_t badPieces = 0, zeroArea = 0, coincident = 0, openEdges = 0, overusedEdges = 0;
+};
+
+void cutOnFloats(const std::string& name, const MeshData& mesh, FloatTally& tally) {
+  MeshContainer container;
+  if (container.setMesh(mesh) != SplitStatus::Ok || !container.closed()) return;
+  if (!geometry::testing::floatWeldReport(mesh).manifold()) {
+    ++tally.skippedInput;
+    return;
+  }
+  ++tally.meshes;
+  const std::span<const glm::dvec3> cut = container.cutPositions();
+  glm::dvec3 lo, hi;
+  geometry::testing::bounds(cut, lo, hi);
+  uint64_t seed = 1469598103934665603ull;  // FNV-1a of the name: a stable seed per mesh
+  for (char c : name) seed = (seed ^ uint8_t(c)) * 1099511628211ull;
+  std::vector<Plane> planes = geometry::testing::randomPlanes(seed, 30, lo, hi);
+  geometry::testing::SeededRandom rng(seed + 1);
+  for (size_t k = 0; k < planes.size(); k += 5) {
+    const glm::dvec3 vertex = cut[rng.next() % cut.size()];
+    planes[k].offset = glm::dot(planes[k].normal, vertex);
+  }
+  auto splitter = geometry::makeConcaveSplitter();
+  SplitResult result;
+  for (size_t k = 0; k < planes.size(); ++k) {
+    const SplitStatus status = splitter->split(container, planes[k], SplitOptions{}, result);
+    if (status == SplitStatus::PlaneMissesMesh) continue;
+    ++tally.cuts;
+    tally.throughVertex += k % 5 == 0;
+    if (status != SplitStatus::Ok) {
+      ++tally.refused;
+      continue;
+    }
+    for (const geometry::SplitPiece& piece : result.pieces) {
+      ++tally.pieces;
+      const geometry::testing::FloatWeldReport report = geometry::testing::floatWeldReport(piece.mesh);
+      if (report.manifold()) continue;
+      ++tally.badPieces;
+      tally.zeroArea += report.zeroArea;
+      tally.coincident += report.coincident;
+      tally.openEdges += report.openEdges;
+      tally.overusedEdges += report.overusedEdges;
+      ADD_FAILURE() << name << ", plane " << k << ": " << geometry::testing::manifoldOnFloats(piece.mesh).message()
+                    << "; case written to "
+                    << geometry::testing::dumpCase("float_" + name + "_" + std::to_string(k), mesh,
+                                                   glm::dmat4(1.0), planes[k], "piece not manifold on floats");
+    }
+  }
+}
+
+TEST(Corpus, CutsOfClosedCgalMeshesAreManifoldOnTheirFloatPositions) {
+  test::TempDir unpacked;
+  std::vector<fs::path> files;
+  const std::string note = unpackCgal(unpacked.path(), files);
+  if (files.empty()) GTEST_SKIP() << note;
+  std::sort(files.begin(), files.end());
+  FloatTally tally;
+  for (const fs::path& file : files) {
+    const MeshReadResult read = loadMesh(file.string());
+    if (!read.ok || read.mesh.triangleCount() > kLargeTriangles) continue;
+    cutOnFloats(file.filename().string(), read.mesh, tally);
+  }
+  std::printf("[ floats   ] %zu closed meshes (%zu more not closed on their own float positions, skipped): %zu "
+              "cuts (%zu through a vertex), %zu refused; %zu pieces, %zu not manifold on floats (%zu zero-area "
+              "triangles, %zu of them with two corners at one point, %zu open edges, %zu edges used twice one way)\n",
+              tally.meshes, tally.skippedInput, tally.cuts, tally.throughVertex, tally.refused, tally.pieces,
+              tally.badPieces, tally.zeroArea, tally.coincident, tally.openEdges, tally.overusedEdges);
+  RecordProperty("float_cuts", static_cast<int>(tally.cuts));
+  RecordProperty("float_bad_pieces", static_cast<int>(tally.badPieces));
+  EXPECT_GT(tally.cuts, 1000u);
 }
 
 }  // namespace

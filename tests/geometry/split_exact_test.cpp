@@ -613,6 +613,42 @@ TEST(ConcaveSplitter, OpenArtLeavesALoopThatCannotBeCappedOpen) {
 }
 
 // The one-call API gives what a container and a splitter give.
+// A tip that pokes through the plane by one float step, far from the origin, with its three other
+// corners placed so that the three cut points are distinct in double but round to one float: what
+// lies above would be written as triangles of zero area. The cut leaves the mesh whole.
+MeshData tipOneUlpAbove(float third) {
+  const float up = std::nextafter(60.f, 100.f);
+  MeshData m;
+  m.positions = {{60.f, up, 60.f}, {59.7f, 59.f, 60.2f}, {60.3f, 59.f, 59.8f}, {60.f, 59.f, third}};
+  m.indices = {0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2};
+  if (testing::signedVolume(toCutSpace(m, glm::dmat4(1.0)), m.indices) < 0.0) {
+    for (size_t t = 0; t < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
+  }
+  return m;
+}
+
+TEST(ConcaveSplitter, ATipWhoseCutPointsRoundToOneFloatIsNotCutOff) {
+  const MeshData tip = tipOneUlpAbove(60.35f);
+  SplitResult result = splitMesh(tip, glm::mat4(1.f), Plane{{0, 1, 0}, 60.0}, SplitOptions{});
+  EXPECT_EQ(result.status, SplitStatus::PlaneMissesMesh) << result.message;
+  EXPECT_TRUE(result.pieces.empty());
+}
+
+TEST(ConcaveSplitter, CutPointsThatRoundToOneFloatAreOnePointOfAClosedPiece) {
+  // The fourth corner farther out: two of the three cut points still round to one float.
+  const MeshData tip = tipOneUlpAbove(61.5f);
+  SplitResult result = splitMesh(tip, glm::mat4(1.f), Plane{{0, 1, 0}, 60.0}, SplitOptions{});
+  ASSERT_EQ(result.status, SplitStatus::Ok) << result.message;
+  ASSERT_EQ(result.pieces.size(), 2u);
+  for (const SplitPiece& piece : result.pieces) {
+    EXPECT_TRUE(testing::manifoldOnFloats(piece.mesh)) << "side " << piece.side;
+    // The coinciding cut points share one position id in the piece's weld.
+    MeshContainer again;
+    ASSERT_EQ(again.setMesh(piece.mesh, piece.weld), SplitStatus::Ok);
+    EXPECT_TRUE(again.closed());
+  }
+}
+
 TEST(SplitMesh, OneCallCutsLikeAContainerAndASplitter) {
   const glm::mat4 model = glm::translate(glm::mat4(1.f), glm::vec3(1.f, 2.f, 3.f));
   const SplitResult one = splitMesh(seamCube(), model, planeOf({1, 0, 0}, 1.3));

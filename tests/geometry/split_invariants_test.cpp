@@ -297,6 +297,10 @@ std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer
     std::vector<glm::dvec3> src = testing::toCutSpace(m, glm::dmat4(1.0));
     ::testing::AssertionResult closed = testing::closedAndOriented(src, m.indices, 1e-7 * testing::boundsDiagonal(src));
     if (!closed) problem(at + "not closed and oriented: " + closed.message());
+    // As a file written from it is read back: welded by exact float position, closed, consistently
+    // wound and without zero-area triangles (cut points that round to one float are one point).
+    ::testing::AssertionResult onFloats = testing::manifoldOnFloats(m);
+    if (!onFloats) problem(at + onFloats.message());
     if (!piece.mass.closed) problem(at + "mass properties say the piece is open");
     // The piece's own weld (empty means unknown, allowed): accepted by a container, vertices of one
     // id at one position, and closed on its ids (each directed edge once, and its reverse once).

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -168,6 +169,64 @@ inline ::testing::AssertionResult closedAndOriented(std::span<const glm::dvec3> 
 inline void expectClosedAndOriented(const MeshData& mesh, double relativeWeld = 1e-7) {
   std::vector<glm::dvec3> p = toCutSpace(mesh, glm::dmat4(1.0));
   EXPECT_TRUE(closedAndOriented(p, mesh.indices, relativeWeld * boundsDiagonal(p)));
+}
+
+// What welding a mesh by exact float position (a file written from it, read back) finds: edges
+// used other than once in each direction, and triangles of zero area on the float positions
+// (exact: the differences and cross products of float coordinates are exact in double, so a
+// zero cross product means three collinear or coinciding points, not a rounding of a thin one).
+struct FloatWeldReport {
+  size_t triangles = 0;
+  size_t zeroArea = 0;         // triangles whose float corners are collinear or coincide
+  size_t coincident = 0;       // of these, the ones with two corners at one float position
+  size_t openEdges = 0;        // directed edges without their reverse
+  size_t overusedEdges = 0;    // directed edges used more than once
+  bool manifold() const { return zeroArea == 0 && openEdges == 0 && overusedEdges == 0; }
+};
+
+inline FloatWeldReport floatWeldReport(const MeshData& mesh) {
+  FloatWeldReport report;
+  const uint32_t n = static_cast<uint32_t>(mesh.positions.size());
+  auto key = [&](uint32_t i) {  // -0 and +0 are one position, as a reader parsing the text sees them
+    const glm::vec3 p = mesh.positions[i] + glm::vec3(0.f);
+    return std::array<float, 3>{p.x, p.y, p.z};
+  };
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+  std::vector<uint32_t> id(n);
+  for (uint32_t k = 0; k < n; ++k) id[order[k]] = k > 0 && key(order[k]) == key(order[k - 1]) ? id[order[k - 1]] : k;
+  std::vector<uint64_t> edges;
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    ++report.triangles;
+    const uint32_t v[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
+    const glm::dvec3 a(mesh.positions[v[0]]), b(mesh.positions[v[1]]), c(mesh.positions[v[2]]);
+    if (glm::cross(b - a, c - a) == glm::dvec3(0.0)) {
+      ++report.zeroArea;
+      report.coincident += id[v[0]] == id[v[1]] || id[v[1]] == id[v[2]] || id[v[2]] == id[v[0]];
+      continue;
+    }
+    for (int e = 0; e < 3; ++e) edges.push_back((uint64_t(id[v[e]]) << 32) | id[v[(e + 1) % 3]]);
+  }
+  std::sort(edges.begin(), edges.end());
+  for (size_t k = 0; k < edges.size(); ++k) {
+    if (k > 0 && edges[k] == edges[k - 1]) {
+      ++report.overusedEdges;
+      continue;
+    }
+    const uint64_t reverse = (edges[k] << 32) | (edges[k] >> 32);
+    if (!std::binary_search(edges.begin(), edges.end(), reverse)) ++report.openEdges;
+  }
+  return report;
+}
+
+inline ::testing::AssertionResult manifoldOnFloats(const MeshData& mesh) {
+  const FloatWeldReport r = floatWeldReport(mesh);
+  if (r.manifold()) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "welded by float position, " << r.zeroArea << " of " << r.triangles
+                                       << " triangle(s) have zero area (" << r.coincident << " with two corners at one point), " << r.openEdges
+                                       << " edge(s) lack their reverse, " << r.overusedEdges
+                                       << " edge(s) are used twice in one direction";
 }
 
 inline double signedVolume(std::span<const glm::dvec3> p, std::span<const uint32_t> indices) {
