@@ -606,7 +606,7 @@ bool readSplitable(Reader& rd, const Node& n, EntityDesc& d) {
   if (!rd.expectObject(n, {"convex", "cap", "cap_material", "cap_material_id", "cap_uv", "cap_uv_per_metre",
                            "cap_atlas_rect", "cap_uv_per_border", "mass_mode", "density", "split_impulse",
                            "min_piece_volume", "small_pieces", "separate_islands", "max_depth", "handler",
-                           "open_sections"}))
+                           "open_sections", "islands"}))
     return false;
   d.splitable = true;
   Splitable& s = d.split;
@@ -614,6 +614,7 @@ bool readSplitable(Reader& rd, const Node& n, EntityDesc& d) {
   int massMode = int(s.massMode);
   int small = int(s.smallPieces);
   int open = int(s.openSections);
+  int islands = int(s.islands);
   d.splitDensityGiven = n.has("density");
   d.capMaterialIdGiven = n.has("cap_material_id");
   if (!rd.boolean(n, "convex", s.convexHint) || !rd.boolean(n, "cap", s.cap) ||
@@ -628,9 +629,11 @@ bool readSplitable(Reader& rd, const Node& n, EntityDesc& d) {
       !rd.choice(n, "small_pieces", {"remove", "debris"}, small) ||
       !rd.boolean(n, "separate_islands", s.separateIslands) ||
       !rd.integer32(n, "max_depth", s.maxDepth, 1, 64) || !rd.string(n, "handler", s.handler) ||
-      !rd.choice(n, "open_sections", {"refuse", "cap_closed"}, open))
+      !rd.choice(n, "open_sections", {"refuse", "cap_closed"}, open) ||
+      !rd.choice(n, "islands", {"touching", "connected"}, islands))
     return false;
   s.openSections = geometry::OpenSectionMode(open);
+  s.islands = geometry::IslandMode(islands);
   s.capUvMode = uv == 1 ? geometry::CapUvMode::NormalizedBounds : geometry::CapUvMode::WorldPlanar;
   s.massMode = MassMode(massMode);
   s.smallPieces = SmallPieceMode(small);

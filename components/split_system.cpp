@@ -619,6 +619,7 @@ geometry::SplitOptions optionsFor(const Splitable& sp, bool hierarchy) {
   // object: each side stays one piece.
   options.separateIslands = sp.separateIslands && !hierarchy;
   options.openSections = sp.openSections;
+  options.islands = sp.islands;
   return options;
 }
 

@@ -66,6 +66,9 @@ struct Splitable {
   double minPieceVolume = 1e-6;             // m^3
   SmallPieceMode smallPieces = SmallPieceMode::Debris;
   bool separateIslands = true;
+  // With separate islands: parts that touch or pass into one another stay one piece (Touching, for
+  // multi-part art), or every separate part of the mesh is its own piece (Connected).
+  geometry::IslandMode islands = geometry::IslandMode::Touching;
   // Art that is not watertight where it is cut: cut anyway, capping the closed loops (default), or
   // keep the object whole.
   geometry::OpenSectionMode openSections = geometry::OpenSectionMode::CapClosedLoops;

@@ -12,6 +12,7 @@
 #include "engine/geometry/mass_properties.h"
 
 #include <algorithm>
+#include <numeric>
 #include <cmath>
 #include <vector>
 
@@ -242,6 +243,78 @@ MassProperties fromSurface(std::span<const glm::dvec3> p, std::span<const uint32
   return out;
 }
 
+// The convex hull of the referenced points stands in for an open surface.
+MassProperties fromHull(std::span<const glm::dvec3> p, std::span<const uint32_t> indices) {
+  std::vector<uint8_t> used(p.size(), 0);
+  std::vector<glm::dvec3> referenced;
+  for (uint32_t index : indices) {
+    if (!used[index]) {
+      used[index] = 1;
+      referenced.push_back(p[index]);
+    }
+  }
+  MassProperties out;
+  ConvexHull hull = computeConvexHull(std::span<const glm::dvec3>(referenced));
+  if (hull.status == HullStatus::Ok) {
+    out = fromSurface(hull.positions, hull.indices, false);
+  } else {
+    out.centerOfMass = vertexCentroid(p, indices);
+  }
+  out.closed = false;
+  out.fromConvexHull = true;
+  return out;
+}
+
+// An open surface made of several parts (multi-part art: plates, bolts and limbs modelled apart) is
+// the sum of its parts, each closed part integrated exactly and each open one by its hull; one part
+// is its hull. Parts that pass into one another count their common volume twice.
+MassProperties openSurface(std::span<const glm::dvec3> p, std::span<const uint32_t> id,
+                           std::span<const uint32_t> indices, bool flip) {
+  std::vector<uint32_t> parent(p.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    for (int c = 1; c < 3; ++c) {
+      const uint32_t a = find(id[indices[t]]), b = find(id[indices[t + c]]);
+      parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  std::vector<std::pair<uint32_t, uint32_t>> byPart;  // (part root, triangle)
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    byPart.push_back({find(id[indices[t]]), static_cast<uint32_t>(t / 3)});
+  }
+  std::sort(byPart.begin(), byPart.end());
+  if (byPart.empty() || byPart.front().first == byPart.back().first) return fromHull(p, indices);
+  MassProperties sum;
+  bool first = true;
+  std::vector<uint32_t> part;
+  for (size_t k = 0; k < byPart.size();) {
+    part.clear();
+    size_t j = k;
+    for (; j < byPart.size() && byPart[j].first == byPart[k].first; ++j) {
+      const uint32_t t = byPart[j].second;
+      part.insert(part.end(), {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]});
+    }
+    k = j;
+    MassProperties one;
+    if (closedOnIds(id, part)) {
+      one = fromSurface(p, part, flip);
+      one.closed = true;
+    } else {
+      one = fromHull(p, part);
+    }
+    const bool hull = sum.fromConvexHull || one.fromConvexHull;
+    sum = first ? one : combineMassProperties(sum, one);
+    sum.fromConvexHull = hull;
+    first = false;
+  }
+  sum.closed = false;
+  return sum;
+}
+
 template <class Vec>
 MassProperties compute(std::span<const Vec> positions, std::span<const uint32_t> indices,
                        const glm::dmat4& transform) {
@@ -261,25 +334,7 @@ MassProperties compute(std::span<const Vec> positions, std::span<const uint32_t>
     out.closed = true;
     return out;
   }
-  // Open: the convex hull of the referenced points stands in for the solid.
-  std::vector<uint8_t> used(p.size(), 0);
-  std::vector<glm::dvec3> referenced;
-  for (uint32_t index : indices) {
-    if (!used[index]) {
-      used[index] = 1;
-      referenced.push_back(p[index]);
-    }
-  }
-  ConvexHull hull = computeConvexHull(std::span<const glm::dvec3>(referenced));
-  if (hull.status == HullStatus::Ok) {
-    out = fromSurface(hull.positions, hull.indices, false);
-  } else {
-    out = MassProperties{};
-    out.centerOfMass = vertexCentroid(p, indices);
-  }
-  out.closed = false;
-  out.fromConvexHull = true;
-  return out;
+  return openSurface(p, id, indices, flip);
 }
 
 }  // namespace
@@ -310,6 +365,25 @@ MassProperties integrateClosedSurface(std::span<const glm::dvec3> positions,
   if (highest >= positions.size()) return {};
   MassProperties out = fromSurface(positions, indices, flipWinding, everyPointUsed);
   out.closed = true;
+  return out;
+}
+
+MassProperties combineMassProperties(const MassProperties& a, const MassProperties& b) {
+  MassProperties out;
+  out.closed = a.closed && b.closed;
+  out.fromConvexHull = a.fromConvexHull || b.fromConvexHull;
+  out.volume = a.volume + b.volume;
+  if (!(out.volume > 0.0)) {
+    out.centerOfMass = 0.5 * (a.centerOfMass + b.centerOfMass);
+    return out;
+  }
+  out.centerOfMass = (a.volume * a.centerOfMass + b.volume * b.centerOfMass) / out.volume;
+  // Parallel axis theorem: each part's tensor moved from its centre to the common one.
+  auto shifted = [&](const MassProperties& m) {
+    const glm::dvec3 d = m.centerOfMass - out.centerOfMass;
+    return m.inertia + m.volume * (glm::dot(d, d) * glm::dmat3(1.0) - glm::outerProduct(d, d));
+  };
+  out.inertia = shifted(a) + shifted(b);
   return out;
 }
 

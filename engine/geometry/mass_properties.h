@@ -32,7 +32,10 @@ struct PrincipalInertia {
 
 // Properties of the closed surface given by positions (transformed by `transform`, which may scale,
 // shear or mirror; a mirroring transform is handled so the volume stays positive) and a triangle list.
-// Closedness is checked on positions welded exactly; an open mesh falls back to its convex hull.
+// Closedness is checked on positions welded exactly; an open mesh falls back to its convex hull, or,
+// when it is made of several separate parts (multi-part art), to the sum of its parts: each closed
+// part exact, each open part its convex hull (fromConvexHull is then set when any part used one;
+// parts that pass into one another count their common volume twice).
 MassProperties computeMassProperties(std::span<const glm::vec3> positions,
                                      std::span<const uint32_t> indices,
                                      const glm::dmat4& transform = glm::dmat4(1.0));
@@ -58,6 +61,11 @@ MassProperties integrateClosedSurface(std::span<const glm::dvec3> positions,
 // coordinate, no triangle) gives all-zero properties with closed = false and fromConvexHull = false.
 // A closed mesh with zero volume (flat) gives volume 0, the vertex centroid as centre and a zero
 // tensor. An open mesh whose convex hull is flat or degenerate gives the same, with fromConvexHull.
+
+// The properties of two solids taken together (volumes add, centres weighted by volume, tensors
+// moved to the common centre by the parallel axis theorem); closed when both are, fromConvexHull
+// when either is. Both in the same space.
+MassProperties combineMassProperties(const MassProperties& a, const MassProperties& b);
 
 // True when, with positions welded on exactly equal coordinates, every undirected edge is used by
 // exactly two triangles, once in each direction (closed, 2-manifold at edges, consistently wound).

@@ -30,7 +30,9 @@
 //  6. Exact float output: the parts of cut triangles (and caps) whose corners round to one float
 //     position are dropped and those corners welded into one id, so the pieces are closed on their
 //     float positions as on their ids; a side with nothing left is a miss.
-//     Islands: union-find over welded ids (cap triangles included) on each side; pieces are ordered
+//     Islands: union-find over welded ids (cap triangles included) on each side; with
+//     IslandMode::Touching, parts that touch, pass into or hold one another are then joined, and a
+//     part the plane did not reach goes with the nearest piece it did (island_contacts.h); pieces are ordered
 //     by their smallest source triangle. Each piece is written in source space with its own vertex
 //     remap, submesh runs in input order (cap triangles join an existing run of the cap material).
 //  7. Mass properties per piece on the cut-space positions.
@@ -44,6 +46,7 @@
 #include <numeric>
 
 #include "engine/geometry/cap_triangulator.h"
+#include "engine/geometry/island_contacts.h"
 
 namespace cleave::geometry {
 
@@ -61,6 +64,7 @@ const char* toString(SplitStatus status) {
 namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
+constexpr uint32_t kReachedBit = 0x80000000u;  // SideTriangle::source of a triangle the plane reached
 constexpr double kPi = 3.14159265358979323846;
 
 uint64_t pairKey(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
@@ -144,7 +148,7 @@ glm::vec3 normalizedOr(const glm::dvec3& v, const glm::vec3& fallback) {
 
 struct SideTriangle {
   uint32_t v[3];    // vertex references (see Splitter::kinds), cut-space outward winding
-  uint32_t source;  // source triangle index, kNone for a cap triangle
+  uint32_t source;  // source triangle index, | kReachedBit when the plane reached it; kNone for a cap
   uint32_t slot;    // output run slot
 };
 
@@ -196,6 +200,7 @@ class Splitter final : public IMeshSplitter {
   uint32_t weldedOfAny(uint32_t ref) const;
   glm::dvec3 cutOfAny(uint32_t ref) const;
   uint32_t mergeCavities(int side, uint32_t pieces);
+  uint32_t joinTouching(int side, uint32_t pieces, const SplitOptions& options);
   void writePieces(const SplitOptions& options, SplitResult& result);
   void gatherVertices(MeshData& m);
   void pieceWeld(MeshWeld& weld, bool closed);
@@ -274,6 +279,10 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint32_t> pieceMap_;
   std::vector<double> volume_;
   std::vector<uint32_t> firstTriangle_;
+  std::vector<glm::dvec3> contactCorners_;  // joinTouching: 3 cut-space corners per side triangle
+  std::vector<uint32_t> contactRoot_;
+  std::vector<uint8_t> contactReached_;
+  ContactScratch contactScratch_;
   std::vector<SplitPiece> spare_;
 };
 
@@ -560,6 +569,7 @@ void Splitter::cutTriangles() {
   auto pushCut = [&](bool planar, int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
     const int index = side > 0 ? 0 : 1;
     cutTris_[index].push_back(static_cast<uint32_t>(sideTris_[index].size()));
+    source |= kReachedBit;
     if (planar) {
       pushPlanar(side, a, b, c, source);
     } else {
@@ -579,7 +589,7 @@ void Splitter::cutTriangles() {
     const int zeros = (s[0] == 0) + (s[1] == 0) + (s[2] == 0);
     if (anyAbove != anyBelow) {
       if (zeros >= 2) {
-        pushPlanar(anyAbove ? 1 : -1, g[0], g[1], g[2], t);
+        pushPlanar(anyAbove ? 1 : -1, g[0], g[1], g[2], t | kReachedBit);
       } else {
         push(anyAbove ? 1 : -1, g[0], g[1], g[2], t);
       }
@@ -589,7 +599,7 @@ void Splitter::cutTriangles() {
       // A face in the plane: the solid lies behind it, on the side its normal points away from.
       const glm::dvec3 p0 = cut_[reps_[ids_[g[0]]]], p1 = cut_[reps_[ids_[g[1]]]], p2 = cut_[reps_[ids_[g[2]]]];
       const double facing = glm::dot(glm::cross(p1 - p0, p2 - p0), normal_);
-      pushPlanar(facing > 0.0 ? -1 : 1, g[0], g[1], g[2], t);
+      pushPlanar(facing > 0.0 ? -1 : 1, g[0], g[1], g[2], t | kReachedBit);
       continue;
     }
     int zero = -1;
@@ -1212,6 +1222,64 @@ uint32_t Splitter::mergeCavities(int side, uint32_t pieces) {
   return count;
 }
 
+// Parts of one side that touch, pass into or hold one another become one piece (island_contacts.h),
+// and a part the plane did not reach that touches nothing goes with the piece of its side the plane
+// did reach nearest to it (bounding boxes), so that only what the cut separates falls apart. Pieces
+// are renumbered in order of first triangle, as before. Returns the new piece count.
+uint32_t Splitter::joinTouching(int side, uint32_t pieces, const SplitOptions& options) {
+  const std::vector<SideTriangle>& tris = sideTris_[side];
+  contactCorners_.resize(3 * tris.size());
+  for (size_t k = 0; k < tris.size(); ++k) {
+    for (int c = 0; c < 3; ++c) contactCorners_[3 * k + c] = cutOfAny(tris[k].v[c]);
+  }
+  const double tolerance = std::max(options.touchTolerance, 0.0) * container_->boundsDiagonal();
+  joinTouchingComponents(contactCorners_, pieceOf_, pieces, tolerance, contactRoot_, contactScratch_);
+  // Per joined group (its root): reached by the plane, and its bounds.
+  std::vector<uint8_t>& reached = contactReached_;
+  std::vector<glm::dvec3>& lo = contactScratch_.lo;  // reused: bounds per group
+  std::vector<glm::dvec3>& hi = contactScratch_.hi;
+  reached.assign(pieces, 0);
+  lo.assign(pieces, glm::dvec3(INFINITY));
+  hi.assign(pieces, glm::dvec3(-INFINITY));
+  for (size_t k = 0; k < tris.size(); ++k) {
+    const uint32_t g = contactRoot_[pieceOf_[k]];
+    reached[g] = reached[g] || (tris[k].source & kReachedBit) != 0;
+    for (int c = 0; c < 3; ++c) {
+      lo[g] = glm::min(lo[g], contactCorners_[3 * k + c]);
+      hi[g] = glm::max(hi[g], contactCorners_[3 * k + c]);
+    }
+  }
+  for (uint32_t g = 0; g < pieces; ++g) {
+    if (contactRoot_[g] != g || reached[g]) continue;
+    uint32_t best = kNone;
+    double bestGap = INFINITY;
+    for (uint32_t r = 0; r < pieces; ++r) {
+      if (contactRoot_[r] != r || !reached[r]) continue;
+      const glm::dvec3 gap = glm::max(glm::max(lo[r] - hi[g], lo[g] - hi[r]), glm::dvec3(0.0));
+      if (glm::dot(gap, gap) < bestGap) {
+        bestGap = glm::dot(gap, gap);
+        best = r;
+      }
+    }
+    if (best != kNone) contactRoot_[g] = best;  // roots stay roots: the reached one is never moved
+  }
+  bool joined = false;
+  for (uint32_t p = 0; p < pieces; ++p) {
+    contactRoot_[p] = contactRoot_[contactRoot_[p]];  // through a moved group to its reached piece
+    joined = joined || contactRoot_[p] != p;
+  }
+  if (!joined) return pieces;
+  // Number the groups by their first label (labels follow the order of first triangle).
+  volume_.assign(pieces, -1.0);  // reused: the new number of a group, by its root
+  uint32_t count = 0;
+  for (uint32_t p = 0; p < pieces; ++p) {
+    if (volume_[contactRoot_[p]] < 0.0) volume_[contactRoot_[p]] = double(count++);
+  }
+  for (size_t k = 0; k < tris.size(); ++k) pieceOf_[k] = static_cast<uint32_t>(volume_[contactRoot_[pieceOf_[k]]]);
+  for (uint32_t& p : pieceMap_) p = static_cast<uint32_t>(volume_[contactRoot_[p]]);
+  return count;
+}
+
 uint32_t Splitter::find(uint32_t x) {
   while (parent_[x] != x) {
     parent_[x] = parent_[parent_[x]];
@@ -1332,6 +1400,9 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
     pieceMap_.resize(pieces);
     std::iota(pieceMap_.begin(), pieceMap_.end(), 0u);
     if (options.cap && options.separateIslands && pieces > 1) pieces = mergeCavities(side, pieces);
+    if (options.separateIslands && options.islands == IslandMode::Touching && pieces > 1) {
+      pieces = joinTouching(side, pieces, options);
+    }
     firstPiece[side] = static_cast<uint32_t>(totalPieces);
     totalPieces += pieces;
     // Cap loops per piece: a loop's cap belongs to the island of its first vertex.
@@ -1387,6 +1458,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
       out.side = side == 0 ? 1 : -1;
       out.capTriangles = 0;
       out.capLoops = 0;
+      out.reached = false;
       out.mass = MassProperties{};
       ++stampValue_;
       if (stampValue_ == 0) {  // wrapped: clear the stamps once
@@ -1411,6 +1483,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
         while (runEnd < end && tris[order_[runEnd]].slot == slot) ++runEnd;
         for (; k < runEnd; ++k) {
           const SideTriangle& tri = tris[order_[k]];
+          out.reached = out.reached || (tri.source & kReachedBit) != 0;
           const uint32_t corner[3] = {tri.v[0], tri.v[second], tri.v[third]};
           for (uint32_t ref : corner) {
             uint64_t& entry = stampRemap_[ref];

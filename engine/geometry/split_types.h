@@ -48,6 +48,15 @@ enum class OpenSectionMode : uint8_t {
                    // (SplitResult::uncappedLoops) instead of failing the split.
 };
 
+// How the surface of one side is divided into pieces (with SplitOptions::separateIslands).
+enum class IslandMode : uint8_t {
+  Touching,   // parts that touch, pass into or hold one another stay one piece (island_contacts.h),
+              // and a part the plane did not reach that touches nothing goes with the nearest piece
+              // of its side that the plane did reach: multi-part art, as a robot built of plates and
+              // bolts, gives one piece per side unless the cut really separates it
+  Connected,  // strictly by shared vertices: every separate part of the mesh is its own piece
+};
+
 struct SplitOptions {
   bool cap = true;                      // false: hollow mode, no cap triangles, open sections allowed
   OpenSectionMode openSections = OpenSectionMode::CapClosedLoops;
@@ -57,6 +66,8 @@ struct SplitOptions {
   glm::vec4 atlasRect{0.f, 0.f, 1.f, 1.f};  // x, y, width, height: cap UVs are mapped into this rectangle
   bool uvPerBorder = false;             // NormalizedBounds: normalise per outer border, not per whole cap
   bool separateIslands = true;          // false: each side stays one piece even if disconnected
+  IslandMode islands = IslandMode::Touching;
+  double touchTolerance = 1e-4;         // Touching: parts this close touch, times the bounds diagonal
   double relativeTolerance = 1e-6;      // on-plane tolerance, times the cut-space bounding-box diagonal
   bool computeMass = true;              // mass properties per piece (cut space)
 };
@@ -88,6 +99,10 @@ struct SplitPiece {
   // matrices; joints not listed are unused by this piece (a ragdoll builds bones for these only).
   // Empty for meshes without skin.
   std::vector<uint16_t> joints;
+  // The plane reached this piece: some of its triangles were cut or touch the plane, or it has a cap.
+  // False for a part of the mesh that lies wholly on one side and touches nothing the plane reached
+  // (IslandMode::Touching joins it to what it touches).
+  bool reached = false;
 };
 
 struct SplitResult {

@@ -44,7 +44,8 @@ Enemy spawnGladiator(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 posit
   splitable.density = 1000.0;
   splitable.capMaterial = m.flesh;
   splitable.capMaterialId = 1;
-  splitable.separateIslands = true;  // a cut figure falls apart into its parts
+  splitable.separateIslands = true;  // a cut figure falls apart into its parts,
+  splitable.islands = geometry::IslandMode::Connected;  // every one of them, touching or not
   splitable.splitImpulse = 0.8;
   // Every island of a cut is a piece of one convex part, so its hull is exact: no convexity test.
   splitable.collider = components::ColliderMode::ConvexHull;

@@ -128,6 +128,86 @@ TEST(CleaveSplitTool, JsonReportsPiecesWhoseVolumesAddUp) {
   EXPECT_TRUE(std::filesystem::exists(out + "/piece_1_below.obj"));
 }
 
+// Unit cubes at the given offsets, as separate parts of one OBJ (no shared vertices).
+std::string cubesObj(const std::vector<glm::vec3>& offsets) {
+  std::ostringstream s;
+  s << "# separate unit cubes\n";
+  for (const glm::vec3& o : offsets) {
+    for (const auto& c : test::kCubeCorners) s << "v " << c[0] + o.x << ' ' << c[1] + o.y << ' ' << c[2] + o.z << '\n';
+  }
+  for (size_t k = 0; k < offsets.size(); ++k) {
+    for (const auto& quad : test::kCubeQuads) {
+      s << 'f';
+      for (int v : quad) s << ' ' << 8 * k + v + 1;
+      s << '\n';
+    }
+  }
+  return s.str();
+}
+
+TEST(CleaveSplitTool, MultiPartArtGivesOnePiecePerSideAndSkipsWhatThePlaneDidNotReach) {
+  if (!std::filesystem::exists(splitTool())) GTEST_SKIP() << "cleave-split not built";
+  TempDir dir;
+  // Two cubes passing into one another, cut by y = 0.5, and a third far above the plane.
+  const std::string parts = dir.write("parts.obj", cubesObj({{0, 0, 0}, {0.5f, 0.2f, 0}, {0, 3, 0}}));
+  const std::string tool = quote(splitTool()) + ' ' + quote(parts) + " --plane 0 1 0 0.5 --json";
+  auto pieces = [&](const std::string& extra, const std::string& out, int& reached) {
+    std::string output;
+    EXPECT_EQ(run(tool + extra + " --out " + quote(dir.file(out)) + " 2>&1", output), 0) << output;
+    const nlohmann::json report = nlohmann::json::parse(output, nullptr, false);
+    EXPECT_FALSE(report.is_discarded()) << output;
+    reached = 0;
+    if (report.is_discarded()) return nlohmann::json::array();
+    for (const auto& piece : report["pieces"]) reached += piece["reached"].get<bool>() ? 1 : 0;
+    return report["pieces"];
+  };
+  auto files = [&](const std::string& out) {
+    size_t count = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir.file(out))) count += entry.is_regular_file();
+    return count;
+  };
+  int reached = 0;
+  // touching (the default): one piece per side; the cube above goes with the upper piece.
+  const nlohmann::json touching = pieces("", "touching", reached);
+  ASSERT_EQ(touching.size(), 2u);
+  EXPECT_EQ(reached, 2);
+  EXPECT_NEAR(touching[0]["volume"].get<double>(), 1.0 + 0.5 + 0.7, 1e-5);
+  EXPECT_EQ(files("touching"), 2u);
+  // connected: every part its own piece; the one the plane did not reach is reported, not written.
+  const nlohmann::json connected = pieces(" --islands connected", "connected", reached);
+  EXPECT_EQ(connected.size(), 5u);
+  EXPECT_EQ(reached, 4);
+  EXPECT_EQ(files("connected"), 4u);
+  pieces(" --islands connected --all-pieces", "all", reached);
+  EXPECT_EQ(files("all"), 5u);
+  std::string output;
+  EXPECT_EQ(run(tool + " --islands some 2>&1", output), 2);
+  EXPECT_NE(output.find("--islands must be touching or connected"), std::string::npos) << output;
+}
+
+// robot.glb is built of dozens of separate parts that touch or pass into one another. Cut once in a
+// pose, it gives one piece per side plus what the cut really separates (a hand, the feet), not one
+// piece per part; its parts' mass adds up.
+TEST(CleaveSplitTool, PosedRobotCutOnceStaysInAFewPieces) {
+  if (!std::filesystem::exists(splitTool())) GTEST_SKIP() << "cleave-split not built";
+  const std::filesystem::path robot = modelsFolder() / "robot.glb";
+  if (!std::filesystem::exists(robot)) GTEST_SKIP() << "no " << robot;
+  const std::string tool =
+      quote(splitTool()) + ' ' + quote(robot.string()) + " --pose Robot_Dance:0.5 --plane 0.2 1 0.1 0.5 --json";
+  auto report = [&](const std::string& extra) {
+    std::string output;
+    EXPECT_EQ(run(tool + extra + " 2>&1", output), 0) << output;
+    return nlohmann::json::parse(output, nullptr, false);
+  };
+  const nlohmann::json touching = report(""), connected = report(" --islands connected");
+  ASSERT_FALSE(touching.is_discarded() || connected.is_discarded());
+  EXPECT_EQ(touching["pieces"].size(), 5u);
+  EXPECT_GE(connected["pieces"].size(), 50u);
+  double total = 0.0;
+  for (const auto& piece : touching["pieces"]) total += piece["volume"].get<double>();
+  EXPECT_NEAR(total, touching["input"]["volume"].get<double>(), 1e-6 * total);
+}
+
 TEST(CleaveSplitTool, ErrorsGiveOneLineAndTheDocumentedExitCodes) {
   if (!std::filesystem::exists(splitTool())) GTEST_SKIP() << "cleave-split not built";
   TempDir dir;

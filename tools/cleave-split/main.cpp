@@ -39,7 +39,8 @@ constexpr int kMaxRepeat = 1000000;
 
 constexpr const char* kUsage =
     "usage: cleave-split INPUT --plane NX NY NZ D [--out DIR] [--format obj|glb] [--hollow]\n"
-    "                    [--open refuse|cap-closed] [--no-islands] [--uv world|bounds]\n"
+    "                    [--open refuse|cap-closed] [--islands touching|connected] [--no-islands]\n"
+    "                    [--all-pieces] [--uv world|bounds]\n"
     "                    [--pose CLIP:SECONDS] [--repeat N] [--json]\n"
     "\n"
     "Cuts the mesh in INPUT (.obj .off .stl .ply .gltf .glb) by the plane {x : dot(n, x) = D}.\n"
@@ -51,7 +52,13 @@ constexpr const char* kUsage =
     "  --hollow            do not cap the cut (open sections allowed)\n"
     "  --open MODE         a section that is not all closed loops (open art): cap-closed (default)\n"
     "                      caps the closed loops and leaves the open chains open; refuse fails\n"
+    "  --islands MODE      how a side that falls apart is divided: touching (default) keeps parts\n"
+    "                      that touch, pass into or hold one another as one piece, and puts a part\n"
+    "                      the plane does not reach with the nearest piece of its side (multi-part\n"
+    "                      art); connected makes every separate part of the mesh a piece\n"
     "  --no-islands        keep each side as one piece even when it falls apart\n"
+    "  --all-pieces        with --out, also write the pieces the plane did not reach (parts of the\n"
+    "                      mesh wholly on one side, touching nothing that was cut)\n"
     "  --uv world|bounds   cap texture coordinates: world-planar (default) or normalised bounds\n"
     "  --pose CLIP:SECONDS cut the skinned mesh of a glTF model posed by clip CLIP (name or index)\n"
     "                      at SECONDS (wrapped into the clip); --format glb pieces keep the skin\n"
@@ -74,6 +81,8 @@ struct Arguments {
   bool hollow = false;
   geometry::OpenSectionMode open = geometry::OpenSectionMode::CapClosedLoops;
   bool islands = true;
+  geometry::IslandMode islandMode = geometry::IslandMode::Touching;
+  bool allPieces = false;
   geometry::CapUvMode uvMode = geometry::CapUvMode::WorldPlanar;
   int repeat = 1;
   std::optional<std::string> poseClip;  // --pose: clip name or index
@@ -93,6 +102,25 @@ bool parseInt(std::string_view text, int& value) {
   if (text.empty()) return false;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   return ec == std::errc() && end == text.data() + text.size();
+}
+
+// The word after the option at list[i] (i moves onto it), as one of `choices`; otherwise false, with
+// an error that lists the words.
+template <class Enum>
+bool parseChoice(const std::vector<std::string_view>& list, size_t& i,
+                 std::initializer_list<std::pair<std::string_view, Enum>> choices, Enum& out, std::string& error) {
+  const std::string option(list[i]);
+  const std::string_view word = i + 1 < list.size() ? list[++i] : std::string_view();
+  std::string words;
+  for (const auto& [name, value] : choices) {
+    if (name == word) {
+      out = value;
+      return true;
+    }
+    words += (words.empty() ? "" : " or ") + std::string(name);
+  }
+  error = option + " must be " + words + ", not '" + std::string(word) + "'";
+  return false;
 }
 
 // Fills `args`; on a usage error returns false with `error` set.
@@ -144,17 +172,19 @@ bool parseArguments(int argc, char** argv, Arguments& args, std::string& error) 
     } else if (arg == "--hollow") {
       args.hollow = true;
     } else if (arg == "--open") {
-      const std::string mode = i + 1 < list.size() ? std::string(list[++i]) : std::string();
-      if (mode == "refuse") {
-        args.open = geometry::OpenSectionMode::Refuse;
-      } else if (mode == "cap-closed") {
-        args.open = geometry::OpenSectionMode::CapClosedLoops;
-      } else {
-        error = "--open must be refuse or cap-closed, not '" + mode + "'";
+      using geometry::OpenSectionMode;
+      if (!parseChoice(list, i, {{"refuse", OpenSectionMode::Refuse}, {"cap-closed", OpenSectionMode::CapClosedLoops}},
+                       args.open, error))
         return false;
-      }
+    } else if (arg == "--islands") {
+      using geometry::IslandMode;
+      if (!parseChoice(list, i, {{"touching", IslandMode::Touching}, {"connected", IslandMode::Connected}},
+                       args.islandMode, error))
+        return false;
     } else if (arg == "--no-islands") {
       args.islands = false;
+    } else if (arg == "--all-pieces") {
+      args.allPieces = true;
     } else if (arg == "--uv") {
       if (!needs(1)) return false;
       const std::string_view mode = list[++i];
@@ -340,6 +370,7 @@ int main(int argc, char** argv) {
   options.cap = !args.hollow;
   options.openSections = args.open;
   options.separateIslands = args.islands;
+  options.islands = args.islandMode;
   options.uvMode = args.uvMode;
   options.computeMass = true;
   // The cap gets a material id of its own, after every id the input uses.
@@ -421,6 +452,7 @@ int main(int argc, char** argv) {
     writeOptions.materialColors = materialColors;
     for (size_t k = 0; k < result.pieces.size(); ++k) {
       const geometry::SplitPiece& piece = result.pieces[k];
+      if (!piece.reached && !args.allPieces) continue;  // a part the plane did not reach: not asked for
       const std::string file = "piece_" + std::to_string(k) + (piece.side > 0 ? "_above." : "_below.") +
                                args.format;
       const std::string path = (std::filesystem::path(*args.outDir) / file).string();
@@ -466,6 +498,7 @@ int main(int argc, char** argv) {
       p["cap_triangles"] = piece.capTriangles;
       p["cap_loops"] = piece.capLoops;
       p["closed"] = piece.mass.closed;
+      p["reached"] = piece.reached;
       if (args.poseClip) p["joints_used"] = piece.joints.size();
       const nlohmann::ordered_json mass = massJson(piece.mass);
       for (const auto& [key, value] : mass.items()) p[key] = value;
@@ -502,11 +535,13 @@ int main(int argc, char** argv) {
       const geometry::SplitPiece& piece = result.pieces[k];
       total += piece.mass.volume;
       std::printf("piece %zu %s: %zu triangles (%u cap, %u loops), %s, volume %.9g, "
-                  "centre (%.6g, %.6g, %.6g)\n",
+                  "centre (%.6g, %.6g, %.6g)%s\n",
                   k, piece.side > 0 ? "above" : "below", piece.mesh.triangleCount(),
                   piece.capTriangles, piece.capLoops, piece.mass.closed ? "closed" : "open",
                   piece.mass.volume, piece.mass.centerOfMass.x, piece.mass.centerOfMass.y,
-                  piece.mass.centerOfMass.z);
+                  piece.mass.centerOfMass.z,
+                  piece.reached ? "" : args.allPieces || !args.outDir ? ", not reached by the plane"
+                                                                     : ", not reached by the plane (not written)");
     }
     if (splitOk) std::printf("pieces volume total %.9g\n", total);
     for (const std::string& path : written) std::printf("wrote %s\n", path.c_str());
