@@ -629,7 +629,7 @@ bool readSplitable(Reader& rd, const Node& n, EntityDesc& d) {
       !rd.choice(n, "small_pieces", {"remove", "debris"}, small) ||
       !rd.boolean(n, "separate_islands", s.separateIslands) ||
       !rd.integer32(n, "max_depth", s.maxDepth, 1, 64) || !rd.string(n, "handler", s.handler) ||
-      !rd.choice(n, "open_sections", {"refuse", "cap_closed"}, open) ||
+      !rd.choice(n, "open_sections", {"refuse", "cap_closed", "bridge"}, open) ||
       !rd.choice(n, "islands", {"touching", "connected"}, islands))
     return false;
   s.openSections = geometry::OpenSectionMode(open);

@@ -146,6 +146,8 @@ glm::vec3 normalizedOr(const glm::dvec3& v, const glm::vec3& fallback) {
   return len > 0.0 && std::isfinite(len) ? glm::vec3(v / len) : fallback;
 }
 
+bool insideLoop(std::span<const glm::dvec2> points, uint32_t begin, uint32_t end, const glm::dvec2& q);
+
 struct SideTriangle {
   uint32_t v[3];    // vertex references (see Splitter::kinds), cut-space outward winding
   uint32_t source;  // source triangle index, | kReachedBit when the plane reached it; kNone for a cap
@@ -183,6 +185,9 @@ class Splitter final : public IMeshSplitter {
   void cutTriangles();
   void collectBoundary(int side, std::vector<uint64_t>& boundary);
   void buildLoops();
+  void walkChains();
+  void bridgeChains();
+  bool chordClear(uint32_t begin, uint32_t end, bool alone);
   void mergeNearPoints();
   uint32_t nextSegment(uint32_t at, uint32_t incoming) const;
   bool capSection(const SplitOptions& options, std::string& why);
@@ -259,6 +264,12 @@ class Splitter final : public IMeshSplitter {
   std::vector<std::pair<double, uint32_t>> angular_;
   std::vector<uint32_t> flatCaps_;                     // cap triangles flat on their float positions
   uint32_t openChains_ = 0;
+  bool bridge_ = false;          // OpenSectionMode::Bridge
+  double bridgeGap_ = 0.0;       // in cut space
+  uint32_t bridgedChains_ = 0;
+  std::vector<uint32_t> chainIds_;                      // Bridge: welded ids of the open chains
+  std::vector<std::pair<uint32_t, uint32_t>> chains_;   // [begin, end) into chainIds_
+  std::vector<glm::dvec2> chainPoints_, otherPoints_;   // Bridge: a chain and a loop on the plane
   bool piecesClosed_ = false;  // this split's pieces are closed on their weld ids
   uint32_t uncappedLoops_ = 0;  // closed loops of open art left open (they could not be capped)
   uint32_t closedLoops_ = 0;
@@ -339,6 +350,7 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   result.message.clear();
   result.sectionLoops = 0;
   result.openChains = 0;
+  result.bridgedChains = 0;
   result.uncappedLoops = 0;
   result.sidesDisagree = false;
   container_ = &container;
@@ -502,11 +514,14 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
     v_ = glm::cross(normal_, u_);
     origin_ = segments_.empty() ? glm::dvec3(0.0) : sectionCut(keyFrom(segments_.front()));
   }
+  bridge_ = options.cap && options.openSections == OpenSectionMode::Bridge;
+  bridgeGap_ = std::max(options.bridgeGap, 0.0) * diagonal;
   buildLoops();
   result.sectionLoops = closedLoops_;
   result.openChains = options.cap ? openChains_ : 0;
+  result.bridgedChains = bridgedChains_;
   // Pieces are closed on their ids only when the source is and every section loop closes.
-  piecesClosed_ = options.cap && container_->closed() && openChains_ == 0 && sidesAgree;
+  piecesClosed_ = options.cap && container_->closed() && openChains_ + bridgedChains_ == 0 && sidesAgree;
   if (options.cap && openChains_ > 0 && refuseOpen) {
     return fail(result, SplitStatus::OpenSection,
                 "the section has " + std::to_string(openChains_) +
@@ -688,6 +703,10 @@ void Splitter::buildLoops() {
   loops_.clear();
   openChains_ = 0;
   closedLoops_ = 0;
+  bridgedChains_ = 0;
+  chainIds_.clear();
+  chains_.clear();
+  if (bridge_) walkChains();  // first, from their starts, so that no chain is broken into fragments
   for (uint32_t s0 = 0; s0 < segments_.size(); ++s0) {
     if (segmentUsed_[s0]) continue;
     const uint32_t start = keyFrom(segments_[s0]);
@@ -718,7 +737,7 @@ void Splitter::buildLoops() {
     loop.end = static_cast<uint32_t>(loopIds_.size());
     loops_.push_back(loop);
   }
-  if (openChains_ > 0) {
+  if (openChains_ > 0 || !chains_.empty()) {
     // A walk that starts inside an open chain stops at its end and leaves the part before it as a
     // fragment of its own: count the chains by their starts (a segment no other segment leads to).
     std::vector<uint32_t> ends;
@@ -730,6 +749,7 @@ void Splitter::buildLoops() {
       if (!std::binary_search(ends.begin(), ends.end(), keyFrom(k))) ++openChains_;
     openChains_ = std::max<uint32_t>(openChains_, 1);
   }
+  if (bridge_) bridgeChains();
   // The scale of float rounding at the section: cut points are computed from float source positions,
   // so re-cut sections carry zig-zag runs and near-coincident points a few ulps of the coordinates
   // apart. Four ulps of the largest coordinate on the section is the cap tolerance: points that
@@ -757,6 +777,81 @@ void Splitter::buildLoops() {
       loop.hi = glm::max(loop.hi, points_[k]);
     }
   }
+}
+
+// Bridge: each open chain of the section, walked from its start (a segment no other segment leads
+// to) until it stops; its segments are used up.
+void Splitter::walkChains() {
+  std::vector<uint32_t>& ends = mergedIds_;  // scratch here; mergeNearPoints fills it later
+  ends.clear();
+  for (uint64_t k : segments_) ends.push_back(keyTo(k));
+  std::sort(ends.begin(), ends.end());
+  for (uint32_t s0 = 0; s0 < segments_.size(); ++s0) {
+    if (segmentUsed_[s0] || std::binary_search(ends.begin(), ends.end(), keyFrom(segments_[s0]))) continue;
+    const uint32_t begin = static_cast<uint32_t>(chainIds_.size());
+    chainIds_.push_back(keyFrom(segments_[s0]));
+    segmentUsed_[s0] = 1;
+    uint32_t current = s0;
+    for (;;) {
+      const uint32_t at = keyTo(segments_[current]);
+      chainIds_.push_back(at);
+      const uint32_t next = nextSegment(at, current);
+      if (next == kNone) break;
+      segmentUsed_[next] = 1;
+      current = next;
+    }
+    chains_.push_back({begin, static_cast<uint32_t>(chainIds_.size())});
+  }
+}
+
+// Bridge: closes the open chains whose ends lie within the gap, or whose chord is clear (see
+// chordClear), into loops to be capped; the others stay open (openChains_, counted by their starts
+// as without Bridge, less the bridged ones).
+void Splitter::bridgeChains() {
+  for (const auto& [begin, end] : chains_) {
+    if (end - begin < 3) continue;  // one segment: nothing to cap
+    const double gap = glm::length(sectionCut(chainIds_[end - 1]) - sectionCut(chainIds_[begin]));
+    // Ends within the gap close a seam: loops inside are then its holes. A long chord must close a
+    // cap of its own.
+    if (!chordClear(begin, end, !(gap <= bridgeGap_))) continue;
+    LoopInfo loop;
+    loop.begin = static_cast<uint32_t>(loopIds_.size());
+    loopIds_.insert(loopIds_.end(), chainIds_.begin() + begin, chainIds_.begin() + end);
+    loop.end = static_cast<uint32_t>(loopIds_.size());
+    loops_.push_back(loop);
+    ++bridgedChains_;
+    if (openChains_ > 0) --openChains_;
+  }
+}
+
+// Whether the chord closing the chain [begin, end) of chainIds_ crosses no segment of the section
+// (other than at the chain's ends), and, when it must stand `alone`, the polygon it closes neither
+// holds a point of another loop nor has its first point inside one: a cap of its own.
+bool Splitter::chordClear(uint32_t begin, uint32_t end, bool alone) {
+  const uint32_t first = chainIds_[begin], last = chainIds_[end - 1];
+  const glm::dvec2 a = project(sectionCut(last)), b = project(sectionCut(first));
+  auto turn = [](const glm::dvec2& p, const glm::dvec2& q, const glm::dvec2& r) {
+    const glm::dvec2 u = q - p, v = r - p;
+    const double cross = u.x * v.y - u.y * v.x;
+    return (cross > 0.0) - (cross < 0.0);
+  };
+  for (uint64_t k : segments_) {
+    const uint32_t u = keyFrom(k), v = keyTo(k);
+    if (u == first || u == last || v == first || v == last) continue;
+    const glm::dvec2 p = project(sectionCut(u)), q = project(sectionCut(v));
+    if (turn(a, b, p) * turn(a, b, q) < 0 && turn(p, q, a) * turn(p, q, b) < 0) return false;
+  }
+  if (!alone) return true;
+  chainPoints_.clear();
+  for (uint32_t k = begin; k < end; ++k) chainPoints_.push_back(project(sectionCut(chainIds_[k])));
+  for (const LoopInfo& loop : loops_) {
+    otherPoints_.clear();
+    for (uint32_t k = loop.begin; k < loop.end; ++k) otherPoints_.push_back(project(sectionCut(loopIds_[k])));
+    if (insideLoop(chainPoints_, 0, static_cast<uint32_t>(chainPoints_.size()), otherPoints_[0])) return false;
+    const glm::dvec2 probe = 0.5 * (chainPoints_[0] + chainPoints_[1]);
+    if (insideLoop(otherPoints_, 0, static_cast<uint32_t>(otherPoints_.size()), probe)) return false;
+  }
+  return true;
 }
 
 // Merges runs of consecutive loop points into one: each point of a run lies within the merge
@@ -983,7 +1078,7 @@ bool Splitter::tryConvexCap() {
 
 bool Splitter::capSection(const SplitOptions& options, std::string& why) {
   // Pieces that are open anyway (open art) keep what cannot be capped open instead of failing.
-  const bool lenient = options.openSections == OpenSectionMode::CapClosedLoops && !piecesClosed_;
+  const bool lenient = options.openSections != OpenSectionMode::Refuse && !piecesClosed_;
   uncappedLoops_ = 0;
   if (convexFastPath_ && tryConvexCap()) {
     loops_[0].capped = true;

@@ -46,6 +46,11 @@ enum class OpenSectionMode : uint8_t {
                    // properties come from their convex hull (MassProperties::fromConvexHull). When
                    // the pieces are open anyway, a loop that cannot be capped is left open too
                    // (SplitResult::uncappedLoops) instead of failing the split.
+  Bridge,          // as CapClosedLoops, and an open chain is closed and capped too (counted in
+                   // SplitResult::bridgedChains) when its two ends lie within the bridge gap, or by
+                   // its chord when that chord crosses no other part of the section and the cap it
+                   // closes neither holds nor lies in another loop. The pieces stay open along the
+                   // chord (mass from the convex hull, as for CapClosedLoops).
 };
 
 // How the surface of one side is divided into pieces (with SplitOptions::separateIslands).
@@ -60,6 +65,7 @@ enum class IslandMode : uint8_t {
 struct SplitOptions {
   bool cap = true;                      // false: hollow mode, no cap triangles, open sections allowed
   OpenSectionMode openSections = OpenSectionMode::CapClosedLoops;
+  double bridgeGap = 0.01;              // Bridge: chain ends this close are joined, times the bounds diagonal
   uint32_t capMaterialId = 1;           // material of the cap submesh (reused if the mesh already has it)
   CapUvMode uvMode = CapUvMode::WorldPlanar;
   double uvPerMetre = 1.0;              // WorldPlanar scale: UV units per metre of cut space
@@ -110,7 +116,8 @@ struct SplitResult {
   std::string message;          // a reason a person can act on, empty when Ok
   std::vector<SplitPiece> pieces;  // above pieces first, then below; each side ordered deterministically
   uint32_t sectionLoops = 0;    // closed loops found in the section
-  uint32_t openChains = 0;      // open chains of the section, left uncapped (CapClosedLoops)
+  uint32_t openChains = 0;      // open chains of the section, left uncapped (CapClosedLoops, Bridge)
+  uint32_t bridgedChains = 0;   // open chains closed and capped (Bridge); not in openChains
   // Closed loops of open art that could not be capped (wound against the others, or overlapping
   // themselves) and were left open instead of failing the split (CapClosedLoops, open pieces only).
   uint32_t uncappedLoops = 0;

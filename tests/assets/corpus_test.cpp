@@ -609,6 +609,73 @@ TEST(Corpus, PackagedRealModelsReadAndSplitWithTheInvariants) {
   EXPECT_GT(tally.splitsOk, 0u);
 }
 
+// Art that is not watertight. Every open mesh of the corpus (and the shared models) is cut with
+// caps by the five corpus planes in each open-section mode that cuts: nothing may be refused (a
+// plane may miss), and Bridge never leaves more chains open than CapClosedLoops. The counts are
+// printed.
+struct OpenTally {
+  size_t meshes = 0, cuts = 0, refused = 0, missed = 0, loops = 0, uncapped = 0;
+  size_t openChains[2] = {0, 0}, bridged = 0;
+};
+
+void cutOpenArt(const std::string& name, const MeshData& mesh, OpenTally& tally) {
+  MeshContainer container;
+  if (container.setMesh(mesh) != SplitStatus::Ok || container.closed()) return;
+  ++tally.meshes;
+  glm::dvec3 lo, hi;
+  geometry::testing::bounds(container.cutPositions(), lo, hi);
+  auto splitter = geometry::makeConcaveSplitter();
+  SplitResult result;
+  for (const Plane& plane : planesThrough(lo, hi)) {
+    uint32_t open[2] = {0, 0};
+    for (int mode = 0; mode < 2; ++mode) {
+      SplitOptions options;
+      options.openSections = mode == 0 ? geometry::OpenSectionMode::CapClosedLoops : geometry::OpenSectionMode::Bridge;
+      const SplitStatus status = splitter->split(container, plane, options, result);
+      if (status == SplitStatus::PlaneMissesMesh) {
+        tally.missed += mode == 0;
+        break;
+      }
+      EXPECT_EQ(status, SplitStatus::Ok) << name << ": " << result.message;
+      if (status != SplitStatus::Ok) {
+        ++tally.refused;
+        break;
+      }
+      open[mode] = result.openChains;
+      tally.openChains[mode] += result.openChains;
+      if (mode == 0) {
+        ++tally.cuts;
+        tally.loops += result.sectionLoops;
+        tally.uncapped += result.uncappedLoops;
+      } else {
+        tally.bridged += result.bridgedChains;
+        EXPECT_LE(open[1], open[0]) << name;
+      }
+    }
+  }
+}
+
+TEST(Corpus, OpenArtIsCutWithItsClosedLoopsCapped) {
+  test::TempDir unpacked;
+  std::vector<fs::path> files;
+  const std::string note = unpackCgal(unpacked.path(), files);
+  if (fs::is_directory(kAssimpModels)) collect(kAssimpModels, files);
+  if (fs::is_directory(sharedModels())) collect(sharedModels(), files);
+  if (files.empty()) GTEST_SKIP() << note << "; no assimp test models, no shared models";
+  std::sort(files.begin(), files.end());
+  OpenTally tally;
+  for (const fs::path& file : files) {
+    const MeshReadResult read = loadMesh(file.string());
+    if (read.ok && read.mesh.triangleCount() <= kLargeTriangles) cutOpenArt(file.filename().string(), read.mesh, tally);
+  }
+  std::printf("[ open art ] %zu open meshes, %zu cuts with caps, %zu refused, %zu planes missed: %zu closed loops "
+              "(%zu left open), %zu open chains left open with cap-closed, %zu with bridge (%zu bridged)\n",
+              tally.meshes, tally.cuts, tally.refused, tally.missed, tally.loops, tally.uncapped, tally.openChains[0],
+              tally.openChains[1], tally.bridged);
+  RecordProperty("open_cuts", static_cast<int>(tally.cuts));
+  EXPECT_GT(tally.cuts, 100u);
+}
+
 // Exact float output. Every closed CGAL mesh that is itself closed and free of zero-area triangles
 // on its float positions is cut by 30 seeded random planes, one in five exactly through one of its
 // vertices; each piece, welded by exact float position as a file written from it would be, must have

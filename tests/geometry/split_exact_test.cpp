@@ -583,6 +583,82 @@ TEST(ConcaveSplitter, OpenArtIsCutWithItsClosedLoopsCappedAndItsOpenChainsReport
 
 // Open art whose shells are wound both ways: a loop that cannot be capped (it would be a hole outside
 // every border) is left open and counted, the others are capped; the strict mode refuses the cut.
+// A sphere with a window across its equator, cut through the window: the section is an arc.
+MeshData ballWithWindow(uint32_t segments, uint32_t rings) {
+  MeshData ball = primitives::uvSphere(0.5f, segments, rings);
+  std::vector<uint32_t> kept;
+  for (size_t t = 0; t + 2 < ball.indices.size(); t += 3) {
+    const glm::vec3 c = (ball.positions[ball.indices[t]] + ball.positions[ball.indices[t + 1]] +
+                         ball.positions[ball.indices[t + 2]]) / 3.f;
+    if (c.z > 0.3f && std::abs(c.y) < 0.2f) continue;
+    kept.insert(kept.end(), {ball.indices[t], ball.indices[t + 1], ball.indices[t + 2]});
+  }
+  ball.indices = kept;
+  return ball;
+}
+
+TEST(ConcaveSplitter, BridgeClosesAnOpenChainByItsChordAndCapsIt) {
+  SplitOptions bridge;
+  bridge.openSections = OpenSectionMode::Bridge;
+  // The cube without its z = 0 face, cut by x = 0.5: the section is three sides of a square.
+  MeshData open = seamCube();
+  open.indices.resize(open.indices.size() - 6);
+  Split s = run(open, planeOf({1, 0, 0}, 0.5), bridge);
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  EXPECT_EQ(s.result.openChains, 0u);
+  EXPECT_EQ(s.result.bridgedChains, 1u);
+  ASSERT_EQ(s.result.pieces.size(), 2u);
+  for (const SplitPiece& piece : s.result.pieces) {
+    EXPECT_EQ(piece.capLoops, 1u);
+    EXPECT_NEAR(capArea(piece.mesh, bridge.capMaterialId, glm::dmat4(1.0)), 1.0, 1e-12);  // the whole square
+    EXPECT_FALSE(piece.weld.closed);  // open along the chord, where the missing face was
+    EXPECT_TRUE(piece.mass.fromConvexHull);
+  }
+  // The arc of the windowed ball is closed by its chord across the window.
+  s = run(ballWithWindow(32, 16), planeOf({0, 1, 0}, 0.01), bridge);
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  EXPECT_EQ(s.result.bridgedChains, 1u);
+  EXPECT_EQ(s.result.openChains, 0u);
+  for (const SplitPiece& piece : s.result.pieces) EXPECT_EQ(piece.capLoops, 1u);
+  // Cap-closed leaves the same chain open.
+  s = run(ballWithWindow(32, 16), planeOf({0, 1, 0}, 0.01));
+  EXPECT_EQ(s.result.bridgedChains, 0u);
+  EXPECT_EQ(s.result.openChains, 1u);
+}
+
+TEST(ConcaveSplitter, BridgeLeavesAChainOpenWhenItsChordWouldOverlapAnotherCap) {
+  SplitOptions bridge;
+  bridge.openSections = OpenSectionMode::Bridge;
+  // A small closed ball across the window's chord: the chord crosses its loop.
+  MeshData small = primitives::uvSphere(0.05f, 16, 8);
+  primitives::transform(small, glm::translate(glm::mat4(1.f), glm::vec3(0.f, 0.f, 0.25f)));
+  Split s = run(primitives::merge(ballWithWindow(32, 16), small), planeOf({0, 1, 0}, 0.01), bridge);
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  EXPECT_EQ(s.result.bridgedChains, 0u);
+  EXPECT_EQ(s.result.openChains, 1u);
+  EXPECT_EQ(s.result.sectionLoops, 1u);  // the small ball's loop, capped
+  // The open cube with a cavity inside: closed by its chord the chain would hold the cavity's loop,
+  // so it is not a cap of its own and stays open; with its ends within the gap, it is closed as a
+  // seam and capped with the cavity as its hole.
+  MeshData cavity = primitives::box(glm::vec3(0.2f));
+  for (size_t t = 0; t + 2 < cavity.indices.size(); t += 3) std::swap(cavity.indices[t + 1], cavity.indices[t + 2]);
+  primitives::transform(cavity, glm::translate(glm::mat4(1.f), glm::vec3(0.5f)));
+  MeshData open = seamCube();
+  open.indices.resize(open.indices.size() - 6);
+  const MeshData hollow = primitives::merge(open, cavity);
+  s = run(hollow, planeOf({1, 0, 0}, 0.5), bridge);
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  EXPECT_EQ(s.result.bridgedChains, 0u);
+  EXPECT_EQ(s.result.openChains, 1u);
+  bridge.bridgeGap = 1.0;  // of the bounds diagonal: the chain's ends, 1 apart, are within it
+  s = run(hollow, planeOf({1, 0, 0}, 0.5), bridge);
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  EXPECT_EQ(s.result.bridgedChains, 1u);
+  for (const SplitPiece& piece : s.result.pieces) {
+    EXPECT_NEAR(capArea(piece.mesh, bridge.capMaterialId, glm::dmat4(1.0)), 1.0 - 0.16, 1e-6);  // square less hole
+  }
+}
+
 TEST(ConcaveSplitter, OpenArtLeavesALoopThatCannotBeCappedOpen) {
   MeshData windowed = primitives::uvSphere(0.5f, 16, 8);
   std::vector<uint32_t> kept;

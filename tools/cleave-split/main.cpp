@@ -39,7 +39,7 @@ constexpr int kMaxRepeat = 1000000;
 
 constexpr const char* kUsage =
     "usage: cleave-split INPUT --plane NX NY NZ D [--out DIR] [--format obj|glb] [--hollow]\n"
-    "                    [--open refuse|cap-closed] [--islands touching|connected] [--no-islands]\n"
+    "                    [--open refuse|cap-closed|bridge] [--islands touching|connected] [--no-islands]\n"
     "                    [--all-pieces] [--uv world|bounds]\n"
     "                    [--pose CLIP:SECONDS] [--repeat N] [--json]\n"
     "\n"
@@ -51,7 +51,9 @@ constexpr const char* kUsage =
     "  --format obj|glb    output format for --out (default obj)\n"
     "  --hollow            do not cap the cut (open sections allowed)\n"
     "  --open MODE         a section that is not all closed loops (open art): cap-closed (default)\n"
-    "                      caps the closed loops and leaves the open chains open; refuse fails\n"
+    "                      caps the closed loops and leaves the open chains open; bridge also\n"
+    "                      closes a chain whose ends are close, or whose chord crosses nothing,\n"
+    "                      and caps it; refuse fails\n"
     "  --islands MODE      how a side that falls apart is divided: touching (default) keeps parts\n"
     "                      that touch, pass into or hold one another as one piece, and puts a part\n"
     "                      the plane does not reach with the nearest piece of its side (multi-part\n"
@@ -173,7 +175,10 @@ bool parseArguments(int argc, char** argv, Arguments& args, std::string& error) 
       args.hollow = true;
     } else if (arg == "--open") {
       using geometry::OpenSectionMode;
-      if (!parseChoice(list, i, {{"refuse", OpenSectionMode::Refuse}, {"cap-closed", OpenSectionMode::CapClosedLoops}},
+      if (!parseChoice(list, i,
+                       {{"refuse", OpenSectionMode::Refuse},
+                        {"cap-closed", OpenSectionMode::CapClosedLoops},
+                        {"bridge", OpenSectionMode::Bridge}},
                        args.open, error))
         return false;
     } else if (arg == "--islands") {
@@ -489,6 +494,7 @@ int main(int argc, char** argv) {
     if (!splitOk) out["message"] = result.message;
     out["section_loops"] = result.sectionLoops;
     out["open_chains"] = result.openChains;
+    out["bridged_chains"] = result.bridgedChains;
     out["uncapped_loops"] = result.uncappedLoops;
     nlohmann::ordered_json pieces = nlohmann::ordered_json::array();
     for (const geometry::SplitPiece& piece : result.pieces) {
@@ -551,7 +557,7 @@ int main(int argc, char** argv) {
   }
   if (!splitOk) {
     const char* hint = result.status == geometry::SplitStatus::OpenSection
-                           ? " (--open cap-closed cuts it and leaves the open chains open; --hollow cuts it uncapped)"
+                           ? " (--open cap-closed cuts it and leaves the open chains open, --open bridge also closes them where it can; --hollow cuts it uncapped)"
                            : "";
     std::fprintf(stderr, "cleave-split: %s: split failed: %s%s%s%s\n", args.input.c_str(),
                  geometry::toString(result.status), result.message.empty() ? "" : ": ",
