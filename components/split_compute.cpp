@@ -23,22 +23,21 @@ constexpr double kMinPartWidth = 1e-5;  // metres: flatter parts hold nothing
 constexpr uint32_t kNoPart = ~0u;      // extractPart: no part's triangles, the caps only
 constexpr uint32_t kMaxHullVertices = 48;  // per collider hull, as the bridge would reduce it
 
-// The triangles of `piece` whose tag says they belong to part `part` (and the caps, for `withCaps`),
-// with the tags turned back into the part's own material ids (caps: capMaterialId).
-geometry::MeshData extractPart(const geometry::MeshData& piece, uint32_t part, bool withCaps, uint32_t capMaterialId) {
+// The triangles of the merged `piece` that come from part `part` (and the caps of this cut, for
+// `withCaps`), by the piece's provenance.
+geometry::MeshData extractPart(const geometry::MeshData& piece, std::span<const uint32_t> sourceTriangles,
+                               const MergedParts& merged, uint32_t part, bool withCaps) {
   std::vector<uint32_t> triangles;
-  for (const geometry::SubMesh& sub : piece.submeshes) {
-    const bool cap = sub.materialId == kMergedCapId;
-    if (!(cap ? withCaps : sub.materialId / kPartStride == part)) continue;
-    for (uint32_t i = 0; i < sub.indexCount / 3; ++i) triangles.push_back(sub.firstIndex / 3 + i);
+  for (uint32_t t = 0; t < sourceTriangles.size(); ++t) {
+    const uint32_t source = sourceTriangles[t];
+    const bool cap = (source & geometry::kFromCap) != 0;
+    if (cap ? withCaps : merged.partOf(source) == part) triangles.push_back(t);
   }
   geometry::MeshData out;
   if (triangles.empty()) return out;
   geometry::MeshContainer container;
   if (container.setMesh(piece) != geometry::SplitStatus::Ok) return out;
   container.extractTriangles(triangles, out);
-  for (geometry::SubMesh& sub : out.submeshes)
-    sub.materialId = sub.materialId == kMergedCapId ? capMaterialId : sub.materialId % kPartStride;
   return out;
 }
 
@@ -76,6 +75,7 @@ bool setUpContainer(const SplitJob& job, const geometry::MeshData* merged, Split
 struct PieceContext {
   const SplitJob& job;
   SplitComputeScratch& scratch;
+  const MergedParts* merged = nullptr;    // hierarchies: the merged parts that were cut
   double totalVolume = 0.0;
   bool shareParentMass = false;
   glm::dvec3 normal{0.0};                 // unit plane normal, world
@@ -100,10 +100,11 @@ void planRagdollPiece(const PieceContext& c, const geometry::SplitPiece& piece, 
   for (const glm::mat4& m : c.job.jointMatrices) spec.ragdoll.jointMatrices.push_back(glm::mat4(toAnchor * glm::dmat4(m)));
 }
 
-void planHierarchyChildren(const PieceContext& c, geometry::MeshData& whole, PieceSpec& spec) {
+void planHierarchyChildren(const PieceContext& c, const geometry::MeshData& whole,
+                           std::span<const uint32_t> sourceTriangles, PieceSpec& spec) {
   for (size_t part = 0; part < c.job.hierarchyParts.size(); ++part) {
     if (c.job.hierarchyParts[part].entity == c.job.request.target) continue;
-    geometry::MeshData child = extractPart(whole, uint32_t(part), false, c.job.settings.capMaterialId);
+    geometry::MeshData child = extractPart(whole, sourceTriangles, *c.merged, uint32_t(part), false);
     if (child.indices.empty()) continue;
     auto mesh = std::make_shared<geometry::MeshData>(std::move(child));
     std::shared_ptr<const render::PackedMesh> packed;
@@ -151,8 +152,8 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
     // Part 0 is the target's own mesh when it has one; a target without a mesh of its own draws the
     // caps only (its parts are its children).
     const bool ownMesh = job.hierarchyParts[0].entity == job.request.target;
-    piece.mesh = extractPart(whole, ownMesh ? 0u : kNoPart, true, sp.capMaterialId);
-    planHierarchyChildren(c, whole, spec);
+    piece.mesh = extractPart(whole, piece.sourceTriangles, *c.merged, ownMesh ? 0u : kNoPart, true);
+    planHierarchyChildren(c, whole, piece.sourceTriangles, spec);
   }
   const bool weldKnown = !job.hierarchy() && (keepSkin || !job.skinned()) && !piece.weld.positionIds.empty();
   if (weldKnown && job.depth < sp.maxDepth) spec.weld = std::make_shared<geometry::MeshWeld>(std::move(piece.weld));
@@ -241,16 +242,21 @@ const char* toString(PieceKind kind) {
   return "unknown";
 }
 
-geometry::MeshData mergeHierarchyParts(const std::vector<HierarchyPartData>& parts) {
-  geometry::MeshData merged;
+uint32_t MergedParts::partOf(uint32_t triangle) const {
+  const auto it = std::upper_bound(firstTriangle.begin(), firstTriangle.end(), triangle);
+  return static_cast<uint32_t>(it - firstTriangle.begin()) - 1;
+}
+
+MergedParts mergeHierarchyParts(const std::vector<HierarchyPartData>& parts) {
+  MergedParts merged;
   for (size_t k = 0; k < parts.size(); ++k) {
     geometry::MeshData part = *parts[k].mesh;
     geometry::primitives::transform(part, glm::mat4(parts[k].toParent));
     if (part.submeshes.empty()) part.submeshes.push_back({0, uint32_t(part.indices.size()), 0});
-    for (geometry::SubMesh& sub : part.submeshes)
-      sub.materialId = uint32_t(k) * kPartStride + std::min(sub.materialId, kMergedCapId - 1);
-    merged = merged.positions.empty() ? std::move(part) : geometry::primitives::merge(merged, part);
+    merged.firstTriangle.push_back(static_cast<uint32_t>(merged.mesh.triangleCount()));
+    merged.mesh = merged.mesh.positions.empty() ? std::move(part) : geometry::primitives::merge(merged.mesh, part);
   }
+  merged.firstTriangle.push_back(static_cast<uint32_t>(merged.mesh.triangleCount()));
   return merged;
 }
 
@@ -319,9 +325,9 @@ ColliderPlan planCollider(const geometry::MeshData& mesh, const glm::dmat4& mesh
 void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out) {
   const double start = nowMilliseconds();
   out = SplitOutcome{};
-  geometry::MeshData merged;
+  MergedParts merged;
   if (job.hierarchy()) merged = mergeHierarchyParts(job.hierarchyParts);
-  if (!setUpContainer(job, job.hierarchy() ? &merged : nullptr, s, out)) {
+  if (!setUpContainer(job, job.hierarchy() ? &merged.mesh : nullptr, s, out)) {
     out.computeMilliseconds = out.setupMilliseconds = nowMilliseconds() - start;
     return;
   }
@@ -337,7 +343,7 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
     return;
   }
   out.openChains = s.result.openChains;
-  PieceContext c{job, s, 0.0, false, glm::dvec3(0.0), {}, {}, false};
+  PieceContext c{job, s, job.hierarchy() ? &merged : nullptr, 0.0, false, glm::dvec3(0.0), {}, {}, false};
   for (const auto& piece : s.result.pieces) c.totalVolume += std::max(piece.mass.volume, 0.0);
   if (!(c.totalVolume > 0.0)) {
     out.status = geometry::SplitStatus::InvalidInput;

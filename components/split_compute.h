@@ -51,14 +51,17 @@ std::vector<HullSpec> hullsInBodyFrame(const geometry::ColliderPartSet& parts, c
                                        double* volume = nullptr);
 
 // Hierarchies: one Splitable on a parent cuts the meshes of its whole subtree together. The meshes
-// are merged into the parent entity's space with their submesh material ids tagged by part:
-// id = part * kPartStride + original id (part 0 is the parent's own mesh when it has one), and the
-// caps get kMergedCapId. After the cut, the tags tell which triangles go back to which part.
-inline constexpr uint32_t kPartStride = 64;
-inline constexpr uint32_t kMergedCapId = kPartStride - 1;
-
-// The merged mesh of the parts in the parent entity's space, material ids tagged by part.
-geometry::MeshData mergeHierarchyParts(const std::vector<HierarchyPartData>& parts);
+// are merged into the parent entity's space, part after part (part 0 is the parent's own mesh when
+// it has one), their material ids kept. After the cut, each piece's provenance
+// (SplitPiece::sourceTriangles) tells which of its triangles go back to which part, and which are
+// caps; there is no limit on the number of parts or materials.
+struct MergedParts {
+  geometry::MeshData mesh;
+  std::vector<uint32_t> firstTriangle;  // per part, its first triangle in `mesh`; then the total
+  // The part a triangle of `mesh` comes from.
+  uint32_t partOf(uint32_t triangle) const;
+};
+MergedParts mergeHierarchyParts(const std::vector<HierarchyPartData>& parts);
 
 // The world plane {x : dot(n, x) = d} in the mesh space of `model` (mesh -> world).
 geometry::Plane planeInMeshSpace(const geometry::Plane& world, const glm::dmat4& model);

@@ -310,7 +310,7 @@ bool gatherParts(const ecs::World& world, ecs::Entity root, std::vector<Hierarch
       for (auto it = children->entities.rbegin(); it != children->entities.rend(); ++it)
         stack.push_back({*it, toParent, item.depth + 1});
   }
-  return parts.size() > own && parts.size() < kPartStride;
+  return parts.size() > own;
 }
 
 // Rigid part of an affine matrix as a Transform (scale from the column lengths; shear is dropped).
@@ -341,9 +341,9 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
     return false;
   }
   // A parent with meshes below it: one body for the whole subtree, from the merged meshes.
-  geometry::MeshData merged;
+  MergedParts merged;
   if (hierarchy) merged = mergeHierarchyParts(parts);
-  const geometry::MeshData& source = hierarchy ? merged : *mr->source;
+  const geometry::MeshData& source = hierarchy ? merged.mesh : *mr->source;
   const glm::dmat4 oldLocal(ecs::localMatrix(*t));
   const glm::dmat4 model = hierarchy ? oldLocal : oldLocal * glm::dmat4(mr->meshOffset);
   const geometry::MassProperties props = geometry::computeMassProperties(source, model);
@@ -607,10 +607,10 @@ SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitR
 namespace {
 
 // The split options of a target's Splitable.
-geometry::SplitOptions optionsFor(const Splitable& sp, bool hierarchy) {
+geometry::SplitOptions optionsFor(const Splitable& sp, bool hierarchy) {  // caps: by provenance
   geometry::SplitOptions options;
   options.cap = sp.cap;
-  options.capMaterialId = hierarchy ? kMergedCapId : sp.capMaterialId;
+  options.capMaterialId = sp.capMaterialId;
   options.uvMode = sp.capUvMode;
   options.uvPerMetre = sp.capUvPerMetre;
   options.atlasRect = sp.capAtlasRect;

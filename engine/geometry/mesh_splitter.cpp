@@ -65,6 +65,8 @@ namespace {
 
 constexpr uint32_t kNone = 0xffffffffu;
 constexpr uint32_t kReachedBit = 0x80000000u;  // SideTriangle::source of a triangle the plane reached
+constexpr uint32_t kCapBit = 0x40000000u;      // SideTriangle::source of a cap triangle: | its loop
+constexpr uint32_t kSourceMask = kCapBit - 1;   // the source triangle (or loop) of SideTriangle::source
 constexpr double kPi = 3.14159265358979323846;
 
 uint64_t pairKey(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
@@ -150,7 +152,7 @@ bool insideLoop(std::span<const glm::dvec2> points, uint32_t begin, uint32_t end
 
 struct SideTriangle {
   uint32_t v[3];    // vertex references (see Splitter::kinds), cut-space outward winding
-  uint32_t source;  // source triangle index, | kReachedBit when the plane reached it; kNone for a cap
+  uint32_t source;  // source triangle | kReachedBit when the plane reached it; a cap: kReachedBit | kCapBit | loop
   uint32_t slot;    // output run slot
 };
 
@@ -261,6 +263,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<LoopInfo> loops_;
   std::vector<CapRing> rings_;
   std::vector<uint32_t> capTriangles_;  // into loopIds_, counter-clockwise seen from +normal
+  std::vector<uint32_t> capLoopOf_;     // per cap triangle: the outer loop of its cap
   std::vector<std::pair<double, uint32_t>> angular_;
   std::vector<uint32_t> flatCaps_;                     // cap triangles flat on their float positions
   uint32_t openChains_ = 0;
@@ -542,10 +545,11 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
     const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
     for (size_t k = 0; k < capTriangles_.size(); k += 3) {
       const uint32_t a = capTriangles_[k], b = capTriangles_[k + 1], c = capTriangles_[k + 2];
+      const uint32_t source = kReachedBit | kCapBit | capLoopOf_[k / 3];
       // Below: outward normal +n, counter-clockwise as triangulated. Above: reversed.
-      sideTris_[1].push_back({{capBase_ + a, capBase_ + b, capBase_ + c}, kNone, capSlot_});
+      sideTris_[1].push_back({{capBase_ + a, capBase_ + b, capBase_ + c}, source, capSlot_});
       sideTris_[0].push_back(
-          {{capBase_ + loopVertices + a, capBase_ + loopVertices + c, capBase_ + loopVertices + b}, kNone, capSlot_});
+          {{capBase_ + loopVertices + a, capBase_ + loopVertices + c, capBase_ + loopVertices + b}, source, capSlot_});
     }
   }
 
@@ -1080,8 +1084,10 @@ bool Splitter::capSection(const SplitOptions& options, std::string& why) {
   // Pieces that are open anyway (open art) keep what cannot be capped open instead of failing.
   const bool lenient = options.openSections != OpenSectionMode::Refuse && !piecesClosed_;
   uncappedLoops_ = 0;
+  capLoopOf_.clear();
   if (convexFastPath_ && tryConvexCap()) {
     loops_[0].capped = true;
+    capLoopOf_.assign(capTriangles_.size() / 3, 0u);
     return true;
   }
   capTriangles_.clear();
@@ -1139,6 +1145,7 @@ bool Splitter::capSection(const SplitOptions& options, std::string& why) {
             std::to_string(rings_.size() - 1) + " hole(s): the section polygon overlaps itself";
       return false;
     }
+    capLoopOf_.resize(capTriangles_.size() / 3, static_cast<uint32_t>(o));
   }
   return true;
 }
@@ -1549,6 +1556,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
       m.weights.clear();
       m.indices.clear();
       m.submeshes.clear();
+      out.sourceTriangles.clear();
       pieceCut_.clear();
       out.side = side == 0 ? 1 : -1;
       out.capTriangles = 0;
@@ -1579,6 +1587,8 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
         for (; k < runEnd; ++k) {
           const SideTriangle& tri = tris[order_[k]];
           out.reached = out.reached || (tri.source & kReachedBit) != 0;
+          out.sourceTriangles.push_back((tri.source & kCapBit) ? kFromCap | (tri.source & kSourceMask)
+                                                               : tri.source & kSourceMask);
           const uint32_t corner[3] = {tri.v[0], tri.v[second], tri.v[third]};
           for (uint32_t ref : corner) {
             uint64_t& entry = stampRemap_[ref];

@@ -89,6 +89,10 @@ struct MeshWeld {
   bool inverted = false;                  // closed and wound inwards: see MeshContainer::inverted
 };
 
+// SplitPiece::sourceTriangles of a cap triangle of the split: this flag | the section loop it caps
+// (the outer border of its cap, numbered among the split's closed and bridged loops).
+inline constexpr uint32_t kFromCap = 0x80000000u;
+
 struct SplitPiece {
   MeshData mesh;                // in the source space of the container
   // The position ids of `mesh` as the split made them (vertices at one cut point or one source
@@ -109,6 +113,10 @@ struct SplitPiece {
   // False for a part of the mesh that lies wholly on one side and touches nothing the plane reached
   // (IslandMode::Touching joins it to what it touches).
   bool reached = false;
+  // Provenance, as manifold's MeshGL: per triangle of `mesh`, the triangle of the container's mesh it
+  // comes from (kept whole or cut; an earlier cut's cap is a triangle of the mesh cut here), or
+  // kFromCap | loop for a cap triangle of this split. Lets a caller take merged meshes apart again.
+  std::vector<uint32_t> sourceTriangles;
 };
 
 struct SplitResult {

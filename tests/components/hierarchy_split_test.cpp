@@ -148,5 +148,60 @@ TEST(HierarchySplit, ParentAndChildrenAreCutTogetherAndCopiedToEachSide) {
   }
 }
 
+// A hierarchy of more parts and higher material ids than a tag in the material id could hold (the
+// parts are told apart by provenance): 80 cubes, each of its own material 100 + k, on a bar.
+TEST(HierarchySplit, ManyPartsWithHighMaterialIdsAreCutAndKeepTheirMaterials) {
+  Sim sim;
+  ecs::World& world = sim.world;
+  const ecs::Entity root = world.create();
+  world.add<ecs::Transform>(root, ecs::Transform{});
+  MeshRenderer bar;
+  bar.source = std::make_shared<geometry::MeshData>(geometry::primitives::box(glm::vec3(0.9f, 0.05f, 0.05f)));
+  bar.materials = {render::Material{}};
+  world.add<MeshRenderer>(root, std::move(bar));
+  constexpr uint32_t kCubes = 80;
+  for (uint32_t k = 0; k < kCubes; ++k) {
+    const ecs::Entity cube = world.create();
+    world.add<ecs::Name>(cube, ecs::Name{"cube" + std::to_string(k)});
+    ecs::Transform t;
+    t.position = glm::vec3(-0.79f + 0.02f * float(k), 0.f, 0.1f);
+    world.add<ecs::Transform>(cube, t);
+    geometry::MeshData mesh = geometry::primitives::box(glm::vec3(0.008f));
+    mesh.submeshes = {{0, uint32_t(mesh.indices.size()), 100 + k}};
+    MeshRenderer mr;
+    mr.source = std::make_shared<geometry::MeshData>(std::move(mesh));
+    world.add<MeshRenderer>(cube, std::move(mr));
+    ASSERT_TRUE(ecs::setParent(world, cube, root).ok);
+  }
+  const double volume = drawnVolume(world, root);
+  Splitable sp;
+  world.add<Splitable>(root, sp);
+  std::string error;
+  SplitWorld w = sim.sw();
+  ASSERT_TRUE(makeDynamicBody(w, root, sp.density, ColliderMode::ConvexHull, &error)) << error;
+  SplitRequest request;
+  request.target = root;
+  request.planeNormal = glm::dvec3(0.0, 1.0, 0.0);
+  request.planeOffset = 0.001;
+  const SplitEvent ev = sim.splits.splitNow(w, root, request, 0);
+  ASSERT_EQ(ev.status, geometry::SplitStatus::Ok) << ev.message;
+  ASSERT_EQ(ev.pieces.size(), 2u);
+  double after = 0.0;
+  for (ecs::Entity piece : ev.pieces) {
+    const auto* children = world.tryGet<ecs::Children>(piece);
+    ASSERT_NE(children, nullptr);
+    EXPECT_EQ(children->entities.size(), kCubes) << "every cube is cut: half of it on each side";
+    for (ecs::Entity c : children->entities) {
+      const std::string name = world.get<ecs::Name>(c).value;
+      const uint32_t k = uint32_t(std::stoul(name.substr(4, name.find('/') - 4)));
+      for (const geometry::SubMesh& run : world.get<MeshRenderer>(c).source->submeshes) {
+        EXPECT_TRUE(run.materialId == 100 + k || run.materialId == sp.capMaterialId) << name << " " << run.materialId;
+      }
+    }
+    after += drawnVolume(world, piece);
+  }
+  EXPECT_NEAR(after, volume, 1e-5 * volume);
+}
+
 }  // namespace
 }  // namespace cleave::components::testing

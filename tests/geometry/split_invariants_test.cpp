@@ -202,6 +202,33 @@ class CapAreaReport : public ::testing::Environment {
 };
 const ::testing::Environment* const kCapAreaReport = ::testing::AddGlobalTestEnvironment(new CapAreaReport);
 
+double maxCoordinate(const MeshData& m) {
+  double largest = 0.0;
+  for (const glm::vec3& p : m.positions) largest = std::max({largest, double(std::abs(p.x)), double(std::abs(p.y)), double(std::abs(p.z))});
+  return largest;
+}
+
+bool inCapRun(const MeshData& m, size_t triangle, uint32_t capMaterialId) {
+  for (const SubMesh& run : m.submeshes) {
+    if (3 * triangle >= run.firstIndex && 3 * triangle < run.firstIndex + run.indexCount) return run.materialId == capMaterialId;
+  }
+  return false;
+}
+
+// Whether the corners of triangle t of m lie within `slack` of the plane of triangle `from` of the
+// source (both in source space).
+bool onSourcePlane(const MeshData& m, size_t t, const MeshData& source, uint32_t from, double slack) {
+  const glm::dvec3 a(source.positions[source.indices[3 * from]]), b(source.positions[source.indices[3 * from + 1]]),
+      c(source.positions[source.indices[3 * from + 2]]);
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  if (!(glm::length(n) > 0.0)) return true;  // a degenerate source triangle has no plane to check
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec3 p(m.positions[m.indices[3 * t + k]]);
+    if (std::abs(glm::dot(p - a, n)) / glm::length(n) > slack) return false;
+  }
+  return true;
+}
+
 // Checks one split; returns the problems found (empty when every invariant holds).
 std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer& container,
                                     const InvariantCase& c, const Plane& plane, const Expected& expected,
@@ -301,6 +328,28 @@ std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer
     // wound and without zero-area triangles (cut points that round to one float are one point).
     ::testing::AssertionResult onFloats = testing::manifoldOnFloats(m);
     if (!onFloats) problem(at + onFloats.message());
+    // Provenance: each triangle names the source triangle whose plane it lies in, or a cap loop of
+    // this split (and then it is in the cap's run).
+    if (piece.sourceTriangles.size() != m.triangleCount()) {
+      problem(at + "provenance has " + std::to_string(piece.sourceTriangles.size()) + " entries for " +
+              std::to_string(m.triangleCount()) + " triangles");
+    } else {
+      const double slack = 1e-6 * testing::boundsDiagonal(src) + 4.0 * 0x1.0p-24 * maxCoordinate(m);
+      for (size_t t = 0; t < piece.sourceTriangles.size(); ++t) {
+        const uint32_t from = piece.sourceTriangles[t];
+        if (from & kFromCap) {
+          if ((from & ~kFromCap) >= result.sectionLoops + result.bridgedChains || !inCapRun(m, t, options.capMaterialId)) {
+            problem(at + "triangle " + std::to_string(t) + " names cap loop " + std::to_string(from & ~kFromCap));
+            break;
+          }
+          continue;
+        }
+        if (from >= source.triangleCount() || !onSourcePlane(m, t, source, from, slack)) {
+          problem(at + "triangle " + std::to_string(t) + " does not lie in its source triangle " + std::to_string(from));
+          break;
+        }
+      }
+    }
     if (!piece.mass.closed) problem(at + "mass properties say the piece is open");
     // The piece's own weld (empty means unknown, allowed): accepted by a container, vertices of one
     // id at one position, and closed on its ids (each directed edge once, and its reverse once).
