@@ -44,6 +44,7 @@
 #include "engine/geometry/mass_properties.h"
 #include "engine/geometry/mesh_splitter.h"
 #include "tests/assets/asset_test_files.h"
+#include "tests/geometry/cap_fixtures.h"
 #include "tests/geometry/test_meshes.h"
 
 namespace cleave::assets {
@@ -682,6 +683,7 @@ TEST(Corpus, OpenArtIsCutWithItsClosedLoopsCapped) {
 // every edge used once in each direction and no triangle of zero area. The counts are printed.
 struct FloatTally {
   size_t meshes = 0, skippedInput = 0, cuts = 0, throughVertex = 0, refused = 0, pieces = 0;
+  size_t capPolygons = 0, capPolygonsFailed = 0;
   size_t badPieces = 0, zeroArea = 0, coincident = 0, openEdges = 0, overusedEdges = 0;
 };
 
@@ -715,6 +717,20 @@ void cutOnFloats(const std::string& name, const MeshData& mesh, FloatTally& tall
       ++tally.refused;
       continue;
     }
+    // The caps taken back out as polygons (as the fixture corpus of tests/geometry/data/caps holds
+    // them) triangulate again with every edge used and no flat triangle. Taken from float positions,
+    // their points carry rounding folds a few float steps wide: the areas agree to 1e-5 (the worst
+    // here, pinion_small.off, is 7e-6).
+    for (geometry::testing::CapFixture& f : geometry::testing::capPolygonsOf(result, planes[k])) {
+      f.tolerance = 4.0 * 0x1.0p-24 * container.boundsDiagonal();
+      const geometry::testing::Triangulated t = geometry::testing::triangulateFixture(f);
+      ++tally.capPolygons;
+      if (t.ok && t.ringEdgesMissing == 0 && t.flat == 0 && t.deviation <= 1e-5) continue;
+      ++tally.capPolygonsFailed;
+      ADD_FAILURE() << name << ", plane " << k << ": a cap polygon of " << f.rings.size() << " ring(s) does not "
+                    << "triangulate again cleanly (ok " << t.ok << ", " << t.ringEdgesMissing << " edges missing, "
+                    << t.flat << " flat, deviation " << t.deviation << ")";
+    }
     for (const geometry::SplitPiece& piece : result.pieces) {
       ++tally.pieces;
       const geometry::testing::FloatWeldReport report = geometry::testing::floatWeldReport(piece.mesh);
@@ -746,9 +762,11 @@ TEST(Corpus, CutsOfClosedCgalMeshesAreManifoldOnTheirFloatPositions) {
   }
   std::printf("[ floats   ] %zu closed meshes (%zu more not closed on their own float positions, skipped): %zu "
               "cuts (%zu through a vertex), %zu refused; %zu pieces, %zu not manifold on floats (%zu zero-area "
-              "triangles, %zu of them with two corners at one point, %zu open edges, %zu edges used twice one way)\n",
+              "triangles, %zu of them with two corners at one point, %zu open edges, %zu edges used twice one way); "
+              "%zu cap polygons triangulated again, %zu not cleanly\n",
               tally.meshes, tally.skippedInput, tally.cuts, tally.throughVertex, tally.refused, tally.pieces,
-              tally.badPieces, tally.zeroArea, tally.coincident, tally.openEdges, tally.overusedEdges);
+              tally.badPieces, tally.zeroArea, tally.coincident, tally.openEdges, tally.overusedEdges, tally.capPolygons,
+              tally.capPolygonsFailed);
   RecordProperty("float_cuts", static_cast<int>(tally.cuts));
   RecordProperty("float_bad_pieces", static_cast<int>(tally.badPieces));
   EXPECT_GT(tally.cuts, 1000u);
