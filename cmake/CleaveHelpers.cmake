@@ -40,7 +40,8 @@ function(cleave_add_test_suite name)
   target_link_libraries(cleave_${name}_tests PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
   target_include_directories(cleave_${name}_tests PRIVATE ${PROJECT_SOURCE_DIR})
   target_compile_definitions(cleave_${name}_tests PRIVATE
-    CLEAVE_SOURCE_DIR="${PROJECT_SOURCE_DIR}" CLEAVE_BINARY_DIR="${PROJECT_BINARY_DIR}")
+    CLEAVE_SOURCE_DIR="${PROJECT_SOURCE_DIR}" CLEAVE_BINARY_DIR="${PROJECT_BINARY_DIR}"
+    CLEAVE_BUILD_CONFIGURATION="${CMAKE_BUILD_TYPE}-${CMAKE_CXX_COMPILER_ID}${CLEAVE_COMPILER_MAJOR}-${CMAKE_SYSTEM_PROCESSOR}${CLEAVE_CONFIGURATION_SUFFIX}")
   cleave_warnings(cleave_${name}_tests)
   gtest_discover_tests(cleave_${name}_tests
     DISCOVERY_TIMEOUT 60

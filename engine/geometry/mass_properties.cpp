@@ -16,7 +16,7 @@
 #include <cmath>
 #include <vector>
 
-#if defined(__SSE2__)
+#if defined(__SSE2__) && !defined(CLEAVE_MASS_SCALAR)
 #include <emmintrin.h>
 #endif
 
@@ -115,9 +115,10 @@ Moments integrate(std::span<const glm::dvec3> p, std::span<const uint32_t> indic
   Sums even, odd;
   const size_t count = indices.size() / 3 * 3;
   size_t t = 0;
-#if defined(__SSE2__)
+#if defined(__SSE2__) && !defined(CLEAVE_MASS_SCALAR)
   // The even and odd sums in the two lanes of SSE2 registers: the same operations in the same
-  // order as Sums::add (no fused multiply-add), so the result is bit for bit the scalar one.
+  // order as Sums::add (no fused multiply-add), so the result is bit for bit the scalar one
+  // (CLEAVE_MASS_SCALAR builds the scalar loop; tests/geometry/mass_dump compares the two).
   {
     using V = __m128d;
     auto mul = [](V x, V y) { return _mm_mul_pd(x, y); };

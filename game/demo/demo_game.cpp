@@ -687,6 +687,16 @@ void DemoGame::dumpExtension(ecs::Entity e, nlohmann::json& out) {
   if (const auto* origin = world.tryGet<components::SplitOrigin>(e)) out["split_from"] = origin->parentId;
   if (const auto* choice = world.tryGet<components::MaterialChoice>(e))
     out["look"] = lookNames_[size_t(choice->index) % lookNames_.size()];
+  // The lowest point of a rigid mesh in the world, to check it against the floor (skinned meshes
+  // are drawn posed, not as their bind-space vertices: left out).
+  const auto* mr = world.tryGet<components::MeshRenderer>(e);
+  const auto* t = world.tryGet<ecs::Transform>(e);
+  if (mr && mr->source && mr->source->joints.empty() && t && ecs::parentOf(world, e) == ecs::kNullEntity) {
+    const glm::mat4 toWorld = ecs::localMatrix(*t) * mr->meshOffset;
+    float lowest = INFINITY;
+    for (const glm::vec3& p : mr->source->positions) lowest = std::min(lowest, (toWorld * glm::vec4(p, 1.f)).y);
+    out["lowest_y"] = lowest;
+  }
 }
 
 }  // namespace cleave::demo

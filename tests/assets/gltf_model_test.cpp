@@ -12,6 +12,7 @@
 
 #include "engine/assets/model.h"
 #include "engine/geometry/mesh_splitter.h"
+#include "engine/geometry/primitives.h"
 #include "tests/assets/asset_test_files.h"
 
 namespace cleave::assets {
@@ -354,6 +355,15 @@ TEST(GltfModel, SharedCharactersLoadPoseAndCut) {
     ASSERT_EQ(model.skins.size(), 1u);
     EXPECT_EQ(model.skins[0].skeleton.size(), want.joints);
     EXPECT_EQ(model.skins[0].clips.size(), want.clips);
+    // Closed or open, as the container finds the skinned meshes taken together.
+    geometry::MeshData skinned;
+    for (const ModelMesh& mesh : model.meshes) {
+      if (mesh.skin < 0) continue;
+      skinned = skinned.positions.empty() ? mesh.mesh : geometry::primitives::merge(skinned, mesh.mesh);
+    }
+    geometry::MeshContainer container;
+    ASSERT_EQ(container.setMesh(skinned), geometry::SplitStatus::Ok);
+    EXPECT_EQ(container.closed(), want.closed);
     for (const ModelMesh& mesh : model.meshes) {
       EXPECT_EQ(mesh.mesh.normals.size(), mesh.mesh.vertexCount());
       for (const glm::vec3& n : mesh.mesh.normals) ASSERT_NEAR(glm::length(n), 1.f, 1e-3f);

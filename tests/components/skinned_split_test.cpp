@@ -158,10 +158,25 @@ TEST(SkinnedSplit, RagdollPiecesHaveBonesOnlyForTheirJointsAndHoldTogether) {
   addFloor(sim);
   const ecs::Entity c = spawnCharacter(sim, SkinnedPieceMode::Ragdoll);
   const double parentMass = sim.world.get<MassInfo>(c).mass;
+  // The pose the cut is made in (see BakedPiecesAreClosedAndKeepThePosedVolume) and the posed
+  // volume, computed here: each piece's mass must be its own posed volume's share of the parent's.
+  sim.step();
+  const glm::dmat4 model = modelOf(sim, c);
+  const std::vector<glm::mat4> joints = sim.world.get<SkinnedMesh>(c).jointMatrices;
+  auto posedVolume = [&](const geometry::MeshData& bindSpace) {
+    geometry::MeshData posed;
+    bakeSkin(bindSpace, joints, posed);
+    return geometry::computeMassProperties(posed, model).volume;
+  };
+  const double wholeVolume = posedVolume(character().mesh);
   const SplitEvent ev = cutNextTick(sim, waistCut(c));
   ASSERT_EQ(ev.status, geometry::SplitStatus::Ok) << ev.message;
   ASSERT_EQ(ev.pieces.size(), 2u);
-  EXPECT_NEAR(ev.piecesMass / parentMass, 1.0, 1e-9);
+  for (ecs::Entity piece : ev.pieces) {
+    const double share = posedVolume(*sim.world.get<MeshRenderer>(piece).source) / wholeVolume;
+    // (the split poses in double, bakeSkin in float: shares agree to about 1e-5)
+    EXPECT_NEAR(sim.world.get<MassInfo>(piece).mass / parentMass, share, 1e-4);
+  }
   const anim::Skeleton& skeleton = characterAsset()->skeleton;
   for (ecs::Entity piece : ev.pieces) {
     const auto* ragdoll = sim.world.tryGet<Ragdoll>(piece);
@@ -251,7 +266,6 @@ TEST(SkinnedSplit, BakedPiecesAreClosedAndKeepThePosedVolume) {
   const SplitEvent ev = cutNextTick(sim, waistCut(c));
   ASSERT_EQ(ev.status, geometry::SplitStatus::Ok) << ev.message;
   ASSERT_EQ(ev.pieces.size(), 2u);
-  EXPECT_NEAR(ev.piecesMass / parentMass, 1.0, 1e-9);
   double volume = 0.0;
   glm::dvec3 lowerMin(1e9), lowerMax(-1e9);
   for (ecs::Entity piece : ev.pieces) {
@@ -264,6 +278,8 @@ TEST(SkinnedSplit, BakedPiecesAreClosedAndKeepThePosedVolume) {
     const geometry::MassProperties props = geometry::computeMassProperties(mesh, modelOf(sim, piece));
     EXPECT_TRUE(props.closed);
     volume += props.volume;
+    // Its mass is its share of the parent's by the volume recomputed here, not by the split's figure.
+    EXPECT_NEAR(sim.world.get<MassInfo>(piece).mass / parentMass, props.volume / whole.volume, 1e-4);
     const glm::dmat4 m = modelOf(sim, piece);
     glm::dvec3 lo(1e9), hi(-1e9);
     for (const glm::vec3& p : mesh.positions) {

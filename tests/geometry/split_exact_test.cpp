@@ -912,5 +912,38 @@ TEST(ConcaveSplitter, SplitOfAnotherSameSizeMeshDoesNotAllocate) {
   EXPECT_EQ(gAllocations.load(), 0u) << "heap allocations splitting a same-size mesh";
 }
 
+// The counter sees allocations (the two tests above would pass with a counter that never counts):
+// a cold splitter and result allocate on their first split.
+TEST(ConcaveSplitter, AllocationCounterSeesTheAllocationsOfAColdSplit) {
+  MeshContainer container;
+  ASSERT_EQ(container.setMesh(primitives::uvSphere(1.f, 24, 12)), SplitStatus::Ok);
+  auto splitter = makeConcaveSplitter();
+  SplitResult result;
+  gAllocations = 0;
+  gCountAllocations = true;
+  const SplitStatus status = splitter->split(container, planeOf({0, 1, 0}, 0.1), SplitOptions{}, result);
+  gCountAllocations = false;
+  ASSERT_EQ(status, SplitStatus::Ok);
+  EXPECT_GT(gAllocations.load(), 10u);
+}
+
+// Setting a warm container up again with a shared mesh and its known weld (as the engine does for
+// every cut of a mesh it has seen) does not allocate either.
+TEST(ConcaveSplitter, WarmSetMeshWithAKnownWeldDoesNotAllocate) {
+  auto mesh = std::make_shared<const MeshData>(primitives::torus(1.f, 0.3f, 48, 16));
+  MeshContainer container;
+  ASSERT_EQ(container.setMesh(mesh, nullptr), SplitStatus::Ok);
+  MeshWeld weld;
+  container.copyWeld(weld);
+  for (int warm = 0; warm < 2; ++warm) ASSERT_EQ(container.setMesh(mesh, &weld), SplitStatus::Ok);
+  gAllocations = 0;
+  gCountAllocations = true;
+  const SplitStatus status = container.setMesh(mesh, &weld);
+  container.setTransform(glm::rotate(glm::mat4(1.f), 0.4f, glm::vec3(0, 1, 0)));
+  gCountAllocations = false;
+  ASSERT_EQ(status, SplitStatus::Ok);
+  EXPECT_EQ(gAllocations.load(), 0u) << "heap allocations setting up a warm container with a known weld";
+}
+
 }  // namespace
 }  // namespace cleave::geometry

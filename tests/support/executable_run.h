@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -52,6 +53,46 @@ inline std::string stateHash(const std::string& output) {
   return output.substr(at + key.size(), 16);
 }
 
+// The state hash each bundled replay ends with is recorded per build configuration (build type,
+// compiler and version, processor: floating-point results may differ between them) in
+// tests/support/state_hashes.txt, one "configuration replay hash" per line, so that a change that
+// alters results is seen in review. A configuration without a record is skipped with how to add
+// one: CLEAVE_UPDATE_HASHES=1 rewrites the lines of this configuration with the hashes found.
+inline std::filesystem::path stateHashFile() {
+  return std::filesystem::path(CLEAVE_SOURCE_DIR) / "tests" / "support" / "state_hashes.txt";
+}
+
+inline void expectRecordedStateHash(const std::string& replay, const std::string& hash) {
+  const std::string configuration = CLEAVE_BUILD_CONFIGURATION;
+  std::vector<std::string> lines;
+  std::string recorded;
+  {
+    std::ifstream in(stateHashFile());
+    for (std::string line; std::getline(in, line);) {
+      lines.push_back(line);
+      const std::string key = configuration + " " + replay + " ";
+      if (line.rfind(key, 0) == 0) recorded = line.substr(key.size());
+    }
+  }
+  if (std::getenv("CLEAVE_UPDATE_HASHES")) {
+    std::vector<std::string> kept;
+    for (const std::string& line : lines)
+      if (line.rfind(configuration + " " + replay + " ", 0) != 0) kept.push_back(line);
+    kept.push_back(configuration + " " + replay + " " + hash);
+    std::ofstream out(stateHashFile());
+    for (const std::string& line : kept) out << line << "\n";
+    return;
+  }
+  if (recorded.empty()) {
+    std::printf("[hashes ] no recorded state hash of %s for %s (CLEAVE_UPDATE_HASHES=1 records it)\n", replay.c_str(),
+                configuration.c_str());
+    return;
+  }
+  EXPECT_EQ(hash, recorded) << replay << " ends in another state than recorded for " << configuration
+                            << " in " << stateHashFile() << ": if the change is meant, record it with "
+                            << "CLEAVE_UPDATE_HASHES=1";
+}
+
 // Runs `replayArguments` (a --replay and its options) with --split-threads 0, 1 and 3 through
 // `run` and expects the same printed state hash each time: threads never change a result.
 template <typename Run>
@@ -67,6 +108,7 @@ void expectSameStateOnZeroOneAndThreeSplitThreads(const Run& run, const std::str
   std::printf("[threads] %s: %s %s %s\n", name.c_str(), hashes[0].c_str(), hashes[1].c_str(), hashes[2].c_str());
   EXPECT_EQ(hashes[1], hashes[0]) << name;
   EXPECT_EQ(hashes[2], hashes[0]) << name;
+  expectRecordedStateHash(name, hashes[0]);
 }
 
 inline nlohmann::json lastDumpLine(const std::filesystem::path& path) {
