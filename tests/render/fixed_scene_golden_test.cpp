@@ -96,11 +96,8 @@ TEST(RenderGolden, FixedSceneMatchesTheCommittedImage) {
   r.submit(half, glm::translate(glm::mat4(1.f), glm::vec3(2.0f, 0.5f, -0.3f)), halfMaterials);
   r.endFrame();
 
-  std::vector<uint8_t> rgba;
-  int width = 0, height = 0;
-  r.readPixels(rgba, width, height);
-  ASSERT_EQ(width, kWidth);
-  ASSERT_EQ(height, kHeight);
+  const std::vector<uint8_t> rgba = testing::readFrame(r, kWidth, kHeight);
+  const int width = kWidth, height = kHeight;
 
   // Not blank: the sky (top rows) is bluish and the floor (bottom rows) has two checker tones.
   const auto pixel = [&](int x, int y) { return &rgba[(size_t(y) * width + x) * 4]; };
@@ -113,9 +110,7 @@ TEST(RenderGolden, FixedSceneMatchesTheCommittedImage) {
   }
   EXPECT_GT(brightest - darkest, 60) << "the floor shows no checker";
 
-  testing::ImageTolerance tolerance;
-  tolerance.maxChannelDifference = 12;
-  tolerance.maxDifferingShare = 0.004;
+  const testing::ImageTolerance tolerance = testing::kGoldenTolerance;
   const std::string golden = std::string(CLEAVE_SOURCE_DIR) + "/tests/render/goldens/fixed_scene.png";
   const testing::ImageComparison comparison = testing::compareWithGolden(golden, width, height, rgba, tolerance);
   EXPECT_TRUE(comparison.ok) << comparison.message;
