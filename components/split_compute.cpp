@@ -334,6 +334,11 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
   out.setupMilliseconds = nowMilliseconds() - start;
   const double geometryStart = nowMilliseconds();
   geometry::IMeshSplitter& splitter = job.settings.convexHint ? *s.convex : *s.concave;
+  if (job.skinned()) {
+    const geometry::MassProperties posed =
+        geometry::computeMassProperties(s.container.cutPositions(), s.container.mesh().indices);
+    out.posedVolume = posed.closed ? posed.volume : 0.0;
+  }
   out.status = splitter.split(s.container, job.plane, job.options, s.result);
   s.container.release();  // do not keep the (doomed) target's mesh alive
   out.geometryMilliseconds = nowMilliseconds() - geometryStart;
@@ -345,6 +350,7 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
   out.openChains = s.result.openChains;
   PieceContext c{job, s, job.hierarchy() ? &merged : nullptr, 0.0, false, glm::dvec3(0.0), {}, {}, false};
   for (const auto& piece : s.result.pieces) c.totalVolume += std::max(piece.mass.volume, 0.0);
+  out.piecesVolume = c.totalVolume;
   if (!(c.totalVolume > 0.0)) {
     out.status = geometry::SplitStatus::InvalidInput;
     out.message = "pieces enclose no volume";

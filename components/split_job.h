@@ -174,6 +174,11 @@ struct SplitOutcome {
   std::string message;
   std::vector<PieceSpec> pieces;
   uint32_t openChains = 0;  // section chains left open (geometry::SplitResult::openChains)
+  // Skinned jobs, whose pieces share the parent's mass by their part of the volume: the closed posed
+  // source's volume, integrated on its own before the cut (0 otherwise), and the pieces' volumes
+  // summed, so that a check of the pieces does not hold by construction.
+  double posedVolume = 0.0;
+  double piecesVolume = 0.0;
   // Worked out for the source in compute, for the split system to keep (null: nothing new).
   std::shared_ptr<const geometry::MeshWeld> sourceWeld;
   geometry::SharedColliderParts sourceParts;

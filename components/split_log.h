@@ -21,6 +21,8 @@ struct SplitLogEntry {
   size_t pieces = 0;
   double parentMass = 0.0;
   double piecesMass = 0.0;
+  double posedVolume = 0.0;   // SplitEvent::posedVolume
+  double piecesVolume = 0.0;
   double milliseconds = 0.0;          // the whole split
   double geometryMilliseconds = 0.0;  // of which: the cut, caps, islands, mass properties
   double colliderMilliseconds = 0.0;  // of which: colliders

@@ -708,6 +708,8 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
   ev.geometryMilliseconds = outcome.geometryMilliseconds;
   ev.colliderMilliseconds = outcome.colliderMilliseconds;
   ev.openChains = outcome.openChains;
+  ev.posedVolume = outcome.posedVolume;
+  ev.piecesVolume = outcome.piecesVolume;
   // What compute worked out for the source is kept whatever happens next.
   if (job.mesh && (outcome.sourceWeld || outcome.sourceParts)) {
     Scratch::Known& k = scratch_->entry(job.mesh);

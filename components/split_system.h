@@ -68,6 +68,8 @@ struct SplitEvent {
   std::string message;
   double parentMass = 0.0;
   double piecesMass = 0.0;      // sum over pieces kept with colliders and debris
+  double posedVolume = 0.0;     // skinned: see SplitOutcome::posedVolume (0: not known)
+  double piecesVolume = 0.0;    // the pieces' volumes as the split found them
   // Milliseconds. main = prepare + commit on the main thread; the compute stage ran on a worker
   // (or inline with 0 threads) and the main thread waited `waitMilliseconds` for it at commit.
   double milliseconds = 0.0;          // main + compute: the whole work of the split

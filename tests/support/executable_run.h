@@ -132,6 +132,12 @@ inline void expectEveryCutKeepsMass(const nlohmann::json& dump, double relative 
     ASSERT_GT(parent, 0.0) << split.dump();
     EXPECT_NEAR(pieces / parent, 1.0, relative) << split.dump();
     EXPECT_GE(split.at("pieces").get<int>(), 2) << split.dump();
+    // Skinned pieces share the parent's mass by volume, so the masses add up whatever the pieces
+    // are: their volumes must add up to the posed character's, integrated on its own.
+    if (split.contains("posed_volume")) {
+      EXPECT_NEAR(split.at("pieces_volume").get<double>() / split.at("posed_volume").get<double>(), 1.0, 1e-6)
+          << split.dump();
+    }
   }
 }
 
