@@ -207,6 +207,26 @@ double pointTriangleDistance2(const glm::dvec3& p, const glm::dvec3& a, const gl
   return at(a + ab * (vb / sum) + ac * (vc / sum));
 }
 
+void overlappingBoxes(std::span<const glm::dvec3> lo, std::span<const glm::dvec3> hi, double tolerance,
+                      std::vector<std::pair<uint32_t, uint32_t>>& pairs, std::vector<uint32_t>& byX) {
+  const uint32_t count = static_cast<uint32_t>(lo.size());
+  byX.resize(count);
+  std::iota(byX.begin(), byX.end(), 0u);
+  std::sort(byX.begin(), byX.end(), [&](uint32_t a, uint32_t b) { return lo[a].x != lo[b].x ? lo[a].x < lo[b].x : a < b; });
+  pairs.clear();
+  auto empty = [&](uint32_t c) { return lo[c].x > hi[c].x; };
+  for (size_t i = 0; i < count; ++i) {
+    const uint32_t a = byX[i];
+    if (empty(a)) continue;
+    const Box grown{lo[a] - tolerance, hi[a] + tolerance};
+    for (size_t j = i + 1; j < count && lo[byX[j]].x <= hi[a].x + tolerance; ++j) {
+      const uint32_t b = byX[j];
+      if (!empty(b) && overlaps(grown, Box{lo[b], hi[b]})) pairs.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+}
+
 uint32_t joinTouchingComponents(std::span<const glm::dvec3> corners, std::span<const uint32_t> component,
                                 uint32_t count, double tolerance, std::vector<uint32_t>& root,
                                 ContactScratch& s) {
@@ -226,24 +246,7 @@ uint32_t joinTouchingComponents(std::span<const glm::dvec3> corners, std::span<c
     s.next[t] = s.first[c];
     s.first[c] = static_cast<uint32_t>(t);
   }
-  // Sweep along x for the pairs of boxes that overlap once grown by the tolerance.
-  s.byX.resize(count);
-  std::iota(s.byX.begin(), s.byX.end(), 0u);
-  std::sort(s.byX.begin(), s.byX.end(), [&](uint32_t a, uint32_t b) {
-    return s.lo[a].x != s.lo[b].x ? s.lo[a].x < s.lo[b].x : a < b;
-  });
-  s.pairs.clear();
-  for (size_t i = 0; i < count; ++i) {
-    const uint32_t a = s.byX[i];
-    if (s.first[a] == kNone) continue;
-    for (size_t j = i + 1; j < count && s.lo[s.byX[j]].x <= s.hi[a].x + tolerance; ++j) {
-      const uint32_t b = s.byX[j];
-      if (s.first[b] == kNone) continue;
-      const Box grown{s.lo[a] - tolerance, s.hi[a] + tolerance};
-      if (overlaps(grown, Box{s.lo[b], s.hi[b]})) s.pairs.push_back({std::min(a, b), std::max(a, b)});
-    }
-  }
-  std::sort(s.pairs.begin(), s.pairs.end());
+  overlappingBoxes(s.lo, s.hi, tolerance, s.pairs, s.byX);
   s.parent.resize(count);
   std::iota(s.parent.begin(), s.parent.end(), 0u);
   uint32_t joins = 0;

@@ -41,6 +41,11 @@ uint32_t joinTouchingComponents(std::span<const glm::dvec3> corners, std::span<c
                                 uint32_t count, double tolerance, std::vector<uint32_t>& root,
                                 ContactScratch& scratch);
 
+// The pairs (a < b, sorted) of non-empty boxes [lo, hi] that overlap once grown by `tolerance`, by a
+// sweep along x; an empty box has lo > hi. Cheap: callers check it before gathering any triangle.
+void overlappingBoxes(std::span<const glm::dvec3> lo, std::span<const glm::dvec3> hi, double tolerance,
+                      std::vector<std::pair<uint32_t, uint32_t>>& pairs, std::vector<uint32_t>& byX);
+
 // Exact small predicates, exposed for their tests.
 // Whether the segment [p, q] crosses or touches triangle (a, b, c) (orientation signs in double).
 bool segmentCrossesTriangle(const glm::dvec3& p, const glm::dvec3& q, const glm::dvec3& a, const glm::dvec3& b,

@@ -296,6 +296,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<glm::dvec3> contactCorners_;  // joinTouching: 3 cut-space corners per side triangle
   std::vector<uint32_t> contactRoot_;
   std::vector<uint8_t> contactReached_;
+  std::vector<glm::dvec3> contactLo_, contactHi_;  // joinTouching: bounds per piece, then per group
   ContactScratch contactScratch_;
   std::vector<SplitPiece> spare_;
 };
@@ -1330,26 +1331,39 @@ uint32_t Splitter::mergeCavities(int side, uint32_t pieces) {
 // are renumbered in order of first triangle, as before. Returns the new piece count.
 uint32_t Splitter::joinTouching(int side, uint32_t pieces, const SplitOptions& options) {
   const std::vector<SideTriangle>& tris = sideTris_[side];
-  contactCorners_.resize(3 * tris.size());
-  for (size_t k = 0; k < tris.size(); ++k) {
-    for (int c = 0; c < 3; ++c) contactCorners_[3 * k + c] = cutOfAny(tris[k].v[c]);
-  }
   const double tolerance = std::max(options.touchTolerance, 0.0) * container_->boundsDiagonal();
-  joinTouchingComponents(contactCorners_, pieceOf_, pieces, tolerance, contactRoot_, contactScratch_);
-  // Per joined group (its root): reached by the plane, and its bounds.
+  // Bounds and reach per piece first: pieces whose boxes meet nothing, all reached by the plane (the
+  // teeth of a comb cut across), are apart without a look at their triangles.
   std::vector<uint8_t>& reached = contactReached_;
-  std::vector<glm::dvec3>& lo = contactScratch_.lo;  // reused: bounds per group
-  std::vector<glm::dvec3>& hi = contactScratch_.hi;
+  std::vector<glm::dvec3>& lo = contactLo_;
+  std::vector<glm::dvec3>& hi = contactHi_;
   reached.assign(pieces, 0);
   lo.assign(pieces, glm::dvec3(INFINITY));
   hi.assign(pieces, glm::dvec3(-INFINITY));
   for (size_t k = 0; k < tris.size(); ++k) {
-    const uint32_t g = contactRoot_[pieceOf_[k]];
-    reached[g] = reached[g] || (tris[k].source & kReachedBit) != 0;
+    const uint32_t p = pieceOf_[k];
+    reached[p] = reached[p] || (tris[k].source & kReachedBit) != 0;
     for (int c = 0; c < 3; ++c) {
-      lo[g] = glm::min(lo[g], contactCorners_[3 * k + c]);
-      hi[g] = glm::max(hi[g], contactCorners_[3 * k + c]);
+      const glm::dvec3 q = cutOfAny(tris[k].v[c]);
+      lo[p] = glm::min(lo[p], q);
+      hi[p] = glm::max(hi[p], q);
     }
+  }
+  overlappingBoxes(lo, hi, tolerance, contactScratch_.pairs, contactScratch_.byX);
+  const bool allReached = std::find(reached.begin(), reached.end(), uint8_t(0)) == reached.end();
+  if (contactScratch_.pairs.empty() && allReached) return pieces;
+  contactCorners_.resize(3 * tris.size());
+  for (size_t k = 0; k < tris.size(); ++k) {
+    for (int c = 0; c < 3; ++c) contactCorners_[3 * k + c] = cutOfAny(tris[k].v[c]);
+  }
+  joinTouchingComponents(contactCorners_, pieceOf_, pieces, tolerance, contactRoot_, contactScratch_);
+  // Per joined group (its root): reached by the plane, and its bounds.
+  for (uint32_t p = 0; p < pieces; ++p) {
+    const uint32_t g = contactRoot_[p];
+    if (g == p) continue;
+    reached[g] = reached[g] || reached[p];
+    lo[g] = glm::min(lo[g], lo[p]);
+    hi[g] = glm::max(hi[g], hi[p]);
   }
   for (uint32_t g = 0; g < pieces; ++g) {
     if (contactRoot_[g] != g || reached[g]) continue;
