@@ -310,6 +310,33 @@ struct BudgetRun {
   uint32_t overran = 0;       // ticks that began a split with their budget already spent
 };
 
+// What the budget decided in one tick with splits, checked: with work left, a tick stops only once
+// a budget is spent (or the split cap is reached), and it begins its last split while still under
+// the budget (`lastCharge` is what that split was charged). Returns what went wrong, or nothing.
+std::string budgetDecisionProblem(const SplitBudgetStats& st, const SplitBudgetSettings& s, double lastCharge) {
+  const bool spent = st.millisecondsCharged >= s.millisecondsPerTick ||
+                     st.workerMillisecondsCharged >= s.workerMillisecondsPerTick ||
+                     st.executed >= s.maxSplitsPerTick;
+  if (st.deferred > 0 && !spent) return "stopped with budget left while work waited";
+  if (st.executed > 1 && st.millisecondsCharged - lastCharge >= s.millisecondsPerTick - 1e-12)
+    return "began a split with its budget spent";
+  return {};
+}
+
+TEST(SplitBudget, DecisionCheckSeesATickThatStopsEarlyAndOneThatOverruns) {
+  SplitBudgetSettings s;
+  s.millisecondsPerTick = 2.0;
+  SplitBudgetStats st;
+  st.executed = 3;
+  st.millisecondsCharged = 2.1;
+  st.deferred = 4;
+  EXPECT_EQ(budgetDecisionProblem(st, s, 0.3), "");        // spent, and began its last split at 1.8
+  st.millisecondsCharged = 1.5;
+  EXPECT_NE(budgetDecisionProblem(st, s, 0.3), "");        // work waits, 0.5 ms of budget left
+  st.millisecondsCharged = 2.9;
+  EXPECT_NE(budgetDecisionProblem(st, s, 0.3), "");        // its last split began at 2.6
+}
+
 BudgetRun runFiftyCubes(Sim& sim, bool deterministic) {
   EXPECT_TRUE(sim.load(scenePath("fifty_cubes.json"))) << sim.scene.error;
   SplitBudgetSettings s = sim.splits.budget().settings();
@@ -328,14 +355,10 @@ BudgetRun runFiftyCubes(Sim& sim, bool deterministic) {
     run.maxCharged = std::max(run.maxCharged, st.millisecondsCharged);
     run.maxUsed = std::max(run.maxUsed, st.millisecondsUsed);
     run.maxSplit = st.maxSplitMilliseconds;
-    // What the budget decided: with work left, a tick stops only once a budget is spent (or the
-    // split cap is reached), and it begins its last split while still under the budget.
-    const bool spent = st.millisecondsCharged >= s.millisecondsPerTick ||
-                       st.workerMillisecondsCharged >= s.workerMillisecondsPerTick ||
-                       st.executed >= s.maxSplitsPerTick;
-    if (st.deferred > 0 && !spent) ++run.stoppedEarly;
     const double lastCharge = deterministic ? s.estimatedMainMilliseconds : st.lastSplitMilliseconds;
-    if (st.executed > 1 && st.millisecondsCharged - lastCharge >= s.millisecondsPerTick - 1e-12) ++run.overran;
+    const std::string problem = budgetDecisionProblem(st, s, lastCharge);
+    run.stoppedEarly += problem.rfind("stopped", 0) == 0;
+    run.overran += problem.rfind("began", 0) == 0;
   }
   return run;
 }

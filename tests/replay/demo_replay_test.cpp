@@ -2,6 +2,7 @@
 // (pieces, mass kept by every cut, nothing lost through the floor), determinism (two runs and a
 // recorded-then-replayed run give the same state hash), bad replay files, and golden frames.
 #include <gtest/gtest.h>
+#include <gtest/gtest-spi.h>
 
 #include <array>
 #include <cmath>
@@ -104,6 +105,26 @@ TEST(DemoReplay, BurstOfCutsIsSpreadByTheBudgetAndKeepsMass) {
   EXPECT_EQ(budget.at("queue"), 0) << "requests left over: " << budget.dump();
   // The replay makes 19 cuts since pieces appear at the commit tick, one tick later (20 before).
   EXPECT_GE(dump.at("splits").size(), 19u);
+}
+
+// The positive control of the mass check every replay and arena test runs on its split log: it
+// fails on a cut whose pieces miss mass, and on a skinned cut whose pieces' masses add up (as they
+// do by construction) while their volumes do not add up to the posed character's.
+TEST(DemoReplay, MassCheckFailsOnLostMassAndOnLostSkinnedVolume) {
+  const auto logOf = [](const nlohmann::json& split) {
+    nlohmann::json dump;
+    dump["splits"] = nlohmann::json::array({split});
+    return dump;
+  };
+  const nlohmann::json whole = {{"status", "Ok"}, {"pieces", 2}, {"parent_mass", 10.0}, {"pieces_mass", 10.0}};
+  cleave::testing::expectEveryCutKeepsMass(logOf(whole));
+  nlohmann::json lost = whole;
+  lost["pieces_mass"] = 9.99;
+  EXPECT_NONFATAL_FAILURE(cleave::testing::expectEveryCutKeepsMass(logOf(lost)), "pieces / parent");
+  nlohmann::json skinned = whole;
+  skinned["posed_volume"] = 0.08;
+  skinned["pieces_volume"] = 0.079;
+  EXPECT_NONFATAL_FAILURE(cleave::testing::expectEveryCutKeepsMass(logOf(skinned)), "posed_volume");
 }
 
 TEST(DemoReplay, SameReplayGivesTheSameState) {
