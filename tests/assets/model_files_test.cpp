@@ -102,6 +102,13 @@ TEST(CleaveSplitTool, JsonReportsPiecesWhoseVolumesAddUp) {
   EXPECT_EQ(report["input"]["triangles"], 12);
   EXPECT_EQ(report["input"]["closed"], true);
   EXPECT_NEAR(report["input"]["volume"].get<double>(), 1.0, 1e-9);
+  EXPECT_EQ(report["input"]["volume_from_hull"], false);
+  // The bounds, to choose a plane by.
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(report["input"]["bounds"]["min"][k].get<double>(), 0.0, 1e-6);
+    EXPECT_NEAR(report["input"]["bounds"]["max"][k].get<double>(), 1.0, 1e-6);
+    EXPECT_NEAR(report["input"]["bounds"]["centre"][k].get<double>(), 0.5, 1e-6);
+  }
   ASSERT_EQ(report["pieces"].size(), 2u);
   double total = 0.0;
   for (const auto& piece : report["pieces"]) {
@@ -236,6 +243,14 @@ TEST(CleaveSplitTool, ErrorsGiveOneLineAndTheDocumentedExitCodes) {
   ASSERT_FALSE(report.is_discarded()) << output;
   EXPECT_TRUE(report.contains("message"));  // only present when the split failed
   EXPECT_TRUE(report["pieces"].empty());
+  // In text, the failure is told once (on stderr), with the bounds and the offsets that would cut.
+  std::string text, errors;
+  EXPECT_EQ(run(tool + quote(cube) + " --plane 0 1 0 5 2>/dev/null", text), 1);
+  EXPECT_EQ(text.find("status:"), std::string::npos) << text;
+  EXPECT_NE(text.find("bounds: (0, 0, 0) to (1, 1, 1), centre (0.5, 0.5, 0.5)"), std::string::npos) << text;
+  EXPECT_EQ(run(tool + quote(cube) + " --plane 0 1 0 5 2>&1 >/dev/null", errors), 1);
+  EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
+  EXPECT_NE(errors.find("an offset between 0 and 1 crosses its box"), std::string::npos) << errors;
 }
 
 }  // namespace

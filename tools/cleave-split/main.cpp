@@ -370,6 +370,19 @@ int main(int argc, char** argv) {
     inputMass = geometry::computeMassProperties(mesh);
   }
   const bool inputClosed = geometry::isClosedAndOriented(mesh.positions, mesh.indices);
+  // The bounds of the mesh as it is cut (posed with --pose), to choose a plane by.
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  {
+    geometry::MeshContainer bounds;
+    std::string ignored;
+    if (prepare(bounds, nullptr, ignored) == geometry::SplitStatus::Ok) {
+      for (const glm::dvec3& q : bounds.cutPositions()) {
+        lo = glm::min(lo, q);
+        hi = glm::max(hi, q);
+      }
+    }
+  }
+  const glm::dvec3 centre = 0.5 * (lo + hi);
 
   geometry::SplitOptions options;
   options.cap = !args.hollow;
@@ -483,7 +496,10 @@ int main(int argc, char** argv) {
                     {"triangles", mesh.triangleCount()},
                     {"closed", inputClosed},
                     {"wound_inwards", weld.inverted},
-                    {"volume", inputMass.volume}};
+                    {"volume", inputMass.volume},
+                    {"volume_from_hull", inputMass.fromConvexHull},
+                    {"bounds", {{"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}},
+                                {"centre", {centre.x, centre.y, centre.z}}}}};
     if (args.poseClip) {
       out["pose"] = {{"clip", clipName}, {"seconds", args.poseSeconds}, {"joints", skin.skeleton.size()},
                      {"clips", skin.clips.size()}};
@@ -522,17 +538,20 @@ int main(int argc, char** argv) {
                      {"first_cut_ms_median", median(firstCut)}};
     std::puts(out.dump(2).c_str());
   } else {
-    std::printf("%s: %zu vertices, %zu triangles, %s, volume %.9g\n", args.input.c_str(),
-                mesh.vertexCount(), mesh.triangleCount(), inputClosed ? "closed" : "open",
-                inputMass.volume);
+    std::printf("%s: %zu vertices, %zu triangles, %s, volume %.9g%s\n", args.input.c_str(), mesh.vertexCount(),
+                mesh.triangleCount(), inputClosed ? "closed" : "open", inputMass.volume,
+                inputMass.fromConvexHull ? " (not the mesh's own: it is open, so its convex hull, or its closed parts "
+                                           "and the hulls of its open ones)"
+                                         : "");
+    std::printf("bounds: (%.6g, %.6g, %.6g) to (%.6g, %.6g, %.6g), centre (%.6g, %.6g, %.6g)\n", lo.x, lo.y, lo.z,
+                hi.x, hi.y, hi.z, centre.x, centre.y, centre.z);
     if (args.poseClip) {
       std::printf("pose: clip '%s' at %.6g s, %zu joints\n", clipName.c_str(), args.poseSeconds,
                   skin.skeleton.size());
     }
     std::printf("plane: normal (%.9g, %.9g, %.9g), offset %.9g\n", plane.normal.x, plane.normal.y,
                 plane.normal.z, plane.offset);
-    std::printf("status: %s%s%s\n", geometry::toString(result.status), splitOk ? "" : ": ",
-                splitOk ? "" : result.message.c_str());
+    if (splitOk) std::printf("status: Ok\n");  // a failure is told once, on stderr, below
     if (result.openChains > 0 || result.uncappedLoops > 0)
       std::printf("section: %u closed loop(s), %u left open; %u open chain(s) left open (the mesh is open or "
                   "non-manifold where it is cut)\n", result.sectionLoops, result.uncappedLoops, result.openChains);
@@ -551,14 +570,31 @@ int main(int argc, char** argv) {
     }
     if (splitOk) std::printf("pieces volume total %.9g\n", total);
     for (const std::string& path : written) std::printf("wrote %s\n", path.c_str());
-    std::printf("split time: median %.3f ms, min %.3f ms over %zu run%s (the mesh's weld known; a container "
-                "welding it from nothing, once per mesh: median %.3f ms)\n",
-                medianMs, minMs, times.size(), times.size() == 1 ? "" : "s", median(setupTimes));
+    if (args.poseClip && args.outDir && args.format == "obj")
+      std::printf("note: OBJ pieces are written in bind space; --format glb writes skinned pieces that keep the pose's "
+                  "clips\n");
+    std::printf("split time: %.3f ms a cut with the mesh's weld known (median of %zu run%s, fastest %.3f ms); welding "
+                "the mesh the first time costs %.3f ms more, once per mesh\n",
+                medianMs, times.size(), times.size() == 1 ? "" : "s", minMs, median(setupTimes));
   }
   if (!splitOk) {
+    char bounds[320] = "";
+    if (result.status == geometry::SplitStatus::PlaneMissesMesh) {
+      // The offsets along this normal at which a plane crosses the mesh's bounding box.
+      double low = INFINITY, high = -INFINITY;
+      for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+        low = std::min(low, glm::dot(plane.normal, corner));
+        high = std::max(high, glm::dot(plane.normal, corner));
+      }
+      std::snprintf(bounds, sizeof bounds,
+                    " (the mesh spans (%.6g, %.6g, %.6g) to (%.6g, %.6g, %.6g), centre (%.6g, %.6g, %.6g): with this "
+                    "normal, an offset between %.6g and %.6g crosses its box)",
+                    lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, centre.x, centre.y, centre.z, low, high);
+    }
     const char* hint = result.status == geometry::SplitStatus::OpenSection
                            ? " (--open cap-closed cuts it and leaves the open chains open, --open bridge also closes them where it can; --hollow cuts it uncapped)"
-                           : "";
+                           : bounds;
     std::fprintf(stderr, "cleave-split: %s: split failed: %s%s%s%s\n", args.input.c_str(),
                  geometry::toString(result.status), result.message.empty() ? "" : ": ",
                  result.message.c_str(), hint);
