@@ -212,6 +212,9 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
       break;
     case ObjectKind::MelonEllipsoid:
       mesh = geometry::primitives::ellipsoid(glm::vec3(0.45f, 0.35f, 0.35f), 32, 16);
+      // The outside is rind: the texture's u in [0, 0.5) (procedural_textures.h); the ellipsoid's
+      // u runs once around it in [0, 1], kept a texel short of the flesh at the seam.
+      for (glm::vec2& uv : mesh.uv0) uv.x *= 0.49f;
       splitable.convexHint = true;
       splitable.density = 950.0;
       splitable.capUvMode = geometry::CapUvMode::NormalizedBounds;
