@@ -150,7 +150,8 @@ bool App::runTick(bool render) {
 
   const int64_t total = totalTicks();
   const bool last = total >= 0 && int64_t(tick_) + 1 >= total;
-  if (dumpFile_ && ((options_.dumpEvery > 0 && tick_ % uint64_t(options_.dumpEvery) == 0) || last))
+  // The state is dumped every dumpEvery ticks, and at the end: the last tick, or a quit.
+  if (dumpFile_ && ((options_.dumpEvery > 0 && tick_ % uint64_t(options_.dumpEvery) == 0) || last || quit_))
     dumpState();
   ++tick_;
   return !last;

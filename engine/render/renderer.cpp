@@ -443,6 +443,10 @@ void Renderer::submitOverlayRect(const glm::vec4& rect, const glm::vec4& color) 
   for (const glm::vec3& p : {a, b, c, a, c, d}) impl_->overlayTriangles.push_back({p, color});
 }
 
+float Renderer::textWidth(const std::string& text, float scale) {
+  return float(stb_easy_font_width(const_cast<char*>(text.c_str()))) * scale;
+}
+
 void Renderer::submitText(const std::string& text, glm::vec2 position, float scale,
                           const glm::vec4& color) {
   Impl& r = *impl_;

@@ -127,6 +127,8 @@ class Renderer {
   void submitOverlayRect(const glm::vec4& rect, const glm::vec4& color);
   // Queues text at a pixel position (top-left) in stb_easy_font glyphs (about 7 px high) times `scale`.
   void submitText(const std::string& text, glm::vec2 position, float scale, const glm::vec4& color);
+  // The width in pixels `text` takes at `scale` (its longest line), to fit a box around it.
+  static float textWidth(const std::string& text, float scale);
   // Renders everything queued since beginFrame.
   FrameStats endFrame();
 

@@ -527,14 +527,27 @@ void DemoGame::gameplay(app::TickContext& c) {
   }
   const input::InputState& in = c.input;
   using input::Key;
+  // Escape frees the mouse (the camera stops turning, the cursor shows); a left click takes it back,
+  // a second Escape quits.
+  if (in.pressed(Key::Escape)) {
+    if (mouseFree_) {
+      c.app.requestQuit();
+      return;
+    }
+    mouseFree_ = true;
+    c.platform.setCursorMode(app::CursorMode::Normal);
+  } else if (mouseFree_ && !splitMode_ && in.pressed(input::MouseButton::Left)) {
+    mouseFree_ = false;
+    c.platform.setCursorMode(app::CursorMode::Captured);
+  }
   // Split mode: hold Space; the camera stops turning and the cursor shows.
   const bool wantSplitMode = in.held(Key::Space);
   if (wantSplitMode != splitMode_) {
     splitMode_ = wantSplitMode;
-    c.platform.setCursorMode(splitMode_ ? app::CursorMode::Normal : app::CursorMode::Captured);
+    c.platform.setCursorMode(splitMode_ || mouseFree_ ? app::CursorMode::Normal : app::CursorMode::Captured);
     dragging_ = false;
   }
-  if (!splitMode_) {
+  if (!splitMode_ && !mouseFree_) {
     yaw_ -= in.mouseDelta().x * kLookSensitivity;
     pitch_ = std::clamp(pitch_ - in.mouseDelta().y * kLookSensitivity, -1.5f, 1.5f);
   }
@@ -621,19 +634,21 @@ void DemoGame::drawHud(app::TickContext& c) {
     (void)origin;
     ++pieces;
   }
-  char line[256];
+  char texts[4][256];
   const glm::vec4 white(1.f), dim(0.f, 0.f, 0.f, 0.45f);
-  r.submitOverlayRect(glm::vec4(8, 8, 330, 118), dim);
-  std::snprintf(line, sizeof(line), "FPS %.0f   tick %.2f ms", c.app.framesPerSecond(),
+  std::snprintf(texts[0], sizeof(texts[0]), "FPS %.0f   tick %.2f ms", c.app.framesPerSecond(),
                 c.app.lastTickMilliseconds());
-  r.submitText(line, {16, 14}, 2.f, white);
-  std::snprintf(line, sizeof(line), "splits this tick %u   queue %u", splitsThisTick_, stats.queueLength);
-  r.submitText(line, {16, 34}, 2.f, white);
-  std::snprintf(line, sizeof(line), "split ms last %.2f  max %.2f", lastSplitMs_, maxSplitMs_);
-  r.submitText(line, {16, 54}, 2.f, white);
-  std::snprintf(line, sizeof(line), "pieces %u   tick %llu", pieces,
-                static_cast<unsigned long long>(c.tick));
-  r.submitText(line, {16, 74}, 2.f, white);
+  std::snprintf(texts[1], sizeof(texts[1]), "splits this tick %u   queue %u", splitsThisTick_, stats.queueLength);
+  std::snprintf(texts[2], sizeof(texts[2]), "split ms last %.2f  max %.2f", lastSplitMs_, maxSplitMs_);
+  std::snprintf(texts[3], sizeof(texts[3]), "pieces %u   tick %llu", pieces, static_cast<unsigned long long>(c.tick));
+  // The panel fits its longest line: the counts as they are, the timings at their widest usual
+  // figures (so that its size does not change with the wall clock).
+  float panel = 248.f;  // the graph's width
+  const char* widest[] = {texts[1], texts[3], "FPS 9999   tick 99.99 ms", "split ms last 99.99  max 99.99"};
+  for (const char* text : widest)
+    panel = std::max(panel, render::Renderer::textWidth(text, 2.f));
+  r.submitOverlayRect(glm::vec4(8, 8, panel + 16.f, 118), dim);
+  for (int k = 0; k < 4; ++k) r.submitText(texts[k], {16, 14.f + 20.f * float(k)}, 2.f, white);
   // Graph: split ms per tick against the budget line.
   const float gx = 16.f, gy = 96.f, gw = 240.f, gh = 24.f;
   const float budget = float(splits_->budget().settings().millisecondsPerTick);
@@ -652,21 +667,32 @@ void DemoGame::drawHud(app::TickContext& c) {
   const glm::vec2 mid = glm::vec2(c.frameSize) * 0.5f;
   const glm::vec2 cross[4] = {mid - glm::vec2(8, 0), mid + glm::vec2(8, 0), mid - glm::vec2(0, 8),
                               mid + glm::vec2(0, 8)};
-  r.submitOverlayLines(cross, white);
+  if (!showHelp_) r.submitOverlayLines(cross, white);  // not over the help text
   if (dragging_) {
     const glm::vec2 drag[2] = {dragStart_, dragEnd_};
     r.submitOverlayLines(drag, glm::vec4(1.f, 0.9f, 0.2f, 1.f));
   }
-  if (splitMode_) r.submitText("SPLIT MODE: drag to cut", {mid.x - 110.f, 20.f}, 2.f, glm::vec4(1, 0.9f, 0.2f, 1));
+  const glm::vec4 yellow(1, 0.9f, 0.2f, 1);
+  auto centred = [&](const std::string& text, float y) {
+    r.submitText(text, {mid.x - 0.5f * render::Renderer::textWidth(text, 2.f), y}, 2.f, yellow);
+  };
+  if (splitMode_) centred("SPLIT MODE: drag to cut", 140.f);
+  if (mouseFree_) centred("MOUSE FREE: click to look around, Esc again to quit", 164.f);
+  // A start-up hint for the first ten seconds.
+  if (c.tick < 600 && !showHelp_) centred("H: help   Esc: free the mouse (twice: quit)", float(c.frameSize.y) - 34.f);
   if (showHelp_) {
-    r.submitOverlayRect(glm::vec4(mid.x - 230, mid.y - 110, 460, 220), glm::vec4(0, 0, 0, 0.6f));
     const char* help[] = {"WASD move, mouse look",     "hold Space: split mode, drag left button to cut",
                           "right button: push",        "1-7: spawn cube, sphere, cylinder, melon,",
                           "     figure, skinned, torus", "Q/E: cycle the material under the crosshair",
-                          "H: this help"};
-    float y = mid.y - 96.f;
+                          "Esc: free the mouse; Esc again: quit", "H: this help"};
+    float width = 0.f;
+    for (const char* h : help) width = std::max(width, render::Renderer::textWidth(h, 2.f));
+    const float height = 28.f * float(std::size(help)) + 20.f;
+    const glm::vec2 corner = mid - 0.5f * glm::vec2(width + 30.f, height);
+    r.submitOverlayRect(glm::vec4(corner, width + 30.f, height), glm::vec4(0, 0, 0, 0.6f));
+    float y = corner.y + 14.f;
     for (const char* h : help) {
-      r.submitText(h, {mid.x - 215.f, y}, 2.f, white);
+      r.submitText(h, {corner.x + 15.f, y}, 2.f, white);
       y += 28.f;
     }
   }

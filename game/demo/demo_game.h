@@ -90,6 +90,7 @@ class DemoGame {
   glm::vec2 dragStart_{0.f};
   glm::vec2 dragEnd_{0.f};
   bool showHelp_ = false;
+  bool mouseFree_ = false;  // Escape freed the mouse: no mouse look until a click
 
   // Materials: seven looks the player cycles with Q/E, and the matching cap materials.
   std::array<render::Material, 7> looks_{};

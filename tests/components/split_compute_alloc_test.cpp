@@ -1,34 +1,16 @@
 // Allocation counting over the split system's compute stage: a warm scratch cutting a mesh whose
 // weld and collider parts are known allocates for what it hands to commit (a mesh, a weld, hulls
 // per piece) and nothing per triangle: a sphere with 16 times the triangles of another costs the same
-// count, up to a vector's geometric growth. Global operator new is replaced in this test binary; it counts only while asked to.
+// count, up to a vector's geometric growth. Global operator new is replaced in this test binary
+// (tests/support/counting_allocator.h).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
+#include <cstdio>
 
 #include "components/split_compute.h"
 #include "engine/geometry/collider_parts.h"
 #include "engine/geometry/primitives.h"
-
-namespace {
-std::atomic<bool> gCounting{false};
-std::atomic<size_t> gAllocations{0};
-
-void* counted(std::size_t size) {
-  if (gCounting.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-}  // namespace
-
-void* operator new(std::size_t size) { return counted(size); }
-void* operator new[](std::size_t size) { return counted(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#include "tests/support/counting_allocator.h"
 
 namespace cleave::components {
 namespace {
@@ -51,13 +33,13 @@ size_t computeAllocations(uint32_t segments, uint32_t rings) {
   for (int warm = 0; warm < 2; ++warm) computeSplit(*job, scratch, out);
   EXPECT_EQ(out.status, geometry::SplitStatus::Ok) << out.message;
   out = SplitOutcome{};
-  gAllocations = 0;
-  gCounting = true;
+  cleave::testing::gAllocations = 0;
+  cleave::testing::gCountAllocations = true;
   computeSplit(*job, scratch, out);
-  gCounting = false;
+  cleave::testing::gCountAllocations = false;
   EXPECT_EQ(out.status, geometry::SplitStatus::Ok) << out.message;
   EXPECT_EQ(out.pieces.size(), 2u);
-  return gAllocations.load();
+  return cleave::testing::gAllocations.load();
 }
 
 TEST(SplitComputeAllocations, DoNotGrowWithTheMesh) {

@@ -17,41 +17,11 @@
 #include "engine/geometry/primitives.h"
 #include "tests/geometry/test_meshes.h"
 
-// ---- Allocation counting: global operator new/delete replaced for this test binary; they only count
-// while gCountAllocations is set (by the no-allocation test below).
-namespace {
-std::atomic<bool> gCountAllocations{false};
-std::atomic<size_t> gAllocations{0};
-void* countedAllocate(std::size_t size) {
-  if (gCountAllocations.load(std::memory_order_relaxed)) gAllocations.fetch_add(1, std::memory_order_relaxed);
-  void* p = std::malloc(size ? size : 1);
-  if (!p) throw std::bad_alloc();
-  return p;
-}
-}  // namespace
-
-void* operator new(std::size_t size) { return countedAllocate(size); }
-void* operator new[](std::size_t size) { return countedAllocate(size); }
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  try {
-    return countedAllocate(size);
-  } catch (...) {
-    return nullptr;
-  }
-}
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
-  try {
-    return countedAllocate(size);
-  } catch (...) {
-    return nullptr;
-  }
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+// ---- Allocation counting (tests/support/counting_allocator.h): only while gCountAllocations is
+// set (by the no-allocation tests below).
+#include "tests/support/counting_allocator.h"
+using cleave::testing::gAllocations;
+using cleave::testing::gCountAllocations;
 
 namespace cleave::geometry {
 namespace {

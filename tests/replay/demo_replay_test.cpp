@@ -155,6 +155,22 @@ TEST(DemoReplay, RecordedRunReplaysToTheSameState) {
   EXPECT_EQ(stateHash(original.output), stateHash(replayed.output));
 }
 
+// Escape frees the mouse, a second Escape quits: a replay of 600 ticks that presses it at ticks 20
+// and 40 ends at tick 40, cleanly.
+TEST(DemoReplay, EscapeTwiceQuits) {
+  const fs::path dir = scratchDir("escape");
+  const fs::path replayFile = dir / "escape.replay";
+  std::ofstream(replayFile) << "cleave-replay 1\nscene demo\nseed 1\nticks 600\n20 kd:escape\n21 ku:escape\n"
+                               "40 kd:escape\n41 ku:escape\n";
+  const RunResult r = run("--headless --replay \"" + replayFile.string() + "\" --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\"");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
+  ASSERT_TRUE(dump.is_object());
+  EXPECT_LE(dump.at("tick").get<int>(), 42) << "the second Escape did not quit";
+  EXPECT_GE(dump.at("tick").get<int>(), 40) << "the first Escape quit";
+}
+
 TEST(DemoReplay, CorruptReplayIsReportedWithFileAndLine) {
   const fs::path dir = scratchDir("corrupt");
   const fs::path bad = dir / "bad.replay";
