@@ -334,10 +334,10 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
   out.setupMilliseconds = nowMilliseconds() - start;
   const double geometryStart = nowMilliseconds();
   geometry::IMeshSplitter& splitter = job.settings.convexHint ? *s.convex : *s.concave;
-  if (job.skinned()) {
-    const geometry::MassProperties posed =
-        geometry::computeMassProperties(s.container.cutPositions(), s.container.mesh().indices);
-    out.posedVolume = posed.closed ? posed.volume : 0.0;
+  if (job.skinned() && s.container.closed()) {  // closed on the container's weld: no weld again
+    out.posedVolume = geometry::integrateClosedSurface(s.container.cutPositions(), s.container.mesh().indices,
+                                                       s.container.mirrored())
+                          .volume;
   }
   out.status = splitter.split(s.container, job.plane, job.options, s.result);
   s.container.release();  // do not keep the (doomed) target's mesh alive

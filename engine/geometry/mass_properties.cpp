@@ -307,9 +307,7 @@ MassProperties openSurface(std::span<const glm::dvec3> p, std::span<const uint32
     } else {
       one = fromHull(p, part);
     }
-    const bool hull = sum.fromConvexHull || one.fromConvexHull;
-    sum = first ? one : combineMassProperties(sum, one);
-    sum.fromConvexHull = hull;
+    sum = first ? one : combineMassProperties(sum, one);  // fromConvexHull when any part's is
     first = false;
   }
   sum.closed = false;

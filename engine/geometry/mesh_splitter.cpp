@@ -187,6 +187,10 @@ class Splitter final : public IMeshSplitter {
   void cutTriangles();
   void collectBoundary(int side, std::vector<uint64_t>& boundary);
   void buildLoops();
+  void sortSegmentEnds();
+  bool startsChain(uint64_t segment) const {
+    return !std::binary_search(segmentEnds_.begin(), segmentEnds_.end(), keyFrom(segment));
+  }
   void walkChains();
   void bridgeChains();
   bool chordClear(uint32_t begin, uint32_t end, bool alone);
@@ -201,6 +205,7 @@ class Splitter final : public IMeshSplitter {
   }
   void dropCollapsedTriangles();
   void flipFlatCapTriangles();
+  void pushCapTriangles();
   bool flatCapTriangle(size_t t) const;
   bool flipCapTriangle(uint32_t t);
   uint32_t find(uint32_t x);
@@ -208,6 +213,7 @@ class Splitter final : public IMeshSplitter {
   glm::dvec3 cutOfAny(uint32_t ref) const;
   uint32_t mergeCavities(int side, uint32_t pieces);
   uint32_t joinTouching(int side, uint32_t pieces, const SplitOptions& options);
+  uint32_t regroup(std::span<const uint32_t> root, uint32_t pieces);
   void writePieces(const SplitOptions& options, SplitResult& result);
   void gatherVertices(MeshData& m);
   void pieceWeld(MeshWeld& weld, bool closed);
@@ -257,6 +263,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint64_t> segments_;     // section segments, sorted, counter-clockwise seen from +normal
   std::vector<uint64_t> reversed_;
   std::vector<uint8_t> segmentUsed_;
+  std::vector<uint32_t> segmentEnds_;  // sortSegmentEnds: where the section's segments end, sorted
   std::vector<uint32_t> loopIds_;      // welded ids of the loop vertices, loop after loop
   std::vector<uint32_t> mergedIds_;    // loopIds_ after merging near-coincident points
   std::vector<glm::dvec2> points_;     // their projection on the plane
@@ -293,6 +300,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint32_t> pieceMap_;
   std::vector<double> volume_;
   std::vector<uint32_t> firstTriangle_;
+  std::vector<uint32_t> groupNumber_;  // regroup: the new piece number of a group, by its root
   std::vector<glm::dvec3> contactCorners_;  // joinTouching: 3 cut-space corners per side triangle
   std::vector<uint32_t> contactRoot_;
   std::vector<uint8_t> contactReached_;
@@ -543,15 +551,7 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
     result.uncappedLoops = uncappedLoops_;
     makeCapVertices(options);
     flipFlatCapTriangles();
-    const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
-    for (size_t k = 0; k < capTriangles_.size(); k += 3) {
-      const uint32_t a = capTriangles_[k], b = capTriangles_[k + 1], c = capTriangles_[k + 2];
-      const uint32_t source = kReachedBit | kCapBit | capLoopOf_[k / 3];
-      // Below: outward normal +n, counter-clockwise as triangulated. Above: reversed.
-      sideTris_[1].push_back({{capBase_ + a, capBase_ + b, capBase_ + c}, source, capSlot_});
-      sideTris_[0].push_back(
-          {{capBase_ + loopVertices + a, capBase_ + loopVertices + c, capBase_ + loopVertices + b}, source, capSlot_});
-    }
+    pushCapTriangles();
   }
 
   // 6, 7. Islands, piece meshes, mass.
@@ -711,7 +711,10 @@ void Splitter::buildLoops() {
   bridgedChains_ = 0;
   chainIds_.clear();
   chains_.clear();
-  if (bridge_) walkChains();  // first, from their starts, so that no chain is broken into fragments
+  if (bridge_) {  // the chains first, from their starts, so that none is broken into fragments
+    sortSegmentEnds();
+    walkChains();
+  }
   for (uint32_t s0 = 0; s0 < segments_.size(); ++s0) {
     if (segmentUsed_[s0]) continue;
     const uint32_t start = keyFrom(segments_[s0]);
@@ -745,13 +748,9 @@ void Splitter::buildLoops() {
   if (openChains_ > 0 || !chains_.empty()) {
     // A walk that starts inside an open chain stops at its end and leaves the part before it as a
     // fragment of its own: count the chains by their starts (a segment no other segment leads to).
-    std::vector<uint32_t> ends;
-    ends.reserve(segments_.size());
-    for (uint64_t k : segments_) ends.push_back(keyTo(k));
-    std::sort(ends.begin(), ends.end());
+    if (!bridge_) sortSegmentEnds();
     openChains_ = 0;
-    for (uint64_t k : segments_)
-      if (!std::binary_search(ends.begin(), ends.end(), keyFrom(k))) ++openChains_;
+    for (uint64_t k : segments_) openChains_ += startsChain(k) ? 1 : 0;
     openChains_ = std::max<uint32_t>(openChains_, 1);
   }
   if (bridge_) bridgeChains();
@@ -784,15 +783,17 @@ void Splitter::buildLoops() {
   }
 }
 
+void Splitter::sortSegmentEnds() {
+  segmentEnds_.clear();
+  for (uint64_t k : segments_) segmentEnds_.push_back(keyTo(k));
+  std::sort(segmentEnds_.begin(), segmentEnds_.end());
+}
+
 // Bridge: each open chain of the section, walked from its start (a segment no other segment leads
 // to) until it stops; its segments are used up.
 void Splitter::walkChains() {
-  std::vector<uint32_t>& ends = mergedIds_;  // scratch here; mergeNearPoints fills it later
-  ends.clear();
-  for (uint64_t k : segments_) ends.push_back(keyTo(k));
-  std::sort(ends.begin(), ends.end());
   for (uint32_t s0 = 0; s0 < segments_.size(); ++s0) {
-    if (segmentUsed_[s0] || std::binary_search(ends.begin(), ends.end(), keyFrom(segments_[s0]))) continue;
+    if (segmentUsed_[s0] || !startsChain(segments_[s0])) continue;
     const uint32_t begin = static_cast<uint32_t>(chainIds_.size());
     chainIds_.push_back(keyFrom(segments_[s0]));
     segmentUsed_[s0] = 1;
@@ -1045,6 +1046,19 @@ bool Splitter::flipCapTriangle(uint32_t t) {
     return true;
   }
   return false;
+}
+
+// The cap triangles onto both sides: below with outward normal +n, counter-clockwise as
+// triangulated; above reversed.
+void Splitter::pushCapTriangles() {
+  const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
+  for (size_t k = 0; k < capTriangles_.size(); k += 3) {
+    const uint32_t a = capTriangles_[k], b = capTriangles_[k + 1], c = capTriangles_[k + 2];
+    const uint32_t source = kReachedBit | kCapBit | capLoopOf_[k / 3];
+    sideTris_[1].push_back({{capBase_ + a, capBase_ + b, capBase_ + c}, source, capSlot_});
+    sideTris_[0].push_back(
+        {{capBase_ + loopVertices + a, capBase_ + loopVertices + c, capBase_ + loopVertices + b}, source, capSlot_});
+  }
 }
 
 bool insideLoop(std::span<const glm::dvec2> points, uint32_t begin, uint32_t end, const glm::dvec2& q) {
@@ -1308,20 +1322,27 @@ uint32_t Splitter::mergeCavities(int side, uint32_t pieces) {
     }
     if (best != kNone) pieceMap_[p] = best;
   }
-  // Resolve chains and renumber in order of first triangle (labels already follow that order).
-  uint32_t count = 0;
+  // Resolve chains, then renumber.
   for (uint32_t p = 0; p < pieces; ++p) {
     uint32_t target = p;
     while (pieceMap_[target] != target) target = pieceMap_[target];
-    firstTriangle_[p] = target;  // reused: the surviving label
+    firstTriangle_[p] = target;  // reused: the surviving piece
   }
-  for (uint32_t p = 0; p < pieces; ++p) volume_[p] = -1.0;  // reused: new number, -1 when unset
+  return regroup(firstTriangle_, pieces);
+}
+
+// Gives every piece of the side being written the number of its group: root[p] is the piece that
+// stands for p's group (root[root[p]] == root[p]). Groups are numbered in order of their first
+// piece, which keeps the order of first triangle. Updates pieceOf_ and pieceMap_ (whose entries
+// are pieces of one group each); returns the group count.
+uint32_t Splitter::regroup(std::span<const uint32_t> root, uint32_t pieces) {
+  groupNumber_.assign(pieces, kNone);
+  uint32_t count = 0;
   for (uint32_t p = 0; p < pieces; ++p) {
-    const uint32_t target = firstTriangle_[p];
-    if (volume_[target] < 0.0) volume_[target] = double(count++);
+    if (groupNumber_[root[p]] == kNone) groupNumber_[root[p]] = count++;
   }
-  for (uint32_t p = 0; p < pieces; ++p) pieceMap_[p] = static_cast<uint32_t>(volume_[firstTriangle_[p]]);
-  for (size_t k = 0; k < tris.size(); ++k) pieceOf_[k] = pieceMap_[pieceOf_[k]];
+  for (uint32_t& p : pieceMap_) p = groupNumber_[root[p]];
+  for (uint32_t& p : pieceOf_) p = groupNumber_[root[p]];
   return count;
 }
 
@@ -1384,16 +1405,7 @@ uint32_t Splitter::joinTouching(int side, uint32_t pieces, const SplitOptions& o
     contactRoot_[p] = contactRoot_[contactRoot_[p]];  // through a moved group to its reached piece
     joined = joined || contactRoot_[p] != p;
   }
-  if (!joined) return pieces;
-  // Number the groups by their first label (labels follow the order of first triangle).
-  volume_.assign(pieces, -1.0);  // reused: the new number of a group, by its root
-  uint32_t count = 0;
-  for (uint32_t p = 0; p < pieces; ++p) {
-    if (volume_[contactRoot_[p]] < 0.0) volume_[contactRoot_[p]] = double(count++);
-  }
-  for (size_t k = 0; k < tris.size(); ++k) pieceOf_[k] = static_cast<uint32_t>(volume_[contactRoot_[pieceOf_[k]]]);
-  for (uint32_t& p : pieceMap_) p = static_cast<uint32_t>(volume_[contactRoot_[p]]);
-  return count;
+  return joined ? regroup(contactRoot_, pieces) : pieces;
 }
 
 uint32_t Splitter::find(uint32_t x) {

@@ -356,6 +356,12 @@ int main(int argc, char** argv) {
     return geometry::SplitStatus::Ok;
   };
   geometry::MassProperties inputMass;
+  // The bounds of the mesh as it is cut (posed with --pose), to choose a plane by.
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  auto grow = [&](const glm::dvec3& q) {
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  };
   if (args.poseClip) {  // the posed input, as it is cut
     geometry::MeshContainer posed;
     std::string message;
@@ -366,22 +372,12 @@ int main(int argc, char** argv) {
       return kExitData;
     }
     inputMass = geometry::computeMassProperties(posed.cutPositions(), mesh.indices);
+    for (const glm::dvec3& q : posed.cutPositions()) grow(q);
   } else {
     inputMass = geometry::computeMassProperties(mesh);
+    for (const glm::vec3& p : mesh.positions) grow(glm::dvec3(p));
   }
   const bool inputClosed = geometry::isClosedAndOriented(mesh.positions, mesh.indices);
-  // The bounds of the mesh as it is cut (posed with --pose), to choose a plane by.
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  {
-    geometry::MeshContainer bounds;
-    std::string ignored;
-    if (prepare(bounds, nullptr, ignored) == geometry::SplitStatus::Ok) {
-      for (const glm::dvec3& q : bounds.cutPositions()) {
-        lo = glm::min(lo, q);
-        hi = glm::max(hi, q);
-      }
-    }
-  }
   const glm::dvec3 centre = 0.5 * (lo + hi);
 
   geometry::SplitOptions options;
