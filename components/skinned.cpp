@@ -367,8 +367,12 @@ bool createRagdoll(physics::PhysicsWorld& physics, const RagdollSpec& spec, cons
     def.angularVelocity = glm::vec3(omega);
     def.userData = userData;
     def.collisionGroup = group;
+    // Jointed capsules jitter against the floor and each other: more angular damping and higher
+    // sleep thresholds (the values of Bullet's ragdoll demo) let a fallen ragdoll come to rest.
     def.linearDamping = 0.05f;
-    def.angularDamping = 0.2f;
+    def.angularDamping = 0.85f;
+    def.sleepLinearSpeed = 1.6f;
+    def.sleepAngularSpeed = 2.5f;
     def.friction = 0.8f;
     const auto body = physics.createBody(def);
     if (!body.ok()) {

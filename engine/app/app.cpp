@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -85,6 +86,7 @@ bool App::init(const AppOptions& options, const std::string& title, std::string*
     if (error) *error = "renderer: " + renderError;
     return false;
   }
+  applyRenderScale();
   if (!options_.dumpStatePath.empty()) {
     dumpFile_ = std::make_unique<std::ofstream>(options_.dumpStatePath);
     if (!*dumpFile_) {
@@ -102,6 +104,29 @@ bool App::init(const AppOptions& options, const std::string& title, std::string*
     }
   }
   return true;
+}
+
+// An explicit --render-scale is used as given. Auto: a window on a software rasteriser draws the
+// scene at kSoftwareRenderScale (real time needs it there); headless runs and GPUs draw at 1, so
+// screenshots and golden images keep their full detail. A window composes its frames straight
+// into the window's framebuffer (no extra copy); on a software rasteriser it does not wait for a
+// refresh that no display paces (the fixed ticks pace the loop).
+void App::applyRenderScale() {
+  const std::string device = renderer_->deviceName();
+  const bool software = render::Renderer::isSoftwareRasterizer(device);
+  if (!platform_->headless()) {
+    renderer_->setDrawIntoWindow(true);
+    if (software) platform_->setVsync(false);
+  }
+  float scale = options_.renderScale;
+  if (scale <= 0.f) {
+    scale = (!platform_->headless() && software) ? kSoftwareRenderScale : 1.f;
+    if (scale < 1.f) {
+      std::fprintf(stderr, "cleave: %s is a software rasteriser: the scene is drawn at %.2f x the window "
+                   "(--render-scale 1 for full resolution)\n", device.c_str(), double(scale));
+    }
+  }
+  renderer_->setRenderScale(scale);
 }
 
 void App::addSystem(Phase phase, std::string name, System system) {
@@ -147,6 +172,7 @@ bool App::runTick(bool render) {
     phaseMs_[p] = nowMs() - start;
   }
   lastTickMs_ = nowMs() - tickStart;
+  countTickRate();
 
   const int64_t total = totalTicks();
   const bool last = total >= 0 && int64_t(tick_) + 1 >= total;
@@ -155,6 +181,17 @@ bool App::runTick(bool render) {
     dumpState();
   ++tick_;
   return !last;
+}
+
+void App::countTickRate() {
+  const double now = nowMs();
+  if (tpsWindowStart_ < 0.0) tpsWindowStart_ = now;
+  ++tpsTicks_;
+  if (now - tpsWindowStart_ >= 500.0) {
+    tps_ = double(tpsTicks_) * 1000.0 / (now - tpsWindowStart_);
+    tpsTicks_ = 0;
+    tpsWindowStart_ = now;
+  }
 }
 
 void App::renderFrame(TickContext& context) {
@@ -172,6 +209,45 @@ bool App::writeScreenshot(const std::string& path, std::string* error) {
   if (!render::writePng(path, w, h, pixels, error)) return false;
   screenshots_.push_back(path);
   return true;
+}
+
+// Fixed ticks at kTickSeconds, as many per frame as the wall clock needs (so a slow frame does not
+// slow the game down), up to kMaxCatchUpTicks: only a real stall (a quarter second without a frame)
+// drops time. One frame is rendered per loop, on its last tick.
+void App::runWindowLoop() {
+  constexpr int kMaxCatchUpTicks = 15;
+  double accumulator = 0.0;
+  double previous = platform_->timeSeconds();
+  double fpsWindowStart = previous;
+  int fpsFrames = 0;
+  double lastPresent = -1.0;
+  while (!quit_ && !platform_->closeRequested()) {
+    platform_->pollEvents([this](const input::InputEvent& e) { liveQueue_.push(e); });
+    const double now = platform_->timeSeconds();
+    accumulator += std::min(now - previous, kMaxCatchUpTicks * kTickSeconds);
+    previous = now;
+    const int due = int(accumulator / kTickSeconds);
+    const int steps = std::min(due, kMaxCatchUpTicks);
+    for (int s = 0; s < steps && !quit_; ++s) {
+      accumulator -= kTickSeconds;
+      if (!runTick(s + 1 == steps)) quit_ = true;
+    }
+    if (due > kMaxCatchUpTicks) accumulator = std::fmod(accumulator, kTickSeconds);
+    if (framePending_) {
+      render::Renderer* r = renderer_.get();
+      platform_->present([r](int w, int h) { r->presentToDefaultFramebuffer(w, h); });
+      framePending_ = false;
+      ++fpsFrames;
+      const double presented = platform_->timeSeconds();
+      if (lastPresent >= 0.0) frameMs_.push_back((presented - lastPresent) * 1000.0);
+      lastPresent = presented;
+    }
+    if (now - fpsWindowStart >= 0.5) {
+      fps_ = fpsFrames / (now - fpsWindowStart);
+      fpsFrames = 0;
+      fpsWindowStart = now;
+    }
+  }
 }
 
 int App::run() {
@@ -201,41 +277,7 @@ int App::run() {
       }
     }
   } else {
-    double accumulator = 0.0;
-    double previous = platform_->timeSeconds();
-    double fpsWindowStart = previous;
-    int fpsFrames = 0;
-    double lastPresent = -1.0;
-    while (!quit_ && !platform_->closeRequested()) {
-      platform_->pollEvents([this](const input::InputEvent& e) { liveQueue_.push(e); });
-      const double now = platform_->timeSeconds();
-      accumulator += std::min(now - previous, 0.25);
-      previous = now;
-      int steps = 0;
-      while (accumulator >= kTickSeconds && steps < 4) {
-        accumulator -= kTickSeconds;
-        ++steps;
-        // Render on the last catch-up tick of this loop only.
-        const bool renderThis = accumulator < kTickSeconds || steps == 4;
-        if (!runTick(renderThis)) quit_ = true;
-        if (quit_) break;
-      }
-      if (steps >= 4) accumulator = 0.0;
-      if (framePending_) {
-        render::Renderer* r = renderer_.get();
-        platform_->present([r](int w, int h) { r->presentToDefaultFramebuffer(w, h); });
-        framePending_ = false;
-        ++fpsFrames;
-        const double presented = platform_->timeSeconds();
-        if (lastPresent >= 0.0) frameMs_.push_back((presented - lastPresent) * 1000.0);
-        lastPresent = presented;
-      }
-      if (now - fpsWindowStart >= 0.5) {
-        fps_ = fpsFrames / (now - fpsWindowStart);
-        fpsFrames = 0;
-        fpsWindowStart = now;
-      }
-    }
+    runWindowLoop();
   }
   if (recorder_) {
     const input::ReplaySaveResult saved = input::saveReplay(options_.recordPath, recorder_->replay());

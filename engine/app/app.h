@@ -79,6 +79,10 @@ class App {
   const std::array<double, size_t(Phase::Count)>& phaseMilliseconds() const { return phaseMs_; }
   double lastTickMilliseconds() const { return lastTickMs_; }
   double framesPerSecond() const { return fps_; }
+  // Ticks per second of wall time, over the last half second: 60 in a window that keeps up, as
+  // fast as the ticks run headless.
+  double ticksPerSecond() const { return tps_; }
+  bool headless() const { return platform_ && platform_->headless(); }
   // Paths of the screenshots written so far.
   const std::vector<std::string>& screenshots() const { return screenshots_; }
 
@@ -93,6 +97,9 @@ class App {
   void renderFrame(TickContext& context);
   void dumpState();
   int64_t totalTicks() const;
+  void applyRenderScale();
+  void countTickRate();
+  void runWindowLoop();
 
   AppOptions options_;
   std::unique_ptr<Platform> platform_;
@@ -111,6 +118,9 @@ class App {
   std::array<double, size_t(Phase::Count)> phaseMs_{};
   double lastTickMs_ = 0.0;
   double fps_ = 0.0;
+  double tps_ = 0.0;
+  double tpsWindowStart_ = -1.0;  // wall-clock ms where the current tick-rate window began
+  int tpsTicks_ = 0;
   uint64_t tick_ = 0;
   bool quit_ = false;
   bool framePending_ = false;

@@ -1,6 +1,7 @@
 #include "engine/app/app_options.h"
 
 #include <charconv>
+#include <cstdlib>
 #include <cstring>
 
 namespace cleave::app {
@@ -12,6 +13,19 @@ bool parseInt(const std::string& text, int64_t& value) {
   const char* end = text.data() + text.size();
   auto [ptr, ec] = std::from_chars(begin, end, value);
   return ec == std::errc() && ptr == end;
+}
+
+// "auto" (0) or a number in [0.25, 1].
+bool parseRenderScale(const std::string& text, float& scale) {
+  if (text == "auto") {
+    scale = 0.f;
+    return true;
+  }
+  char* end = nullptr;
+  const float v = std::strtof(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !(v >= 0.25f && v <= 1.f)) return false;
+  scale = v;
+  return true;
 }
 
 }  // namespace
@@ -30,6 +44,9 @@ std::string appOptionsUsage() {
          "  --print-state-hash         print the final state hash\n"
          "  --width W --height H       frame size in pixels (default 1280x720)\n"
          "  --seed N                   seed for the scene's random choices\n"
+         "  --render-scale S|auto      draw the 3D scene at S x the frame size (0.25 to 1) and the\n"
+         "                             HUD at full size; auto (default): 0.5 in a window on a\n"
+         "                             software rasteriser (llvmpipe), 1 otherwise\n"
          "  --split-threads N          worker threads for split jobs (0: on the main thread;\n"
          "                             default: hardware threads minus one); results are the same\n";
 }
@@ -87,6 +104,10 @@ ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
       int64_t v = 0;
       if (!number(v, 0)) return fail("--seed needs a whole number >= 0");
       out.seed = uint64_t(v);
+    } else if (arg == "--render-scale") {
+      std::string text;
+      if (!value(text) || !parseRenderScale(text, out.renderScale))
+        return fail("--render-scale needs 'auto' or a number from 0.25 to 1");
     } else if (arg == "--split-threads") {
       int64_t v = 0;
       if (!number(v, 0) || v > 64) return fail("--split-threads needs a whole number from 0 to 64");

@@ -21,6 +21,7 @@ class HeadlessPlatform final : public Platform {
   void present(const std::function<void(int, int)>&) override {}
   void setCursorMode(CursorMode) override {}
   void setTitle(const std::string&) override {}
+  void setVsync(bool) override {}
   double timeSeconds() const override {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }

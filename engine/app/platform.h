@@ -30,6 +30,8 @@ class Platform {
   virtual void present(const std::function<void(int width, int height)>& blit) = 0;
   virtual void setCursorMode(CursorMode mode) = 0;
   virtual void setTitle(const std::string& title) = 0;
+  // Window: wait for the display's refresh at each swap (on, the default) or not. Headless: nothing.
+  virtual void setVsync(bool on) = 0;
   // Seconds since the platform started (monotonic).
   virtual double timeSeconds() const = 0;
 };

@@ -134,6 +134,7 @@ class WindowPlatform final : public Platform {
   }
   void setTitle(const std::string& title) override { glfwSetWindowTitle(window_, title.c_str()); }
   double timeSeconds() const override { return glfwGetTime(); }
+  void setVsync(bool on) override { glfwSwapInterval(on ? 1 : 0); }
 
  private:
   void emit(const input::InputEvent& e) {

@@ -34,6 +34,11 @@ struct BodyDef {
   float angularDamping = 0.0f;  // [0, 1]
   bool startAwake = true;       // false: the body starts asleep until touched or activated
   bool allowSleep = true;       // false: the body never goes to sleep
+  // A body whose speeds stay below both thresholds for two seconds is ready to sleep; its island
+  // sleeps when every body in it is (Bullet's rule). Defaults are Bullet's; jointed bodies that
+  // jitter (ragdoll bones) need higher ones. Both finite and >= 0.
+  float sleepLinearSpeed = 0.8f;   // m/s
+  float sleepAngularSpeed = 1.0f;  // rad/s
   uint64_t userData = 0;        // opaque to physics (e.g. the entity id)
   // Bodies that share a non-zero group never collide with each other (the bones of one ragdoll,
   // whose capsules overlap at the joints); they still collide with every other body.

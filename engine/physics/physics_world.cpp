@@ -411,6 +411,10 @@ Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
     return R::failure(PhysicsStatus::InvalidArgument,
                       "createBody: restitution and damping must be in [0, 1]");
   }
+  if (!(def.sleepLinearSpeed >= 0.0f && std::isfinite(def.sleepLinearSpeed)) ||
+      !(def.sleepAngularSpeed >= 0.0f && std::isfinite(def.sleepAngularSpeed))) {
+    return R::failure(PhysicsStatus::InvalidArgument, "createBody: sleep thresholds must be finite and >= 0");
+  }
   btVector3 inertia(0, 0, 0);
   if (def.localInertia) {
     const glm::vec3 i = *def.localInertia;
@@ -434,6 +438,8 @@ Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
   info.m_restitution = def.restitution;
   info.m_linearDamping = def.linearDamping;
   info.m_angularDamping = def.angularDamping;
+  info.m_linearSleepingThreshold = def.sleepLinearSpeed;
+  info.m_angularSleepingThreshold = def.sleepAngularSpeed;
   auto body = std::make_unique<btRigidBody>(info);
   if (dynamic) {
     body->setLinearVelocity(toBt(def.linearVelocity));

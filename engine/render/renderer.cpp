@@ -3,6 +3,8 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -97,14 +99,76 @@ struct ColoredVertex {
   glm::vec4 color;
 };
 
+
+// A colour and depth target: the frame at window size, or the 3D scene at the render scale.
+struct RenderTarget {
+  GLuint fbo = 0, color = 0, depth = 0;
+  int width = 0, height = 0;
+
+  void resize(int w, int h) {
+    if (fbo && w == width && h == height) return;
+    release();
+    width = w;
+    height = h;
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glGenRenderbuffers(1, &color);
+    glBindRenderbuffer(GL_RENDERBUFFER, color);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
+    glGenRenderbuffers(1, &depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth);
+  }
+  void release() {
+    if (!fbo) return;
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &color);
+    glDeleteRenderbuffers(1, &depth);
+    fbo = color = depth = 0;
+    width = height = 0;
+  }
+};
+
+// Uniform locations, looked up once when the programs are linked.
+struct MeshUniforms {
+  GLint viewProj, lightViewProj, sunDir, sunColor, ambient, cameraPos, shadows, shadowSoft, albedo,
+      shadowMap, model, normalMatrix, shading, baseColor, hasAlbedo, specular, shininess, reflectivity,
+      checkerScale, checkerColor, skinned, joints;
+  void lookUp(GLuint p) {
+    auto u = [p](const char* name) { return glGetUniformLocation(p, name); };
+    viewProj = u("uViewProj"), lightViewProj = u("uLightViewProj"), sunDir = u("uSunDir");
+    sunColor = u("uSunColor"), ambient = u("uAmbient"), cameraPos = u("uCameraPos");
+    shadows = u("uShadows"), shadowSoft = u("uShadowSoft"), albedo = u("uAlbedo");
+    shadowMap = u("uShadowMap"), model = u("uModel"), normalMatrix = u("uNormalMatrix");
+    shading = u("uShading"), baseColor = u("uBaseColor"), hasAlbedo = u("uHasAlbedo");
+    specular = u("uSpecular"), shininess = u("uShininess"), reflectivity = u("uReflectivity");
+    checkerScale = u("uCheckerScale"), checkerColor = u("uCheckerColor"), skinned = u("uSkinned");
+    joints = u("uJoints");
+  }
+};
+
+struct FrameMatrices {
+  glm::mat4 viewProj;
+  glm::mat4 lightViewProj;
+  glm::vec3 sunDir;
+};
+
 }  // namespace
 
 struct Renderer::Impl {
   GLuint meshProgram = 0, shadowProgram = 0, skyProgram = 0, lineProgram = 0;
   GLuint emptyVao = 0, lineVao = 0, lineVbo = 0;
   GLuint shadowFbo = 0, shadowTexture = 0;
-  GLuint fbo = 0, colorBuffer = 0, depthBuffer = 0;
-  int width = 0, height = 0;
+  int shadowSize = 0;
+  MeshUniforms meshU{};
+  GLint shadowMvpU = -1, shadowSkinnedU = -1, shadowJointsU = -1;
+  GLint skyInvViewProjU = -1, skySunDirU = -1, lineMatrixU = -1;
+  RenderTarget frame;  // what readPixels reads and the window shows: the scene upscaled, the HUD
+  RenderTarget scene;  // the 3D scene at the render scale (unused at scale 1: drawn into `frame`)
+  float renderScale = 1.f;
+  bool intoWindow = false;  // `frame` is the default framebuffer (fbo 0), sized by beginFrame
   std::vector<GpuMesh> meshes;
   std::vector<uint32_t> freeMeshes;
   std::vector<GpuTexture> textures;
@@ -130,44 +194,19 @@ struct Renderer::Impl {
     const GpuTexture& t = textures[h.index];
     return (t.alive && t.generation == h.generation) ? t.id : 0;
   }
+  bool scaled() const { return renderScale < 1.f; }
+  bool composed() const { return scaled() || intoWindow; }  // the scene drawn apart, then copied
+  const RenderTarget& sceneTarget() const { return composed() ? scene : frame; }
 
-  void ensureTarget(int w, int h) {
-    if (fbo && w == width && h == height) return;
-    if (fbo) {
-      glDeleteFramebuffers(1, &fbo);
-      glDeleteRenderbuffers(1, &colorBuffer);
-      glDeleteRenderbuffers(1, &depthBuffer);
-    }
-    width = w;
-    height = h;
-    glGenFramebuffers(1, &fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glGenRenderbuffers(1, &colorBuffer);
-    glBindRenderbuffer(GL_RENDERBUFFER, colorBuffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colorBuffer);
-    glGenRenderbuffers(1, &depthBuffer);
-    glBindRenderbuffer(GL_RENDERBUFFER, depthBuffer);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
-                              depthBuffer);
-  }
-
-  glm::mat4 lightViewProj() const {
-    const glm::vec3 dir = glm::normalize(lighting.sunDirection);
-    const glm::vec3 center = lighting.shadowCenter;
-    const float r = lighting.shadowRadius;
-    const glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    const glm::mat4 view = glm::lookAt(center - dir * (2.f * r), center, up);
-    // Snap the shadow window to whole texels so the shadow edges do not shimmer as the centre moves.
-    glm::mat4 proj = glm::ortho(-r, r, -r, r, 0.01f, 4.f * r);
-    glm::mat4 vp = proj * view;
-    glm::vec4 origin = vp * glm::vec4(0, 0, 0, 1);
-    const float texel = 2.f / kShadowMapSize;
-    glm::vec2 snapped = glm::round(glm::vec2(origin) / texel) * texel;
-    glm::mat4 snap = glm::translate(glm::mat4(1.f), glm::vec3(snapped - glm::vec2(origin), 0.f));
-    return snap * vp;
-  }
+  bool createShadowMap(int size, std::string* error);
+  glm::mat4 lightViewProj() const;
+  FrameMatrices frameMatrices() const;
+  void drawShadowPass(const glm::mat4& lightVp);
+  void drawLitPass(const FrameMatrices& m, FrameStats& stats);
+  void drawSky(const FrameMatrices& m);
+  void drawWorldLines(const glm::mat4& viewProj);
+  void upscaleScene();
+  void drawOverlay();
 
   // Skinning uniforms of the bound program for one draw.
   void setSkin(const DrawItem& d, GLint skinnedLocation, GLint jointsLocation) const {
@@ -186,6 +225,53 @@ struct Renderer::Impl {
   }
 };
 
+// The shadow map at `size` texels square, made anew (the render scale sets its size).
+bool Renderer::Impl::createShadowMap(int size, std::string* error) {
+  if (shadowFbo) glDeleteFramebuffers(1, &shadowFbo);
+  if (shadowTexture) glDeleteTextures(1, &shadowTexture);
+  shadowSize = size;
+  glGenTextures(1, &shadowTexture);
+  glBindTexture(GL_TEXTURE_2D, shadowTexture);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, size, size, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  glGenFramebuffers(1, &shadowFbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTexture, 0);
+  glDrawBuffer(GL_NONE);
+  glReadBuffer(GL_NONE);
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!complete && error) *error = "the shadow-map framebuffer is incomplete";
+  return complete;
+}
+
+glm::mat4 Renderer::Impl::lightViewProj() const {
+  const glm::vec3 dir = glm::normalize(lighting.sunDirection);
+  const glm::vec3 center = lighting.shadowCenter;
+  const float r = lighting.shadowRadius;
+  const glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  const glm::mat4 view = glm::lookAt(center - dir * (2.f * r), center, up);
+  // Snap the shadow window to whole texels so the shadow edges do not shimmer as the centre moves.
+  glm::mat4 proj = glm::ortho(-r, r, -r, r, 0.01f, 4.f * r);
+  glm::mat4 vp = proj * view;
+  glm::vec4 origin = vp * glm::vec4(0, 0, 0, 1);
+  const float texel = 2.f / float(shadowSize);
+  glm::vec2 snapped = glm::round(glm::vec2(origin) / texel) * texel;
+  glm::mat4 snap = glm::translate(glm::mat4(1.f), glm::vec3(snapped - glm::vec2(origin), 0.f));
+  return snap * vp;
+}
+
+FrameMatrices Renderer::Impl::frameMatrices() const {
+  const RenderTarget& target = sceneTarget();
+  const float aspect = float(target.width) / float(target.height);
+  const glm::mat4 proj = glm::perspective(camera.verticalFovRadians, aspect, camera.nearPlane, camera.farPlane);
+  return {proj * camera.view, lightViewProj(), glm::normalize(lighting.sunDirection)};
+}
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
 
 Renderer::~Renderer() {
@@ -208,11 +294,8 @@ Renderer::~Renderer() {
   glDeleteBuffers(1, &impl_->lineVbo);
   glDeleteFramebuffers(1, &impl_->shadowFbo);
   glDeleteTextures(1, &impl_->shadowTexture);
-  if (impl_->fbo) {
-    glDeleteFramebuffers(1, &impl_->fbo);
-    glDeleteRenderbuffers(1, &impl_->colorBuffer);
-    glDeleteRenderbuffers(1, &impl_->depthBuffer);
-  }
+  impl_->frame.release();
+  impl_->scene.release();
 }
 
 bool Renderer::init(std::string* error) {
@@ -226,6 +309,13 @@ bool Renderer::init(std::string* error) {
   r.skyProgram = linkProgram(shaders::kSkyVertex, shaders::kSkyFragment, error);
   r.lineProgram = linkProgram(shaders::kLineVertex, shaders::kLineFragment, error);
   if (!r.meshProgram || !r.shadowProgram || !r.skyProgram || !r.lineProgram) return false;
+  r.meshU.lookUp(r.meshProgram);
+  r.shadowMvpU = glGetUniformLocation(r.shadowProgram, "uLightMvp");
+  r.shadowSkinnedU = glGetUniformLocation(r.shadowProgram, "uSkinned");
+  r.shadowJointsU = glGetUniformLocation(r.shadowProgram, "uJoints");
+  r.skyInvViewProjU = glGetUniformLocation(r.skyProgram, "uInvViewProj");
+  r.skySunDirU = glGetUniformLocation(r.skyProgram, "uSunDir");
+  r.lineMatrixU = glGetUniformLocation(r.lineProgram, "uMatrix");
 
   glGenVertexArrays(1, &r.emptyVao);
   glGenVertexArrays(1, &r.lineVao);
@@ -238,29 +328,43 @@ bool Renderer::init(std::string* error) {
   glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(ColoredVertex),
                         reinterpret_cast<void*>(offsetof(ColoredVertex, color)));
   glBindVertexArray(0);
+  return r.createShadowMap(kShadowMapSize, error);
+}
 
-  glGenTextures(1, &r.shadowTexture);
-  glBindTexture(GL_TEXTURE_2D, r.shadowTexture);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, kShadowMapSize, kShadowMapSize, 0,
-               GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-  glGenFramebuffers(1, &r.shadowFbo);
-  glBindFramebuffer(GL_FRAMEBUFFER, r.shadowFbo);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, r.shadowTexture, 0);
-  glDrawBuffer(GL_NONE);
-  glReadBuffer(GL_NONE);
-  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (!complete) {
-    if (error) *error = "the shadow-map framebuffer is incomplete";
-    return false;
-  }
-  return true;
+void Renderer::setRenderScale(float scale) {
+  Impl& r = *impl_;
+  const float clamped = std::clamp(std::isfinite(scale) ? scale : 1.f, kMinRenderScale, 1.f);
+  if (clamped == r.renderScale) return;
+  r.renderScale = clamped;
+  // The shadow map follows the scale (a power of two, at least 256 texels); the scene target is
+  // resized at the next frame.
+  int size = kShadowMapSize;
+  while (size > 256 && float(size) > float(kShadowMapSize) * clamped * 1.001f) size /= 2;
+  if (size != r.shadowSize) r.createShadowMap(size, nullptr);
+}
+
+float Renderer::renderScale() const { return impl_->renderScale; }
+
+void Renderer::setDrawIntoWindow(bool on) {
+  Impl& r = *impl_;
+  if (on == r.intoWindow) return;
+  r.frame.release();
+  r.intoWindow = on;
+}
+
+int Renderer::shadowMapSize() const { return impl_->shadowSize; }
+
+std::string Renderer::deviceName() const {
+  const GLubyte* name = glGetString(GL_RENDERER);
+  return name ? reinterpret_cast<const char*>(name) : "";
+}
+
+bool Renderer::isSoftwareRasterizer(const std::string& deviceName) {
+  std::string lower = deviceName;
+  for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  for (const char* name : {"llvmpipe", "softpipe", "swrast", "lavapipe", "software"})
+    if (lower.find(name) != std::string::npos) return true;
+  return false;
 }
 
 MeshHandle Renderer::uploadMesh(const geometry::MeshData& mesh, std::string* error) {
@@ -397,7 +501,20 @@ void Renderer::destroyTexture(TextureHandle handle) {
 
 void Renderer::beginFrame(int width, int height, const Camera& camera, const Lighting& lighting) {
   Impl& r = *impl_;
-  r.ensureTarget(std::max(width, 1), std::max(height, 1));
+  width = std::max(width, 1);
+  height = std::max(height, 1);
+  if (r.intoWindow) {
+    r.frame.width = width;
+    r.frame.height = height;
+  } else {
+    r.frame.resize(width, height);
+  }
+  if (r.composed()) {
+    r.scene.resize(std::max(1, int(std::lround(float(width) * r.renderScale))),
+                   std::max(1, int(std::lround(float(height) * r.renderScale))));
+  } else {
+    r.scene.release();
+  }
   r.camera = camera;
   r.lighting = lighting;
   r.draws.clear();
@@ -467,93 +584,68 @@ void Renderer::submitText(const std::string& text, glm::vec2 position, float sca
   }
 }
 
-FrameStats Renderer::endFrame() {
-  Impl& r = *impl_;
-  FrameStats stats;
-  const float aspect = float(r.width) / float(r.height);
-  const glm::mat4 proj =
-      glm::perspective(r.camera.verticalFovRadians, aspect, r.camera.nearPlane, r.camera.farPlane);
-  const glm::mat4 viewProj = proj * r.camera.view;
-  const glm::mat4 lightVp = r.lightViewProj();
-  const glm::vec3 sunDir = glm::normalize(r.lighting.sunDirection);
-
-  // Shadow pass.
-  if (r.lighting.shadows) {
-    glBindFramebuffer(GL_FRAMEBUFFER, r.shadowFbo);
-    glViewport(0, 0, kShadowMapSize, kShadowMapSize);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    glEnable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);  // closed and open meshes alike cast shadows
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1.5f, 2.f);
-    glUseProgram(r.shadowProgram);
-    const GLint loc = glGetUniformLocation(r.shadowProgram, "uLightMvp");
-    const GLint shadowSkinned = glGetUniformLocation(r.shadowProgram, "uSkinned");
-    const GLint shadowJoints = glGetUniformLocation(r.shadowProgram, "uJoints");
-    for (const DrawItem& d : r.draws) {
-      const GpuMesh& m = r.meshes[d.mesh];
-      // The floor (checker material) and materials marked so receive but do not cast.
-      const Material& first = r.materials[d.firstMaterial];
-      if (first.shading == Shading::Checker || !first.castsShadow) continue;
-      r.setSkin(d, shadowSkinned, shadowJoints);
-      glUniformMatrix4fv(loc, 1, GL_FALSE, glm::value_ptr(lightVp * d.model));
-      glBindVertexArray(m.vao);
-      for (const auto& s : m.submeshes)
-        glDrawElements(GL_TRIANGLES, GLsizei(s.indexCount), GL_UNSIGNED_INT,
-                       reinterpret_cast<void*>(uintptr_t(s.firstIndex) * 4));
-    }
-    glDisable(GL_POLYGON_OFFSET_FILL);
+void Renderer::Impl::drawShadowPass(const glm::mat4& lightVp) {
+  glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
+  glViewport(0, 0, shadowSize, shadowSize);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);  // closed and open meshes alike cast shadows
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.5f, 2.f);
+  glUseProgram(shadowProgram);
+  for (const DrawItem& d : draws) {
+    const GpuMesh& m = meshes[d.mesh];
+    // The floor (checker material) and materials marked so receive but do not cast.
+    const Material& first = materials[d.firstMaterial];
+    if (first.shading == Shading::Checker || !first.castsShadow) continue;
+    setSkin(d, shadowSkinnedU, shadowJointsU);
+    glUniformMatrix4fv(shadowMvpU, 1, GL_FALSE, glm::value_ptr(lightVp * d.model));
+    glBindVertexArray(m.vao);
+    for (const auto& s : m.submeshes)
+      glDrawElements(GL_TRIANGLES, GLsizei(s.indexCount), GL_UNSIGNED_INT,
+                     reinterpret_cast<void*>(uintptr_t(s.firstIndex) * 4));
   }
+  glDisable(GL_POLYGON_OFFSET_FILL);
+}
 
-  glBindFramebuffer(GL_FRAMEBUFFER, r.fbo);
-  glViewport(0, 0, r.width, r.height);
-  glClearColor(0.f, 0.f, 0.f, 1.f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-
+// Back faces are drawn too (flipped normals) so open pieces in hollow mode look right.
+void Renderer::Impl::drawLitPass(const FrameMatrices& fm, FrameStats& stats) {
   glDisable(GL_CULL_FACE);
-
-  // Lit pass. Back faces are drawn too (flipped normals) so open pieces in hollow mode look right.
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  glUseProgram(r.meshProgram);
-  const GLuint p = r.meshProgram;
-  auto u = [p](const char* name) { return glGetUniformLocation(p, name); };
-  glUniformMatrix4fv(u("uViewProj"), 1, GL_FALSE, glm::value_ptr(viewProj));
-  glUniformMatrix4fv(u("uLightViewProj"), 1, GL_FALSE, glm::value_ptr(lightVp));
-  glUniform3fv(u("uSunDir"), 1, glm::value_ptr(sunDir));
-  const glm::vec3 sun = r.lighting.sunColor * r.lighting.sunIntensity;
-  glUniform3fv(u("uSunColor"), 1, glm::value_ptr(sun));
-  glUniform3fv(u("uAmbient"), 1, glm::value_ptr(r.lighting.ambientColor));
-  glUniform3fv(u("uCameraPos"), 1, glm::value_ptr(r.camera.position));
-  glUniform1i(u("uShadows"), r.lighting.shadows ? 1 : 0);
-  glUniform1i(u("uAlbedo"), 0);
-  glUniform1i(u("uShadowMap"), 1);
+  glUseProgram(meshProgram);
+  const MeshUniforms& u = meshU;
+  glUniformMatrix4fv(u.viewProj, 1, GL_FALSE, glm::value_ptr(fm.viewProj));
+  glUniformMatrix4fv(u.lightViewProj, 1, GL_FALSE, glm::value_ptr(fm.lightViewProj));
+  glUniform3fv(u.sunDir, 1, glm::value_ptr(fm.sunDir));
+  const glm::vec3 sun = lighting.sunColor * lighting.sunIntensity;
+  glUniform3fv(u.sunColor, 1, glm::value_ptr(sun));
+  glUniform3fv(u.ambient, 1, glm::value_ptr(lighting.ambientColor));
+  glUniform3fv(u.cameraPos, 1, glm::value_ptr(camera.position));
+  glUniform1i(u.shadows, lighting.shadows ? 1 : 0);
+  glUniform1i(u.shadowSoft, scaled() ? 0 : 1);
+  glUniform1i(u.albedo, 0);
+  glUniform1i(u.shadowMap, 1);
   glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, r.shadowTexture);
-  const GLint locModel = u("uModel"), locNormal = u("uNormalMatrix"), locShading = u("uShading"),
-              locBase = u("uBaseColor"), locHasAlbedo = u("uHasAlbedo"), locSpec = u("uSpecular"),
-              locShine = u("uShininess"), locRefl = u("uReflectivity"),
-              locCheckerScale = u("uCheckerScale"), locCheckerColor = u("uCheckerColor"),
-              locSkinned = u("uSkinned"), locJoints = u("uJoints");
-  for (const DrawItem& d : r.draws) {
-    const GpuMesh& m = r.meshes[d.mesh];
-    r.setSkin(d, locSkinned, locJoints);
+  glBindTexture(GL_TEXTURE_2D, shadowTexture);
+  for (const DrawItem& d : draws) {
+    const GpuMesh& m = meshes[d.mesh];
+    setSkin(d, u.skinned, u.joints);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
-    glUniformMatrix4fv(locModel, 1, GL_FALSE, glm::value_ptr(d.model));
-    glUniformMatrix3fv(locNormal, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+    glUniformMatrix4fv(u.model, 1, GL_FALSE, glm::value_ptr(d.model));
+    glUniformMatrix3fv(u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
     glBindVertexArray(m.vao);
     for (const auto& s : m.submeshes) {
-      const Material& mat =
-          r.materials[d.firstMaterial + std::min(s.materialId, d.materialCount - 1)];
-      const GLuint tex = r.texture(mat.albedo);
-      glUniform1i(locShading, int(mat.shading));
-      glUniform4fv(locBase, 1, glm::value_ptr(mat.baseColor));
-      glUniform1i(locHasAlbedo, tex ? 1 : 0);
-      glUniform1f(locSpec, mat.specular);
-      glUniform1f(locShine, mat.shininess);
-      glUniform1f(locRefl, mat.reflectivity);
-      glUniform1f(locCheckerScale, mat.checkerScale);
-      glUniform4fv(locCheckerColor, 1, glm::value_ptr(mat.checkerColor));
+      const Material& mat = materials[d.firstMaterial + std::min(s.materialId, d.materialCount - 1)];
+      const GLuint tex = texture(mat.albedo);
+      glUniform1i(u.shading, int(mat.shading));
+      glUniform4fv(u.baseColor, 1, glm::value_ptr(mat.baseColor));
+      glUniform1i(u.hasAlbedo, tex ? 1 : 0);
+      glUniform1f(u.specular, mat.specular);
+      glUniform1f(u.shininess, mat.shininess);
+      glUniform1f(u.reflectivity, mat.reflectivity);
+      glUniform1f(u.checkerScale, mat.checkerScale);
+      glUniform4fv(u.checkerColor, 1, glm::value_ptr(mat.checkerColor));
       glActiveTexture(GL_TEXTURE0);
       glBindTexture(GL_TEXTURE_2D, tex);
       glDrawElements(GL_TRIANGLES, GLsizei(s.indexCount), GL_UNSIGNED_INT,
@@ -562,54 +654,87 @@ FrameStats Renderer::endFrame() {
       stats.triangles += s.indexCount / 3;
     }
   }
+}
 
-  // Sky: a full-screen triangle at the far plane, drawn after the meshes so that only the pixels
-  // nothing covers pay for the sky colour (the depth test keeps the rest).
+// A full-screen triangle at the far plane, drawn after the meshes so that only the pixels nothing
+// covers pay for the sky colour (the depth test keeps the rest).
+void Renderer::Impl::drawSky(const FrameMatrices& fm) {
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
-  glUseProgram(r.skyProgram);
-  const glm::mat4 invViewProj = glm::inverse(viewProj);
-  glUniformMatrix4fv(glGetUniformLocation(r.skyProgram, "uInvViewProj"), 1, GL_FALSE,
-                     glm::value_ptr(invViewProj));
-  glUniform3fv(glGetUniformLocation(r.skyProgram, "uSunDir"), 1, glm::value_ptr(sunDir));
-  glBindVertexArray(r.emptyVao);
+  glUseProgram(skyProgram);
+  const glm::mat4 invViewProj = glm::inverse(fm.viewProj);
+  glUniformMatrix4fv(skyInvViewProjU, 1, GL_FALSE, glm::value_ptr(invViewProj));
+  glUniform3fv(skySunDirU, 1, glm::value_ptr(fm.sunDir));
+  glBindVertexArray(emptyVao);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
+}
 
-  // World lines, then the 2D overlay on top.
-  glUseProgram(r.lineProgram);
-  const GLint locMatrix = glGetUniformLocation(r.lineProgram, "uMatrix");
-  if (!r.worldLines.empty()) {
-    glUniformMatrix4fv(locMatrix, 1, GL_FALSE, glm::value_ptr(viewProj));
-    r.uploadColored(r.worldLines);
-    glDrawArrays(GL_LINES, 0, GLsizei(r.worldLines.size()));
-  }
+void Renderer::Impl::drawWorldLines(const glm::mat4& viewProj) {
+  if (worldLines.empty()) return;
+  glUseProgram(lineProgram);
+  glUniformMatrix4fv(lineMatrixU, 1, GL_FALSE, glm::value_ptr(viewProj));
+  uploadColored(worldLines);
+  glDrawArrays(GL_LINES, 0, GLsizei(worldLines.size()));
+}
+
+// The scene, drawn at the render scale, stretched over the frame with linear filtering.
+void Renderer::Impl::upscaleScene() {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, scene.fbo);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frame.fbo);
+  const bool sameSize = scene.width == frame.width && scene.height == frame.height;
+  glBlitFramebuffer(0, 0, scene.width, scene.height, 0, 0, frame.width, frame.height, GL_COLOR_BUFFER_BIT,
+                    sameSize ? GL_NEAREST : GL_LINEAR);
+  glBindFramebuffer(GL_FRAMEBUFFER, frame.fbo);
+  glViewport(0, 0, frame.width, frame.height);
+}
+
+// The HUD at the frame's full resolution, on top of everything.
+void Renderer::Impl::drawOverlay() {
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  const glm::mat4 ortho = glm::ortho(0.f, float(r.width), float(r.height), 0.f, -1.f, 1.f);
-  glUniformMatrix4fv(locMatrix, 1, GL_FALSE, glm::value_ptr(ortho));
-  if (!r.overlayTriangles.empty()) {
-    r.uploadColored(r.overlayTriangles);
-    glDrawArrays(GL_TRIANGLES, 0, GLsizei(r.overlayTriangles.size()));
+  glUseProgram(lineProgram);
+  const glm::mat4 ortho = glm::ortho(0.f, float(frame.width), float(frame.height), 0.f, -1.f, 1.f);
+  glUniformMatrix4fv(lineMatrixU, 1, GL_FALSE, glm::value_ptr(ortho));
+  if (!overlayTriangles.empty()) {
+    uploadColored(overlayTriangles);
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(overlayTriangles.size()));
   }
-  if (!r.overlayLines.empty()) {
-    r.uploadColored(r.overlayLines);
-    glDrawArrays(GL_LINES, 0, GLsizei(r.overlayLines.size()));
+  if (!overlayLines.empty()) {
+    uploadColored(overlayLines);
+    glDrawArrays(GL_LINES, 0, GLsizei(overlayLines.size()));
   }
   glDisable(GL_BLEND);
   glBindVertexArray(0);
+}
+
+FrameStats Renderer::endFrame() {
+  Impl& r = *impl_;
+  FrameStats stats;
+  const FrameMatrices matrices = r.frameMatrices();
+  if (r.lighting.shadows) r.drawShadowPass(matrices.lightViewProj);
+  const RenderTarget& target = r.sceneTarget();
+  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo);
+  glViewport(0, 0, target.width, target.height);
+  glClearColor(0.f, 0.f, 0.f, 1.f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  r.drawLitPass(matrices, stats);
+  r.drawSky(matrices);
+  r.drawWorldLines(matrices.viewProj);
+  if (r.composed()) r.upscaleScene();
+  r.drawOverlay();
   return stats;
 }
 
 void Renderer::readPixels(std::vector<uint8_t>& rgba, int& width, int& height) const {
   const Impl& r = *impl_;
-  width = r.width;
-  height = r.height;
+  width = r.frame.width;
+  height = r.frame.height;
   rgba.resize(size_t(width) * size_t(height) * 4);
-  if (!r.fbo) return;
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, r.fbo);
+  if (!r.frame.fbo && !r.intoWindow) return;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, r.frame.fbo);  // 0: the window's back buffer
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   // GL rows run bottom to top; images run top to bottom.
@@ -626,9 +751,10 @@ void Renderer::readPixels(std::vector<uint8_t>& rgba, int& width, int& height) c
 
 void Renderer::presentToDefaultFramebuffer(int windowWidth, int windowHeight) const {
   const Impl& r = *impl_;
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, r.fbo);
+  if (r.intoWindow) return;  // composed there already
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, r.frame.fbo);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  glBlitFramebuffer(0, 0, r.width, r.height, 0, 0, windowWidth, windowHeight, GL_COLOR_BUFFER_BIT,
+  glBlitFramebuffer(0, 0, r.frame.width, r.frame.height, 0, 0, windowWidth, windowHeight, GL_COLOR_BUFFER_BIT,
                     GL_LINEAR);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -2,7 +2,8 @@
 // light, textured materials, a procedural sky, a world-space checker floor and a debug-normals view.
 //
 // Usage per frame: beginFrame(view) -> submit(...) for each mesh -> endFrame() renders the shadow pass,
-// the sky and the lit pass into the renderer's own framebuffer object; then readPixels() for a
+// the lit pass, the sky and the overlay into the renderer's own framebuffer object (the scene at the
+// render scale, the overlay at full size); then readPixels() for a
 // screenshot and/or presentToDefaultFramebuffer() in a window. Requires a current GL context with
 // the loader initialised (see gl_context.h). Meshes and textures live behind generational handles;
 // destroying them frees the GPU memory at once, and a stale handle is ignored.
@@ -88,6 +89,26 @@ class Renderer {
 
   // Compiles shaders and creates the shadow map. Needs a current GL 3.3 core context.
   bool init(std::string* error);
+
+  // Render scale: the 3D scene (shadow, lit, sky and world-line passes) is drawn into an offscreen
+  // target of scale x the frame size and stretched over the frame with linear filtering; the HUD
+  // (overlay lines, rectangles, text) is drawn after it at the frame's full resolution. Clamped to
+  // [kMinRenderScale, 1]; 1 (the default) draws the scene straight into the frame. Below 1 the
+  // shadow map shrinks with the scale (a power of two from 1024 down, at least 256 texels) and its
+  // filtering drops from four taps to one. Takes effect at the next beginFrame.
+  static constexpr float kMinRenderScale = 0.25f;
+  void setRenderScale(float scale);
+  float renderScale() const;
+  int shadowMapSize() const;  // texels per side
+  // The GL_RENDERER string of the current context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
+  std::string deviceName() const;
+  // True for Mesa's and others' CPU rasterisers (llvmpipe, softpipe, swrast, ...), where a game
+  // chooses a lower render scale by default.
+  static bool isSoftwareRasterizer(const std::string& deviceName);
+  // Window mode: endFrame composes the frame (the scene stretched, the HUD) straight into the
+  // default framebuffer, and presentToDefaultFramebuffer has nothing left to do; readPixels reads
+  // the window's back buffer. Off (the default): the frame is the renderer's own framebuffer object.
+  void setDrawIntoWindow(bool on);
 
   // Uploads positions, normals (computed flat if absent), uv0 (zero if absent) and tangents, with the
   // submesh runs, and the skin (joints and weights) when the mesh has one, for submitSkinned.

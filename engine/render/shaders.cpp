@@ -79,6 +79,7 @@ const char* const kMeshFragment =
     "uniform sampler2D uAlbedo;\n"
     "uniform sampler2DShadow uShadowMap;\n"
     "uniform bool uShadows;\n"
+    "uniform bool uShadowSoft;\n"
     "uniform float uSpecular;\n"
     "uniform float uShininess;\n"
     "uniform float uReflectivity;\n"
@@ -95,6 +96,8 @@ float shadowFactor(vec3 n) {
   vec3 p = vLightPos.xyz / vLightPos.w * 0.5 + 0.5;
   if (p.z > 1.0 || p.x < 0.0 || p.x > 1.0 || p.y < 0.0 || p.y > 1.0) return 1.0;
   float bias = max(0.0015 * (1.0 - dot(n, -uSunDir)), 0.0004);
+  // One linear-filtered tap (four depth tests) at reduced render scales.
+  if (!uShadowSoft) return texture(uShadowMap, vec3(p.xy, p.z - bias));
   vec2 texel = 1.0 / vec2(textureSize(uShadowMap, 0));
   // Four taps half a texel off centre: with linear comparison filtering each tap already blends
   // four depth tests, so the result is as soft as a 3x3 kernel at less than half the cost.

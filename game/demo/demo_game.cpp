@@ -17,6 +17,7 @@
 #include "engine/assets/procedural_textures.h"
 #include "engine/ecs/hierarchy.h"
 #include "engine/geometry/primitives.h"
+#include "game/demo/spawn_spots.h"
 
 namespace cleave::demo {
 
@@ -185,6 +186,9 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
   ecs::World& world = app_->world();
   geometry::MeshData mesh;
   components::Splitable splitable;
+  // Pieces move apart a little (m/s, each along the plane normal away from the cut), so a cut made
+  // along the view direction still shows.
+  splitable.splitImpulse = 0.6;
   int look = 0;
   std::string name;
   switch (kind) {
@@ -256,6 +260,59 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
   if (!components::makeDynamicBody(sw, e, splitable.density, splitable.collider, &error, splits_))
     std::fprintf(stderr, "demo: %s has no body: %s\n", name.c_str(), error.c_str());
   return e;
+}
+
+namespace {
+
+// Where a kind's centre rests above the floor (the line-up's heights) and the radius of its
+// footprint, metres.
+struct Footprint {
+  float restHeight;
+  float radius;
+};
+
+Footprint footprintOf(ObjectKind kind) {
+  switch (kind) {
+    case ObjectKind::WoodenCube: return {0.5f, 0.71f};
+    case ObjectKind::MetalSphere: return {0.5f, 0.5f};
+    case ObjectKind::MarbleCylinder: return {0.6f, 0.4f};
+    case ObjectKind::MelonEllipsoid: return {0.35f, 0.45f};
+    case ObjectKind::MultiPart: return {1.05f, 0.6f};
+    case ObjectKind::Skinned: return {0.6f, 0.5f};
+    case ObjectKind::Torus: return {0.2f, 0.7f};
+  }
+  return {0.5f, 0.7f};
+}
+
+// The footprint of a mesh in the world: the circle around its (x, z) bounds.
+FloorCircle footprintOf(const geometry::MeshData& mesh, const glm::mat4& toWorld) {
+  glm::vec2 lo(INFINITY), hi(-INFINITY);
+  for (const glm::vec3& p : mesh.positions) {
+    const glm::vec3 w(toWorld * glm::vec4(p, 1.f));
+    lo = glm::min(lo, glm::vec2(w.x, w.z));
+    hi = glm::max(hi, glm::vec2(w.x, w.z));
+  }
+  return {(lo + hi) * 0.5f, 0.5f * glm::length(hi - lo)};
+}
+
+}  // namespace
+
+ecs::Entity DemoGame::spawnInFront(ObjectKind kind, const glm::vec3& forward) {
+  ecs::World& world = app_->world();
+  std::vector<FloorCircle> occupied;
+  for (auto [e, mr, wt] : world.view<components::MeshRenderer, ecs::WorldTransform>()) {
+    if (!mr.source || mr.source->positions.empty()) continue;
+    const FloorCircle c = footprintOf(*mr.source, wt.matrix * mr.meshOffset);
+    if (c.radius < 5.f) occupied.push_back(c);  // not the floor
+  }
+  for (auto [e, skin, wt] : world.view<components::SkinnedMesh, ecs::WorldTransform>())
+    occupied.push_back({glm::vec2(wt.matrix[3].x, wt.matrix[3].z), 0.5f});
+  const Footprint f = footprintOf(kind);
+  const glm::vec2 spot = freeSpawnSpot(glm::vec2(cameraPosition_.x, cameraPosition_.z), glm::vec2(forward.x, forward.z),
+                                       f.radius, occupied);
+  // A hair above the floor, so it settles without a drop.
+  const float lift = kind == ObjectKind::Skinned ? 0.f : 0.02f;
+  return spawn(kind, glm::vec3(spot.x, f.restHeight + lift, spot.y), glm::quat(1.f, 0.f, 0.f, 0.f));
 }
 
 ecs::Entity DemoGame::spawnCharacter(const glm::vec3& position, const glm::quat& rotation) {
@@ -443,6 +500,7 @@ bool DemoGame::setup(app::App& app, std::string* error) {
     splitLog_.writeJson(splits);
     line["splits"] = std::move(splits);
     line["looks_cycled"] = looksShown_;  // every look Q/E switched an object to, sorted
+    line["notice"] = tick_ < noticeUntil_ ? notice_ : std::string();
     const auto& stats = splits_->budget().stats();
     line["budget"] = {{"deferred_total", deferredTotal_},
                       {"max_queue", maxQueue_},
@@ -465,7 +523,11 @@ glm::vec3 DemoGame::rayDirection(glm::vec2 pixel, glm::ivec2 frame) const {
 
 ecs::Entity DemoGame::entityUnderCrosshair(glm::vec3* hitPoint) {
   const glm::ivec2 frame = app_->platform().frameSize();
-  const glm::vec3 dir = rayDirection(glm::vec2(frame) * 0.5f, frame);
+  return splitableAlong(rayDirection(glm::vec2(frame) * 0.5f, frame), hitPoint);
+}
+
+// The splitable the ray from the camera along `dir` hits first, if any.
+ecs::Entity DemoGame::splitableAlong(const glm::vec3& dir, glm::vec3* hitPoint) const {
   const auto hit = physics_->raycast(cameraPosition_, cameraPosition_ + dir * 100.f);
   if (!hit) return {};
   const auto user = physics_->bodyUserData(hit->body);
@@ -490,8 +552,26 @@ glm::quat rotationFromUp(const glm::vec3& to) {
 
 }  // namespace
 
+void DemoGame::notify(const std::string& text) {
+  notice_ = text;
+  noticeUntil_ = tick_ + 90;  // a second and a half
+}
+
+// Rays through 48 points of the drawn line: does any of them hit a splitable? (The cut's trigger
+// is the wedge between the line's end rays; an object thinner than the rays' spacing can slip
+// between them here and still be cut: the message then errs on the side of silence.)
+bool DemoGame::lineCrossesSplitable(glm::vec2 from, glm::vec2 to, glm::ivec2 frame) const {
+  constexpr int kSamples = 48;
+  for (int k = 0; k <= kSamples; ++k) {
+    const glm::vec2 at = glm::mix(from, to, float(k) / kSamples);
+    if (app_->world().alive(splitableAlong(rayDirection(at, frame)))) return true;
+  }
+  return false;
+}
+
 void DemoGame::dragCut(app::TickContext& c, glm::vec2 from, glm::vec2 to) {
   if (glm::length(to - from) < 4.f) return;
+  if (!lineCrossesSplitable(from, to, c.frameSize)) notify("missed: the line crosses nothing to cut");
   const glm::vec3 a = rayDirection(from, c.frameSize);
   const glm::vec3 b = rayDirection(to, c.frameSize);
   glm::vec3 normal = glm::cross(a, b);
@@ -520,6 +600,7 @@ void DemoGame::dragCut(app::TickContext& c, glm::vec2 from, glm::vec2 to) {
 }
 
 void DemoGame::gameplay(app::TickContext& c) {
+  tick_ = c.tick;
   walkCharacters(c.dt);
   if (sceneRunner_) {
     components::SplitWorld sw = splitWorld();
@@ -565,11 +646,8 @@ void DemoGame::gameplay(app::TickContext& c) {
 
   if (in.pressed(Key::H)) showHelp_ = !showHelp_;
   const Key spawnKeys[7] = {Key::Num1, Key::Num2, Key::Num3, Key::Num4, Key::Num5, Key::Num6, Key::Num7};
-  for (int k = 0; k < 7; ++k) {
-    if (!in.pressed(spawnKeys[k])) continue;
-    const glm::vec3 at = cameraPosition_ + forward * 3.f + glm::vec3(0.f, 0.6f, 0.f);
-    spawn(ObjectKind(k + 1), at, glm::quat(1.f, 0.f, 0.f, 0.f));
-  }
+  for (int k = 0; k < 7; ++k)
+    if (in.pressed(spawnKeys[k])) spawnInFront(ObjectKind(k + 1), forward);
   if (in.pressed(Key::Q) || (in.pressed(Key::E) && !in.held(Key::LeftShift))) {
     const ecs::Entity target = entityUnderCrosshair();
     if (auto* choice = c.world.tryGet<components::MaterialChoice>(target)) {
@@ -587,7 +665,9 @@ void DemoGame::gameplay(app::TickContext& c) {
   if (in.pressed(input::MouseButton::Right)) {
     glm::vec3 point;
     const ecs::Entity target = entityUnderCrosshair(&point);
-    if (auto* rb = c.world.tryGet<components::RigidBody>(target)) {
+    auto* rb = c.world.tryGet<components::RigidBody>(target);
+    if (!rb) notify("nothing to push under the crosshair");
+    if (rb) {
       const float mass = physics_->bodyMass(rb->body).value_or(1.f);
       const glm::vec3 dir = rayDirection(glm::vec2(c.frameSize) * 0.5f, c.frameSize);
       physics_->activate(rb->body);
@@ -636,8 +716,10 @@ void DemoGame::drawHud(app::TickContext& c) {
   }
   char texts[4][256];
   const glm::vec4 white(1.f), dim(0.f, 0.f, 0.f, 0.45f);
-  std::snprintf(texts[0], sizeof(texts[0]), "FPS %.0f   tick %.2f ms", c.app.framesPerSecond(),
-                c.app.lastTickMilliseconds());
+  // Headless runs draw no frames to count: they show the tick rate (as fast as the ticks run).
+  const bool headless = c.app.headless();
+  std::snprintf(texts[0], sizeof(texts[0]), "%s %.0f   tick %.2f ms", headless ? "TPS" : "FPS",
+                headless ? c.app.ticksPerSecond() : c.app.framesPerSecond(), c.app.lastTickMilliseconds());
   std::snprintf(texts[1], sizeof(texts[1]), "splits this tick %u   queue %u", splitsThisTick_, stats.queueLength);
   std::snprintf(texts[2], sizeof(texts[2]), "split ms last %.2f  max %.2f", lastSplitMs_, maxSplitMs_);
   std::snprintf(texts[3], sizeof(texts[3]), "pieces %u   tick %llu", pieces, static_cast<unsigned long long>(c.tick));
@@ -678,6 +760,7 @@ void DemoGame::drawHud(app::TickContext& c) {
   };
   if (splitMode_) centred("SPLIT MODE: drag to cut", 140.f);
   if (mouseFree_) centred("MOUSE FREE: click to look around, Esc again to quit", 164.f);
+  if (c.tick < noticeUntil_) centred(notice_, mid.y + 24.f);
   // A start-up hint for the first ten seconds.
   if (c.tick < 600 && !showHelp_) centred("H: help   Esc: free the mouse (twice: quit)", float(c.frameSize.y) - 34.f);
   if (showHelp_) {
@@ -711,6 +794,7 @@ void DemoGame::dumpExtension(ecs::Entity e, nlohmann::json& out) {
       out["linear_velocity"] = {state->linearVelocity.x, state->linearVelocity.y, state->linearVelocity.z};
       out["angular_velocity"] = {state->angularVelocity.x, state->angularVelocity.y,
                                  state->angularVelocity.z};
+      out["awake"] = state->awake;
     }
   }
   if (const auto* origin = world.tryGet<components::SplitOrigin>(e)) out["split_from"] = origin->parentId;

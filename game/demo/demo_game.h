@@ -41,6 +41,8 @@ class DemoGame {
 
   // Spawns an object of the given kind at a position (used by keys 1-7 and by scenes).
   ecs::Entity spawn(ObjectKind kind, const glm::vec3& position, const glm::quat& rotation);
+  // Spawns at the first free spot in front of the player (keys 1-7), standing on the floor.
+  ecs::Entity spawnInFront(ObjectKind kind, const glm::vec3& forward);
 
   components::SplitSystem& splits() { return *splits_; }
 
@@ -72,6 +74,7 @@ class DemoGame {
   void dragCut(app::TickContext& c, glm::vec2 from, glm::vec2 to);
   glm::vec3 rayDirection(glm::vec2 pixel, glm::ivec2 frame) const;
   ecs::Entity entityUnderCrosshair(glm::vec3* hitPoint = nullptr);
+  ecs::Entity splitableAlong(const glm::vec3& direction, glm::vec3* hitPoint = nullptr) const;
   components::SplitWorld splitWorld();
   void dumpExtension(ecs::Entity e, nlohmann::json& out);
 
@@ -91,6 +94,13 @@ class DemoGame {
   glm::vec2 dragEnd_{0.f};
   bool showHelp_ = false;
   bool mouseFree_ = false;  // Escape freed the mouse: no mouse look until a click
+  // A short message under the crosshair (a drag that crossed nothing, a push at nothing), shown
+  // until noticeUntil_ (a tick) and written to the state dump.
+  std::string notice_;
+  uint64_t noticeUntil_ = 0;
+  uint64_t tick_ = 0;
+  void notify(const std::string& text);
+  bool lineCrossesSplitable(glm::vec2 from, glm::vec2 to, glm::ivec2 frame) const;
 
   // Materials: seven looks the player cycles with Q/E, and the matching cap materials.
   std::array<render::Material, 7> looks_{};

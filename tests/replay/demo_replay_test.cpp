@@ -171,6 +171,88 @@ TEST(DemoReplay, EscapeTwiceQuits) {
   EXPECT_GE(dump.at("tick").get<int>(), 40) << "the first Escape quit";
 }
 
+// Keys 1-7 spawn in front of the player at free spots: five cubes spawned one after another stand
+// side by side on the floor (each at least a cube's width from the others), not piled at one point.
+TEST(DemoReplay, SpawnedObjectsStandSideBySideInFrontOfThePlayer) {
+  const fs::path dir = scratchDir("spawn");
+  const fs::path replayFile = dir / "spawn.replay";
+  std::ofstream replay(replayFile);
+  replay << "cleave-replay 1\nscene demo\nseed 1\nticks 240\n";
+  for (int k = 0; k < 5; ++k) replay << 10 + 12 * k << " kd:1\n" << 11 + 12 * k << " ku:1\n";
+  replay.close();
+  const RunResult r = run("--headless --replay \"" + replayFile.string() + "\" --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\"");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
+  ASSERT_TRUE(dump.is_object());
+  std::vector<std::array<double, 3>> cubes;
+  for (const auto& e : dump.at("entities")) {
+    if (e.value("name", "") != "wooden cube") continue;
+    const auto& p = e.at("position");
+    cubes.push_back({p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
+  }
+  ASSERT_EQ(cubes.size(), 6u) << "the line-up's cube and five spawned ones";
+  // The spawned ones: in front of the camera (it starts at z = 7.5 looking along -z), resting.
+  for (size_t a = 1; a < cubes.size(); ++a) {
+    EXPECT_LT(cubes[a][2], 5.5) << "cube " << a << " is not in front of the player";
+    EXPECT_NEAR(cubes[a][1], 0.5, 0.05) << "cube " << a << " does not stand on the floor";
+    for (size_t b = 0; b < a; ++b) {
+      const double dx = cubes[a][0] - cubes[b][0], dz = cubes[a][2] - cubes[b][2];
+      EXPECT_GT(std::hypot(dx, dz), 1.0) << "cubes " << a << " and " << b << " overlap";
+    }
+  }
+}
+
+// Pieces come to rest and sleep: the burst replay run on for half a minute after its last cut
+// leaves no body awake; right after the burst many are (the check sees awake bodies).
+TEST(DemoReplay, PiecesSleepOnceTheyComeToRest) {
+  const fs::path dir = scratchDir("sleep");
+  const RunResult r = run("--headless --replay \"" + kReplays + "/demo_burst.replay\" --ticks 2200 --dump-every 300 "
+                          "--dump-state \"" + (dir / "state.jsonl").string() + "\"");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(dir / "state.jsonl");
+  std::string line;
+  int awakeAfterBurst = -1, awakeAtEnd = -1;
+  while (std::getline(in, line)) {
+    const nlohmann::json dump = nlohmann::json::parse(line);
+    int awake = 0;
+    for (const auto& e : dump.at("entities")) awake += e.value("awake", false) ? 1 : 0;
+    if (dump.at("tick").get<int>() == 300) awakeAfterBurst = awake;
+    awakeAtEnd = awake;
+  }
+  EXPECT_GT(awakeAfterBurst, 5) << "nothing moving right after the burst: the check sees nothing";
+  EXPECT_EQ(awakeAtEnd, 0) << "bodies still awake half a minute after the last cut";
+}
+
+// A drag that crosses nothing and a push at nothing say so under the crosshair (the dump's
+// "notice"); a drag across the cube says nothing and cuts it.
+TEST(DemoReplay, MissedCutsAndPushesGiveFeedback) {
+  const fs::path dir = scratchDir("feedback");
+  struct Case {
+    const char* name;
+    const char* events;
+    const char* notice;
+  };
+  const Case cases[] = {
+      {"push at the sky (after looking up)", "5 mm:640,160,0,-200\n10 md:right@640,160\n12 mu:right@640,160\n",
+       "nothing to push under the crosshair"},
+      {"push at the cylinder", "10 md:right@640,360\n12 mu:right@640,360\n", ""},
+      {"drag across the sky", "10 kd:space\n14 md:left@200,100\n18 mm:500,100,300,0\n20 mu:left@500,100\n",
+       "missed: the line crosses nothing to cut"},
+      {"drag across the cube", "10 kd:space\n14 md:left@300,335\n18 mm:470,455,170,120\n20 mu:left@470,455\n", ""},
+  };
+  for (const Case& c : cases) {
+    const fs::path replayFile = dir / "feedback.replay";
+    std::ofstream(replayFile) << "cleave-replay 1\nscene demo\nseed 1\nticks 40\n" << c.events;
+    const RunResult r = run("--headless --replay \"" + replayFile.string() + "\" --dump-state \"" +
+                            (dir / "state.jsonl").string() + "\"");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
+    ASSERT_TRUE(dump.is_object()) << c.name;
+    EXPECT_EQ(dump.value("notice", "?"), c.notice) << c.name;
+  }
+}
+
 TEST(DemoReplay, CorruptReplayIsReportedWithFileAndLine) {
   const fs::path dir = scratchDir("corrupt");
   const fs::path bad = dir / "bad.replay";
