@@ -1,5 +1,6 @@
 // The GLB writing core of glb_builder.h: the buffer, views and accessors, the mesh with its
-// materials and primitives, the scene and the serialisation that both GLB writers share.
+// materials and primitives, the scene and the serialisation that both GLB writers share (the
+// copy of source materials is in glb_materials.cpp).
 #include "engine/assets/glb_builder.h"
 
 #include <cstring>
@@ -9,6 +10,24 @@
 #include "engine/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
+
+namespace {
+
+// The material of id `id`: its name, then the source material's properties when options.materials
+// has it (the cap never takes one), else the id's colour when `colors` asks for it.
+tinygltf::Material glbMaterial(const MeshWriteOptions& options, GlbColors colors,
+                               GlbMaterialCopy& copy, uint32_t id) {
+  tinygltf::Material material;
+  material.name = materialName(options, id);
+  if (id != options.capMaterialId && copy.copy(id, material)) return material;
+  if (colors == GlbColors::Write && id < options.materialColors.size()) {
+    const glm::vec4 c = glm::clamp(options.materialColors[id], glm::vec4(0.f), glm::vec4(1.f));
+    material.pbrMetallicRoughness.baseColorFactor = {c.r, c.g, c.b, c.a};
+  }
+  return material;
+}
+
+}  // namespace
 
 tinygltf::Model newGlbModel() {
   tinygltf::Model model;
@@ -93,6 +112,7 @@ void addMesh(tinygltf::Model& model, const geometry::MeshData& mesh,
                                 indexBytes, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   tinygltf::Mesh gltfMesh;
   gltfMesh.name = "mesh";
+  GlbMaterialCopy copy(model, options.materials, attributes.count("TEXCOORD_0") != 0 ? 1 : 0);
   // glTF material index -> our material id, in order of first use.
   std::vector<uint32_t> materialIds;
   for (const geometry::SubMesh& run : runs) {
@@ -103,14 +123,7 @@ void addMesh(tinygltf::Model& model, const geometry::MeshData& mesh,
     }
     if (material < 0) {
       materialIds.push_back(run.materialId);
-      tinygltf::Material gltfMaterial;
-      gltfMaterial.name = materialName(options, run.materialId);
-      if (colors == GlbColors::Write && run.materialId < options.materialColors.size()) {
-        const glm::vec4 c =
-            glm::clamp(options.materialColors[run.materialId], glm::vec4(0.f), glm::vec4(1.f));
-        gltfMaterial.pbrMetallicRoughness.baseColorFactor = {c.r, c.g, c.b, c.a};
-      }
-      model.materials.push_back(gltfMaterial);
+      model.materials.push_back(glbMaterial(options, colors, copy, run.materialId));
       material = static_cast<int>(model.materials.size() - 1);
     }
     tinygltf::Primitive primitive;

@@ -59,14 +59,40 @@ bool glbRuns(const geometry::MeshData& mesh, std::vector<geometry::SubMesh>& run
 GlbAttributes addVertexAttributes(tinygltf::Model& model, const geometry::MeshData& mesh,
                                   const MeshWriteOptions& options);
 
-// Whether materials get MeshWriteOptions::materialColors as their base colours. The static writer
-// writes none (the options document the colours for the skinned writer), so its output does not
-// depend on them.
+// Whether materials without a source material get MeshWriteOptions::materialColors as their base
+// colours. The static writer writes none (the options document the colours for the skinned
+// writer), so its output does not depend on them.
 enum class GlbColors : uint8_t { Omit, Write };
+
+// Copies materials of MeshWriteOptions::materials into a GLB model as they are asked for; the
+// textures, samplers and images they use are written once each, in order of first use (images as
+// buffer views of the source's encoded bytes, with its mime type). Lives for one model.
+class GlbMaterialCopy {
+ public:
+  // `uvSets`: how many TEXCOORD_<n> sets the primitives have; a texture read with a set beyond
+  // them is left out.
+  GlbMaterialCopy(tinygltf::Model& model, const MaterialSource& source, int uvSets);
+  // Fills the factors, doubleSided and the textures of `out` from source material `id`; false
+  // (and `out` untouched) when the source has no material `id`.
+  bool copy(uint32_t id, tinygltf::Material& out);
+
+ private:
+  // The written index of a source texture, sampler or image, written on first use; -1 when it
+  // cannot be written (a missing image, or one without encoded PNG or JPEG bytes).
+  int texture(const ModelTextureRef& ref);
+  int sampler(int32_t index);
+  int image(int32_t index);
+
+  tinygltf::Model& model_;
+  MaterialSource source_;
+  int uvSets_;
+  std::vector<int> textures_, samplers_, images_;  // source index -> written index, -2 unseen
+};
 
 // The indices as one view, then mesh 0 ("mesh") with one primitive per non-empty run: `attributes`,
 // uint32 indices (an accessor into that view) and a material per material id, in order of first
-// use, named by materialName. Call it after the vertex data, so that the index view follows it.
+// use, named by materialName and copied from options.materials when it has the id (not the cap).
+// Call it after the vertex data, so that the index view follows it.
 void addMesh(tinygltf::Model& model, const geometry::MeshData& mesh,
              std::span<const geometry::SubMesh> runs, const GlbAttributes& attributes,
              const MeshWriteOptions& options, GlbColors colors);

@@ -51,8 +51,9 @@ bool noWriteWholeFile(std::string* err, const std::string&, const std::vector<un
                       void*);
 
 // tinygltf's parse of a .gltf or .glb held in memory. With no base directory, external files are
-// refused (the callbacks above). `error` is one line (tinygltf's error, an exception it threw, or
-// a generic reason) and is empty when `loaded`; `warnings` are "<name>: <warning>" lines.
+// refused (the callbacks above). `imageUserData` is handed to `imageLoader` with every image.
+// `error` is one line (tinygltf's error, an exception it threw, or a generic reason) and is empty
+// when `loaded`; `warnings` are "<name>: <warning>" lines.
 struct GltfParse {
   bool loaded = false;
   std::string error;
@@ -60,6 +61,6 @@ struct GltfParse {
 };
 GltfParse parseGltf(std::span<const uint8_t> bytes, const std::string& name, bool binary,
                     const std::optional<std::string>& baseDir, tinygltf::LoadImageDataFunction imageLoader,
-                    tinygltf::Model& model);
+                    void* imageUserData, tinygltf::Model& model);
 
 }  // namespace cleave::assets::detail

@@ -74,10 +74,10 @@ std::string oneLine(const std::string& text) {
 
 GltfParse parseGltf(std::span<const uint8_t> bytes, const std::string& name, bool binary,
                     const std::optional<std::string>& baseDir, tinygltf::LoadImageDataFunction imageLoader,
-                    tinygltf::Model& model) {
+                    void* imageUserData, tinygltf::Model& model) {
   GltfParse parse;
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(imageLoader, nullptr);
+  loader.SetImageLoader(imageLoader, imageUserData);
   if (!baseDir) {
     tinygltf::FsCallbacks callbacks{noFileExists, sameFilePath, noReadWholeFile, noWriteWholeFile,
                                     nullptr};
@@ -447,7 +447,7 @@ MeshReadResult readGltf(std::span<const uint8_t> bytes, const std::string& name,
                         const std::optional<std::string>& baseDir) {
   if (bytes.size() > UINT32_MAX) return failure(name, "file too large for glTF");
   tinygltf::Model model;
-  const GltfParse parse = parseGltf(bytes, name, binary, baseDir, skipImage, model);
+  const GltfParse parse = parseGltf(bytes, name, binary, baseDir, skipImage, nullptr, model);
   if (!parse.loaded) {
     MeshReadResult result = failure(name, parse.error);
     result.warnings = parse.warnings;

@@ -1,7 +1,8 @@
-// The glTF model loader: scene nodes, static and skinned meshes, materials with decoded images,
-// skins and animations (see model.h). tinygltf parses the JSON and the GLB container; everything it
-// hands over (indices of nodes, meshes, accessors, materials, textures, images, skins) is checked
-// here before use, because a file can claim anything.
+// The glTF model loader: scene nodes, static and skinned meshes, materials with their textures,
+// samplers and images (decoded, and kept as the file's bytes), skins and animations (see model.h).
+// tinygltf parses the JSON and the GLB container; everything it hands over (indices of nodes,
+// meshes, accessors, materials, textures, images, skins) is checked here before use, because a
+// file can claim anything.
 #include <stb_image.h>
 #include <tiny_gltf.h>
 
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/quaternion.hpp>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <string_view>
@@ -26,16 +28,44 @@ size_t Model::triangleCount() const {
   return total;
 }
 
+MaterialSource Model::materialSource() const {
+  return MaterialSource{materials, textures, samplers, images};
+}
+
 namespace {
 
 using detail::AccessorView;
 using detail::component;
 using detail::viewAccessor;
 
-// Decodes embedded and external images to RGBA8 with stb_image. A failure leaves the image empty
-// and adds a warning: a broken texture must not make the geometry unusable.
+// An image's bytes as the file stores them, caught while tinygltf hands them to decodeImage.
+struct EncodedImage {
+  std::string mimeType;
+  std::vector<uint8_t> bytes;
+};
+
+// The declared mime type, else the one of the bytes' signature (external image files declare none).
+std::string mimeTypeOf(const std::string& declared, const unsigned char* bytes, int size) {
+  if (!declared.empty()) return declared;
+  static const unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (size >= 8 && std::memcmp(bytes, kPng, 8) == 0) return "image/png";
+  if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) return "image/jpeg";
+  return {};
+}
+
+// Decodes embedded and external images to RGBA8 with stb_image, and keeps the encoded bytes in
+// `user` (a std::vector<EncodedImage>, by image index) so that writers can embed them unchanged. A
+// failure to decode leaves the pixels empty and adds a warning: a broken texture must not make the
+// geometry unusable.
 bool decodeImage(tinygltf::Image* image, const int index, std::string*, std::string* warn, int, int,
-                 const unsigned char* bytes, int size, void*) {
+                 const unsigned char* bytes, int size, void* user) {
+  auto* encoded = static_cast<std::vector<EncodedImage>*>(user);
+  if (encoded != nullptr && index >= 0 && size > 0) {
+    const size_t at = static_cast<size_t>(index);
+    if (encoded->size() <= at) encoded->resize(at + 1);
+    (*encoded)[at] = {mimeTypeOf(image->mimeType, bytes, size),
+                      std::vector<uint8_t>(bytes, bytes + size)};
+  }
   int w = 0, h = 0, channels = 0;
   unsigned char* pixels =
       size > 0 ? stbi_load_from_memory(bytes, size, &w, &h, &channels, 4) : nullptr;
@@ -65,8 +95,9 @@ bool finite3(const glm::dvec3& v) {
 
 class Loader {
  public:
-  Loader(const tinygltf::Model& gltf, const std::string& name, size_t fileBytes)
-      : gltf_(gltf), name_(name) {
+  Loader(const tinygltf::Model& gltf, const std::string& name, size_t fileBytes,
+         std::vector<EncodedImage> encoded)
+      : gltf_(gltf), name_(name), encoded_(std::move(encoded)) {
     budget_ = (uint64_t{1} << 24) + 64 * uint64_t{fileBytes};
     for (const tinygltf::Buffer& buffer : gltf.buffers) budget_ += buffer.data.size();
   }
@@ -85,6 +116,8 @@ class Loader {
     }
     if (!buildHierarchy(gltf_.scenes[static_cast<size_t>(sceneIndex)].nodes)) return false;
     readImages(model);
+    readSamplers(model);
+    readTextures(model);
     if (!readMaterials(model)) return false;
     if (!readSkins(model)) return false;
     for (size_t n : order_) {
@@ -199,42 +232,111 @@ class Loader {
       } else {
         warn("image " + std::to_string(i) + " ('" + out.name + "') has no decoded pixels");
       }
+      if (i < encoded_.size()) {
+        out.mimeType = std::move(encoded_[i].mimeType);
+        out.encoded = std::move(encoded_[i].bytes);
+      }
       model.images.push_back(std::move(out));
     }
   }
 
-  // The image behind texture `texture`, -1 for none or a broken reference (with a warning).
-  int32_t imageOfTexture(int texture, size_t material) {
-    if (texture < 0) return -1;
-    if (static_cast<size_t>(texture) >= gltf_.textures.size()) {
+  // A sampler's filter or wrap mode: `value` when glTF allows it, else `fallback` with a warning.
+  int32_t samplerMode(int value, std::initializer_list<int> allowed, int32_t fallback,
+                      size_t sampler, const char* what) {
+    if (value == fallback || std::find(allowed.begin(), allowed.end(), value) != allowed.end())
+      return value;
+    warn("sampler " + std::to_string(sampler) + " has an unknown " + what + " " +
+         std::to_string(value) + "; the default is used");
+    return fallback;
+  }
+
+  void readSamplers(Model& model) {
+    const std::initializer_list<int> wraps = {33071, 33648, 10497};
+    for (size_t i = 0; i < gltf_.samplers.size(); ++i) {
+      const tinygltf::Sampler& sampler = gltf_.samplers[i];
+      ModelSampler out;
+      out.name = sampler.name;
+      out.magFilter = samplerMode(sampler.magFilter, {9728, 9729}, -1, i, "magFilter");
+      out.minFilter = samplerMode(sampler.minFilter, {9728, 9729, 9984, 9985, 9986, 9987}, -1, i,
+                                  "minFilter");
+      out.wrapS = samplerMode(sampler.wrapS, wraps, 10497, i, "wrapS");
+      out.wrapT = samplerMode(sampler.wrapT, wraps, 10497, i, "wrapT");
+      model.samplers.push_back(std::move(out));
+    }
+  }
+
+  // Texture `texture`'s reference to its image or sampler: -1 for none, and for a missing one
+  // (with a warning).
+  int32_t textureSource(size_t texture, int index, size_t count, const char* what) {
+    if (index < 0) return -1;
+    if (static_cast<size_t>(index) < count) return index;
+    warn("texture " + std::to_string(texture) + " names missing " + what + " " +
+         std::to_string(index));
+    return -1;
+  }
+
+  // Textures with their image and sampler. A texture without a source (its image given by an
+  // extension) has no image.
+  void readTextures(Model& model) {
+    for (size_t i = 0; i < gltf_.textures.size(); ++i) {
+      const tinygltf::Texture& texture = gltf_.textures[i];
+      ModelTexture out;
+      out.name = texture.name;
+      out.image = textureSource(i, texture.source, gltf_.images.size(), "image");
+      out.sampler = textureSource(i, texture.sampler, gltf_.samplers.size(), "sampler");
+      model.textures.push_back(std::move(out));
+    }
+  }
+
+  // Material `material`'s use of texture `index` with set `texCoord`; none (with a warning) when
+  // the texture does not exist.
+  ModelTextureRef textureRef(int index, int texCoord, size_t material) {
+    if (index < 0) return {};
+    if (static_cast<size_t>(index) >= gltf_.textures.size() || texCoord < 0) {
       warn("material " + std::to_string(material) + " names missing texture " +
-           std::to_string(texture));
-      return -1;
+           std::to_string(index) + " (set " + std::to_string(texCoord) + ")");
+      return {};
     }
-    const int source = gltf_.textures[static_cast<size_t>(texture)].source;
-    if (source < 0 || static_cast<size_t>(source) >= gltf_.images.size()) {
-      warn("texture " + std::to_string(texture) + " names missing image " + std::to_string(source));
-      return -1;
+    return ModelTextureRef{index, texCoord};
+  }
+
+  // The factors of material `i`; false (the model fails) when one is not finite.
+  bool readFactors(const tinygltf::Material& material, size_t i, ModelMaterial& out) {
+    const tinygltf::PbrMetallicRoughness& pbr = material.pbrMetallicRoughness;
+    const std::vector<double>& factor = pbr.baseColorFactor;
+    if (factor.size() == 4) {
+      out.baseColorFactor =
+          glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
     }
-    return source;
+    out.metallicFactor = static_cast<float>(pbr.metallicFactor);
+    out.roughnessFactor = static_cast<float>(pbr.roughnessFactor);
+    out.normalScale = static_cast<float>(material.normalTexture.scale);
+    const glm::vec4& color = out.baseColorFactor;
+    for (const float value : {color.r, color.g, color.b, color.a, out.metallicFactor,
+                              out.roughnessFactor, out.normalScale}) {
+      if (!std::isfinite(value)) {
+        return fail("material " + std::to_string(i) +
+                    " has a non-finite base colour, metallic, roughness or normal scale factor");
+      }
+    }
+    return true;
   }
 
   bool readMaterials(Model& model) {
+    auto imageOf = [&](const ModelTextureRef& ref) {
+      return ref.texture < 0 ? -1 : model.textures[static_cast<size_t>(ref.texture)].image;
+    };
     for (size_t i = 0; i < gltf_.materials.size(); ++i) {
       const tinygltf::Material& material = gltf_.materials[i];
       ModelMaterial out;
       out.name = material.name.empty() ? "material_" + std::to_string(i) : material.name;
-      const std::vector<double>& factor = material.pbrMetallicRoughness.baseColorFactor;
-      if (factor.size() == 4) {
-        out.baseColorFactor =
-            glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
-        for (int c = 0; c < 4; ++c) {
-          if (!std::isfinite(out.baseColorFactor[c]))
-            return fail("material " + std::to_string(i) + " has a non-finite base colour");
-        }
-      }
-      out.baseColorImage = imageOfTexture(material.pbrMetallicRoughness.baseColorTexture.index, i);
-      out.normalImage = imageOfTexture(material.normalTexture.index, i);
+      if (!readFactors(material, i, out)) return false;
+      const tinygltf::TextureInfo& base = material.pbrMetallicRoughness.baseColorTexture;
+      const tinygltf::NormalTextureInfo& normal = material.normalTexture;
+      out.baseColorTexture = textureRef(base.index, base.texCoord, i);
+      out.normalTexture = textureRef(normal.index, normal.texCoord, i);
+      out.baseColorImage = imageOf(out.baseColorTexture);
+      out.normalImage = imageOf(out.normalTexture);
       out.doubleSided = material.doubleSided;
       model.materials.push_back(std::move(out));
     }
@@ -654,6 +756,7 @@ class Loader {
 
   const tinygltf::Model& gltf_;
   const std::string& name_;
+  std::vector<EncodedImage> encoded_;  // by image index, moved into Model::images
   ModelLoadResult* result_ = nullptr;
   uint64_t budget_ = 0;
   std::vector<int> parent_;
@@ -711,12 +814,14 @@ ModelLoadResult readModel(std::span<const uint8_t> bytes, const std::string& nam
     }
   }
   tinygltf::Model gltf;
-  detail::GltfParse parse = detail::parseGltf(bytes, name, binary, baseDir, decodeImage, gltf);
+  std::vector<EncodedImage> encoded;
+  detail::GltfParse parse =
+      detail::parseGltf(bytes, name, binary, baseDir, decodeImage, &encoded, gltf);
   if (!parse.loaded) return failed(name, parse.error, std::move(parse.warnings));
   std::vector<std::string> warnings = std::move(parse.warnings);
   ModelLoadResult result;
   result.warnings = std::move(warnings);
-  Loader reader(gltf, name, bytes.size());
+  Loader reader(gltf, name, bytes.size(), std::move(encoded));
   if (!reader.run(result)) {
     ModelLoadResult failure;
     failure.error = std::move(result.error);

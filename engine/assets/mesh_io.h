@@ -24,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/assets/material.h"
 #include "engine/geometry/mesh_data.h"
 
 namespace cleave::assets {
@@ -71,6 +72,15 @@ struct MeshWriteOptions {
   std::vector<std::string> materialNames;
   // Linear RGBA base colours by material id (skinned GLB writer); an id without one gets none.
   std::vector<glm::vec4> materialColors;
+  // GLB writers: the materials to copy by material id (for the ids it has, except the cap's, in
+  // place of materialColors): base colour and metallic-roughness factors, doubleSided, and the
+  // base colour and normal textures with their texCoord (and the normal scale), each with its
+  // sampler and its image embedded as a buffer view holding the source's encoded bytes with its
+  // mime type. Only what the written materials use is written, in order of first use. A texture
+  // is left out of the material when its image has no encoded PNG or JPEG bytes or when it reads
+  // a texture coordinate set the file does not get (TEXCOORD_0 is the only one written). Views:
+  // the caller keeps the arrays alive during the write (Model::materialSource()).
+  MaterialSource materials;
   bool writeNormals = true;  // when the mesh has normals
   bool writeUvs = true;      // when the mesh has uv0
 };
@@ -87,7 +97,8 @@ MeshWriteResult writeObj(const std::string& path, const geometry::MeshData& mesh
                          const MeshWriteOptions& options);
 
 // Binary glTF 2.0: one mesh, one node, positions (with bounds), normals, uv0 and uint32 indices,
-// one primitive per submesh with its own material (named as above).
+// one primitive per submesh with its own material (named as above, copied from
+// MeshWriteOptions::materials when it has the id).
 MeshWriteResult writeGlbToMemory(const geometry::MeshData& mesh, const MeshWriteOptions& options,
                                  std::vector<uint8_t>& out);
 MeshWriteResult writeGlb(const std::string& path, const geometry::MeshData& mesh,

@@ -1,5 +1,6 @@
-// Models: glTF 2.0 scenes with static and skinned meshes, materials with decoded textures, skins
-// and animations, as plain data (no tinygltf type leaks out of engine/assets).
+// Models: glTF 2.0 scenes with static and skinned meshes, materials with their textures (decoded,
+// and as the file's encoded bytes), skins and animations, as plain data (no tinygltf type leaks
+// out of engine/assets).
 //
 // What is read. The default scene (else scene 0) and every node under it. A node with a mesh and no
 // skin becomes a static ModelMesh whose vertices are baked into scene space (the node hierarchy is
@@ -12,7 +13,10 @@
 // normalised unsigned byte or short; renormalised to sum 1). No indices means a plain triangle
 // list. Animations: translation, rotation and scale channels, step, linear and cubic spline. Each
 // glTF animation becomes one clip per skin whose joints it moves (morph-target weights are
-// skipped).
+// skipped). Materials (material.h): base colour factor and texture, metallic and roughness
+// factors, normal texture with its scale, doubleSided; textures with their samplers and images,
+// each image decoded with stb_image and kept as the file's bytes with its mime type. Other
+// material properties and texture extensions (KHR_texture_transform, ...) are not read.
 //
 // Units: those of the file (the engine reads them as metres). Winding: counter-clockwise seen from
 // outside; a mirroring node transform of a static mesh flips the triangles back.
@@ -31,27 +35,11 @@
 
 #include "engine/anim/animation_clip.h"
 #include "engine/anim/skeleton.h"
+#include "engine/assets/material.h"
 #include "engine/assets/mesh_io.h"
 #include "engine/geometry/mesh_data.h"
 
 namespace cleave::assets {
-
-// An image decoded to RGBA8, rows top to bottom. Empty (width 0) when the file's image could not be
-// loaded or decoded (a warning says why).
-struct ModelImage {
-  std::string name;
-  int width = 0;
-  int height = 0;
-  std::vector<uint8_t> rgba;  // width * height * 4 bytes
-};
-
-struct ModelMaterial {
-  std::string name;
-  glm::vec4 baseColorFactor{1.f};  // linear RGBA
-  int32_t baseColorImage = -1;     // index into Model::images, -1 for none
-  int32_t normalImage = -1;        // index into Model::images, -1 for none
-  bool doubleSided = false;
-};
 
 struct ModelMesh {
   std::string name;         // the node's name, else the mesh's
@@ -69,10 +57,15 @@ struct ModelSkin {
 struct Model {
   std::vector<ModelMesh> meshes;
   std::vector<ModelMaterial> materials;  // the file's, then "default" when a primitive has none
+  std::vector<ModelTexture> textures;    // the file's, in file order (see material.h)
+  std::vector<ModelSampler> samplers;
   std::vector<ModelImage> images;
   std::vector<ModelSkin> skins;
 
   size_t triangleCount() const;
+  // Views of the materials, textures, samplers and images, for MeshWriteOptions::materials; they
+  // point into this model.
+  MaterialSource materialSource() const;
 };
 
 struct ModelLoadResult {
@@ -94,8 +87,9 @@ ModelLoadResult readModelFromMemory(std::span<const uint8_t> bytes, const std::s
 // clips as binary glTF 2.0 that loadModel reads back as one skinned ModelMesh with one skin and
 // these clips: a node per joint (rest transform as translation, rotation, scale; a joint's fixed
 // offset as an extra parent node), the skin (joints in skeleton order, inverse bind matrices), one
-// animation per clip, one primitive per submesh run (materials named as in MeshWriteOptions, with
-// MeshWriteOptions::materialColors as base colours), POSITION with bounds, NORMAL, TEXCOORD_0,
+// animation per clip, one primitive per submesh run (materials named as in MeshWriteOptions, copied
+// from MeshWriteOptions::materials when it has them, else with MeshWriteOptions::materialColors as
+// base colours), POSITION with bounds, NORMAL, TEXCOORD_0,
 // JOINTS_0 (unsigned short) and WEIGHTS_0. Every joint of the skeleton is written, also those the
 // mesh does not use, so the clips keep driving the whole hierarchy. Malformed clip channels are
 // left out. Failure (invalid mesh or skeleton, a weight on a joint outside the skeleton) gives

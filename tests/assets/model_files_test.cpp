@@ -6,7 +6,6 @@
 #include <fstream>
 #include <sstream>
 
-#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -14,10 +13,14 @@
 #include "engine/assets/mesh_io.h"
 #include "engine/geometry/mass_properties.h"
 #include "tests/assets/asset_test_files.h"
+#include "tests/assets/tool_runner.h"
 
 namespace cleave::assets {
 namespace {
 
+using test::quote;
+using test::runCommand;
+using test::splitTool;
 using test::TempDir;
 
 std::filesystem::path modelsFolder() {
@@ -64,28 +67,6 @@ TEST(ModelFiles, SharedGltfModelsLoadStatically) {
   }
 }
 
-// Runs a command, capturing stdout into a string; returns the exit status.
-int run(const std::string& command, std::string& output) {
-  output.clear();
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return -1;
-  char buffer[4096];
-  size_t got = 0;
-  while ((got = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) output.append(buffer, got);
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string splitTool() { return std::string(CLEAVE_BINARY_DIR) + "/bin/cleave-split"; }
-
-// The path in single quotes for the shell.
-std::string quote(const std::string& path) {
-  std::string quoted(1, '\'');
-  quoted += path;
-  quoted += '\'';
-  return quoted;
-}
-
 TEST(CleaveSplitTool, JsonReportsPiecesWhoseVolumesAddUp) {
   if (!std::filesystem::exists(splitTool())) GTEST_SKIP() << "cleave-split not built";
   TempDir dir;
@@ -93,7 +74,7 @@ TEST(CleaveSplitTool, JsonReportsPiecesWhoseVolumesAddUp) {
   const std::string out = dir.file("pieces");
   std::string output;
   // The plane 2x = 0.6 is x = 0.3 once normalised.
-  const int status = run(quote(splitTool()) + ' ' + quote(cube) + " --plane 2 0 0 0.6 --json --repeat 3 --out " +
+  const int status = runCommand(quote(splitTool()) + ' ' + quote(cube) + " --plane 2 0 0 0.6 --json --repeat 3 --out " +
                              quote(out) + " 2>&1",
                          output);
   ASSERT_EQ(status, 0) << output;
@@ -160,7 +141,7 @@ TEST(CleaveSplitTool, MultiPartArtGivesOnePiecePerSideAndSkipsWhatThePlaneDidNot
   const std::string tool = quote(splitTool()) + ' ' + quote(parts) + " --plane 0 1 0 0.5 --json";
   auto pieces = [&](const std::string& extra, const std::string& out, int& reached) {
     std::string output;
-    EXPECT_EQ(run(tool + extra + " --out " + quote(dir.file(out)) + " 2>&1", output), 0) << output;
+    EXPECT_EQ(runCommand(tool + extra + " --out " + quote(dir.file(out)) + " 2>&1", output), 0) << output;
     const nlohmann::json report = nlohmann::json::parse(output, nullptr, false);
     EXPECT_FALSE(report.is_discarded()) << output;
     reached = 0;
@@ -188,7 +169,7 @@ TEST(CleaveSplitTool, MultiPartArtGivesOnePiecePerSideAndSkipsWhatThePlaneDidNot
   pieces(" --islands connected --all-pieces", "all", reached);
   EXPECT_EQ(files("all"), 5u);
   std::string output;
-  EXPECT_EQ(run(tool + " --islands some 2>&1", output), 2);
+  EXPECT_EQ(runCommand(tool + " --islands some 2>&1", output), 2);
   EXPECT_NE(output.find("--islands must be touching or connected"), std::string::npos) << output;
 }
 
@@ -203,7 +184,7 @@ TEST(CleaveSplitTool, PosedRobotCutOnceStaysInAFewPieces) {
       quote(splitTool()) + ' ' + quote(robot.string()) + " --pose Robot_Dance:0.5 --plane 0.2 1 0.1 0.5 --json";
   auto report = [&](const std::string& extra) {
     std::string output;
-    EXPECT_EQ(run(tool + extra + " 2>&1", output), 0) << output;
+    EXPECT_EQ(runCommand(tool + extra + " 2>&1", output), 0) << output;
     return nlohmann::json::parse(output, nullptr, false);
   };
   const nlohmann::json touching = report(""), connected = report(" --islands connected");
@@ -220,35 +201,35 @@ TEST(CleaveSplitTool, ErrorsGiveOneLineAndTheDocumentedExitCodes) {
   TempDir dir;
   const std::string tool = quote(splitTool()) + ' ';
   std::string output;
-  EXPECT_EQ(run(tool + "--help", output), 0);
+  EXPECT_EQ(runCommand(tool + "--help", output), 0);
   EXPECT_NE(output.find("usage"), std::string::npos);
-  EXPECT_EQ(run(tool + "cube.obj 2>&1", output), 2);  // no plane
-  EXPECT_EQ(run(tool + "cube.obj --plane 0 0 0 1 2>&1", output), 2);
-  EXPECT_EQ(run(tool + "cube.obj --plane 1 0 0 --json 2>&1", output), 2);
-  EXPECT_EQ(run(tool + "cube.obj --plane 1 0 0 0 --bogus 2>&1", output), 2);
+  EXPECT_EQ(runCommand(tool + "cube.obj 2>&1", output), 2);  // no plane
+  EXPECT_EQ(runCommand(tool + "cube.obj --plane 0 0 0 1 2>&1", output), 2);
+  EXPECT_EQ(runCommand(tool + "cube.obj --plane 1 0 0 --json 2>&1", output), 2);
+  EXPECT_EQ(runCommand(tool + "cube.obj --plane 1 0 0 0 --bogus 2>&1", output), 2);
 
   const std::string missing = dir.file("missing.obj");
-  EXPECT_EQ(run(tool + quote(missing) + " --plane 1 0 0 0 2>&1", output), 1);
+  EXPECT_EQ(runCommand(tool + quote(missing) + " --plane 1 0 0 0 2>&1", output), 1);
   EXPECT_NE(output.find(missing), std::string::npos);
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
 
   const std::string corrupt = dir.write("corrupt.stl", std::string(90, '\x01'));
-  EXPECT_EQ(run(tool + quote(corrupt) + " --plane 1 0 0 0 2>&1", output), 1);
+  EXPECT_EQ(runCommand(tool + quote(corrupt) + " --plane 1 0 0 0 2>&1", output), 1);
   EXPECT_NE(output.find(corrupt), std::string::npos);
 
   // A plane that misses the mesh is a split failure: reported in JSON, exit 1.
   const std::string cube = dir.write("cube.obj", test::cubeObj());
-  EXPECT_EQ(run(tool + quote(cube) + " --plane 0 1 0 5 --json 2>/dev/null", output), 1);
+  EXPECT_EQ(runCommand(tool + quote(cube) + " --plane 0 1 0 5 --json 2>/dev/null", output), 1);
   const nlohmann::json report = nlohmann::json::parse(output, nullptr, false);
   ASSERT_FALSE(report.is_discarded()) << output;
   EXPECT_TRUE(report.contains("message"));  // only present when the split failed
   EXPECT_TRUE(report["pieces"].empty());
   // In text, the failure is told once (on stderr), with the bounds and the offsets that would cut.
   std::string text, errors;
-  EXPECT_EQ(run(tool + quote(cube) + " --plane 0 1 0 5 2>/dev/null", text), 1);
+  EXPECT_EQ(runCommand(tool + quote(cube) + " --plane 0 1 0 5 2>/dev/null", text), 1);
   EXPECT_EQ(text.find("status:"), std::string::npos) << text;
   EXPECT_NE(text.find("bounds: (0, 0, 0) to (1, 1, 1), centre (0.5, 0.5, 0.5)"), std::string::npos) << text;
-  EXPECT_EQ(run(tool + quote(cube) + " --plane 0 1 0 5 2>&1 >/dev/null", errors), 1);
+  EXPECT_EQ(runCommand(tool + quote(cube) + " --plane 0 1 0 5 2>&1 >/dev/null", errors), 1);
   EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1) << errors;
   EXPECT_NE(errors.find("an offset between 0 and 1 crosses its box"), std::string::npos) << errors;
 }

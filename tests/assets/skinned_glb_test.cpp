@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
 
 #include <nlohmann/json.hpp>
 
@@ -23,10 +22,14 @@
 #include "engine/assets/procedural_character.h"
 #include "engine/geometry/mesh_splitter.h"
 #include "tests/assets/asset_test_files.h"
+#include "tests/assets/tool_runner.h"
 
 namespace cleave::assets {
 namespace {
 
+using test::quote;
+using test::runCommand;
+using test::splitTool;
 using test::TempDir;
 
 const ProceduralCharacter& character() {
@@ -205,40 +208,6 @@ TEST(SkinnedGlbWriter, PiecesCutInAPoseKeepTheirSkinAndClips) {
 
 // ---- The command-line tool and the validator ----
 
-int run(const std::string& command, std::string& output) {
-  output.clear();
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return -1;
-  char buffer[4096];
-  size_t got = 0;
-  while ((got = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) output.append(buffer, got);
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string quote(const std::string& text) { return "'" + text + "'"; }
-std::string splitTool() { return std::string(CLEAVE_BINARY_DIR) + "/bin/cleave-split"; }
-
-// The folder holding node_modules/gltf-validator: CLEAVE_GLTF_VALIDATOR_DIR, else the npm folder of
-// the set-up (test::npmDir(), <build>/npm). Empty, with the reason in `why`, when the package is not
-// there or node is missing.
-std::string validatorDir(std::string& why) {
-  const char* env = std::getenv("CLEAVE_GLTF_VALIDATOR_DIR");
-  const std::filesystem::path dir = env != nullptr && *env != '\0' ? std::filesystem::path(env) : test::npmDir();
-  std::error_code ec;
-  if (!std::filesystem::exists(dir / "node_modules" / "gltf-validator" / "package.json", ec)) {
-    why = "npm package gltf-validator not installed (no " + (dir / "node_modules" / "gltf-validator").string() +
-          "; tools/install-deps.sh installs it, see docs/cleave-split.md)";
-    return {};
-  }
-  std::string output;
-  if (run("node --version 2>/dev/null", output) != 0) {
-    why = "node not found on the path";
-    return {};
-  }
-  return std::filesystem::absolute(dir, ec).string();
-}
-
 std::string writeCharacterGlb(const TempDir& dir) {
   const ProceduralCharacter& c = character();
   const std::string path = dir.file("character.glb");
@@ -251,7 +220,7 @@ std::string writeCharacterGlb(const TempDir& dir) {
 // The generated character cut in a pose into skinned GLB pieces by cleave-split; its JSON report.
 nlohmann::json cutCharacterInAPose(TempDir& dir, const std::string& input) {
   std::string output;
-  const int status = run(quote(splitTool()) + ' ' + quote(input) + " --pose walk:0.3 --plane 0.2 1 0.1 1.0 --out " +
+  const int status = runCommand(quote(splitTool()) + ' ' + quote(input) + " --pose walk:0.3 --plane 0.2 1 0.1 1.0 --out " +
                              quote(dir.file("pieces")) + " --format glb --json",
                          output);
   EXPECT_EQ(status, 0) << output;
@@ -291,7 +260,7 @@ TEST(CleaveSplitTool, PoseCutsASkinnedGlbIntoSkinnedAnimatedPieces) {
 
   // A clip by index gives the same cut.
   std::string byIndex;
-  ASSERT_EQ(run(quote(splitTool()) + ' ' + quote(input) + " --pose 1:0.3 --plane 0.2 1 0.1 1.0 --json", byIndex), 0);
+  ASSERT_EQ(runCommand(quote(splitTool()) + ' ' + quote(input) + " --pose 1:0.3 --plane 0.2 1 0.1 1.0 --json", byIndex), 0);
   const nlohmann::json indexReport = nlohmann::json::parse(byIndex, nullptr, false);
   EXPECT_EQ(indexReport["pose"]["clip"], "walk");
   EXPECT_EQ(indexReport["pieces"].size(), report["pieces"].size());
@@ -302,19 +271,17 @@ TEST(CleaveSplitTool, PoseCutsASkinnedGlbIntoSkinnedAnimatedPieces) {
 TEST(CleaveSplitTool, PosedSkinnedPiecesPassTheKhronosValidator) {
   if (!std::filesystem::exists(splitTool())) GTEST_SKIP() << "cleave-split not built";
   std::string why;
-  const std::string validator = validatorDir(why);
+  const std::string validator = test::gltfValidatorDir(why);
   if (validator.empty()) GTEST_SKIP() << why;
   TempDir dir;
   const std::string input = writeCharacterGlb(dir);
   const nlohmann::json report = cutCharacterInAPose(dir, input);
   ASSERT_FALSE(report.is_discarded());
   ASSERT_GE(report["files"].size(), 2u);
-  std::string command = "CLEAVE_GLTF_VALIDATOR_DIR=" + quote(validator) + " node " +
-                        quote(std::string(CLEAVE_SOURCE_DIR) + "/tools/gltf-validate/validate.cjs") + ' ' +
-                        quote(input);
-  for (const auto& file : report["files"]) command += ' ' + quote(file.get<std::string>());
+  std::vector<std::string> files = {input};
+  for (const auto& file : report["files"]) files.push_back(file.get<std::string>());
   std::string validation;
-  const int valid = run(command + " 2>&1", validation);
+  const int valid = test::validateGltf(validator, files, validation);
   EXPECT_EQ(valid, 0) << validation;
   size_t lines = 0;
   for (size_t at = validation.find('\n'); at != std::string::npos; at = validation.find('\n', at + 1)) ++lines;
@@ -329,18 +296,18 @@ TEST(CleaveSplitTool, PoseErrorsNameTheProblem) {
   const std::string input = writeCharacterGlb(dir);
   std::string output;
   // An unknown clip: data error, one line naming the file and the clips there are.
-  EXPECT_EQ(run(quote(splitTool()) + ' ' + quote(input) + " --pose run:1 --plane 0 1 0 1 2>&1", output), 1);
+  EXPECT_EQ(runCommand(quote(splitTool()) + ' ' + quote(input) + " --pose run:1 --plane 0 1 0 1 2>&1", output), 1);
   EXPECT_NE(output.find("no clip 'run'"), std::string::npos) << output;
   EXPECT_NE(output.find("'walk'"), std::string::npos) << output;
   EXPECT_EQ(std::count(output.begin(), output.end(), '\n'), 1) << output;
   // A model without a skinned mesh.
   const std::string cube = dir.write("cube.obj", test::cubeObj());
-  EXPECT_EQ(run(quote(splitTool()) + ' ' + quote(cube) + " --pose walk:1 --plane 0 1 0 0.5 2>&1", output), 1);
+  EXPECT_EQ(runCommand(quote(splitTool()) + ' ' + quote(cube) + " --pose walk:1 --plane 0 1 0 0.5 2>&1", output), 1);
   EXPECT_NE(output.find("cube.obj"), std::string::npos) << output;
   // Bad syntax: usage error.
-  EXPECT_EQ(run(quote(splitTool()) + ' ' + quote(input) + " --pose walk --plane 0 1 0 1 2>&1", output), 2);
+  EXPECT_EQ(runCommand(quote(splitTool()) + ' ' + quote(input) + " --pose walk --plane 0 1 0 1 2>&1", output), 2);
   EXPECT_NE(output.find("CLIP:SECONDS"), std::string::npos) << output;
-  EXPECT_EQ(run(quote(splitTool()) + ' ' + quote(input) + " --pose walk:abc --plane 0 1 0 1 2>&1", output), 2);
+  EXPECT_EQ(runCommand(quote(splitTool()) + ' ' + quote(input) + " --pose walk:abc --plane 0 1 0 1 2>&1", output), 2);
 }
 
 }  // namespace

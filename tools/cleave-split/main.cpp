@@ -48,7 +48,8 @@ constexpr const char* kUsage =
     "\n"
     "  --plane NX NY NZ D  the cutting plane (required)\n"
     "  --out DIR           write piece_<k>_<above|below>.<format> per piece into DIR\n"
-    "  --format obj|glb    output format for --out (default obj)\n"
+    "  --format obj|glb    output format for --out (default obj); GLB pieces of a glTF input keep\n"
+    "                      its materials, textures and images\n"
     "  --hollow            do not cap the cut (open sections allowed)\n"
     "  --open MODE         a section that is not all closed loops (open art): cap-closed (default)\n"
     "                      caps the closed loops and leaves the open chains open; bridge also\n"
@@ -247,6 +248,29 @@ nlohmann::ordered_json massJson(const geometry::MassProperties& mass) {
   return out;
 }
 
+// The materials of `model` with the textures, samplers and images they use, for the GLB pieces; its
+// meshes and skins are dropped.
+assets::Model materialsOf(assets::Model&& model) {
+  assets::Model out;
+  out.materials = std::move(model.materials);
+  out.textures = std::move(model.textures);
+  out.samplers = std::move(model.samplers);
+  out.images = std::move(model.images);
+  return out;
+}
+
+// The materials of a glTF input for its GLB pieces, read with the model loader (the mesh reader
+// keeps the names only). A model the loader refuses gives none and a warning: the pieces then get
+// the material names only.
+assets::Model inputMaterials(const std::string& path, std::vector<std::string>& warnings) {
+  assets::ModelLoadResult loaded = assets::loadModel(path);
+  if (!loaded.ok) {
+    warnings.push_back(loaded.error + " (the GLB pieces get the material names only)");
+    return {};
+  }
+  return materialsOf(std::move(loaded.model));
+}
+
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
@@ -272,6 +296,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> materialNames;
   std::vector<glm::vec4> materialColors;
   std::vector<std::string> warnings;
+  assets::Model materials;  // a glTF input's materials, copied into GLB pieces
   // --pose: the skinned mesh of the model's first skin (all of its meshes merged), its skin and the
   // joint matrices of the sampled pose.
   assets::ModelSkin skin;
@@ -329,6 +354,7 @@ int main(int argc, char** argv) {
       materialNames.push_back(material.name);
       materialColors.push_back(material.baseColorFactor);
     }
+    materials = materialsOf(std::move(model.model));
   } else {
     assets::MeshReadResult loaded = assets::loadMesh(args.input);
     if (!loaded.ok) {
@@ -338,6 +364,11 @@ int main(int argc, char** argv) {
     mesh = std::move(loaded.mesh);
     materialNames = std::move(loaded.materialNames);
     warnings = std::move(loaded.warnings);
+    const assets::MeshFormat format = assets::formatFromPath(args.input);
+    if (args.outDir && args.format == "glb" &&
+        (format == assets::MeshFormat::Gltf || format == assets::MeshFormat::Glb)) {
+      materials = inputMaterials(args.input, warnings);
+    }
   }
   if (!args.json) {
     for (const std::string& warning : warnings) {
@@ -464,6 +495,7 @@ int main(int argc, char** argv) {
     writeOptions.capMaterialId = capMaterialId;
     writeOptions.materialNames = materialNames;
     writeOptions.materialColors = materialColors;
+    writeOptions.materials = materials.materialSource();
     for (size_t k = 0; k < result.pieces.size(); ++k) {
       const geometry::SplitPiece& piece = result.pieces[k];
       if (!piece.reached && !args.allPieces) continue;  // a part the plane did not reach: not asked for
