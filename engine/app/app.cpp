@@ -187,6 +187,8 @@ void App::countTickRate() {
   const double now = nowMs();
   if (tpsWindowStart_ < 0.0) tpsWindowStart_ = now;
   ++tpsTicks_;
+  // Until the first half second is full, the rate so far (a short headless run shows one too).
+  if (tps_ == 0.0 && now > tpsWindowStart_) tpsProvisional_ = double(tpsTicks_) * 1000.0 / (now - tpsWindowStart_);
   if (now - tpsWindowStart_ >= 500.0) {
     tps_ = double(tpsTicks_) * 1000.0 / (now - tpsWindowStart_);
     tpsTicks_ = 0;

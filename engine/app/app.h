@@ -81,7 +81,7 @@ class App {
   double framesPerSecond() const { return fps_; }
   // Ticks per second of wall time, over the last half second: 60 in a window that keeps up, as
   // fast as the ticks run headless.
-  double ticksPerSecond() const { return tps_; }
+  double ticksPerSecond() const { return tps_ > 0.0 ? tps_ : tpsProvisional_; }
   bool headless() const { return platform_ && platform_->headless(); }
   // Paths of the screenshots written so far.
   const std::vector<std::string>& screenshots() const { return screenshots_; }
@@ -119,6 +119,7 @@ class App {
   double lastTickMs_ = 0.0;
   double fps_ = 0.0;
   double tps_ = 0.0;
+  double tpsProvisional_ = 0.0;
   double tpsWindowStart_ = -1.0;  // wall-clock ms where the current tick-rate window began
   int tpsTicks_ = 0;
   uint64_t tick_ = 0;

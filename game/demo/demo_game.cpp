@@ -501,6 +501,16 @@ bool DemoGame::setup(app::App& app, std::string* error) {
     line["splits"] = std::move(splits);
     line["looks_cycled"] = looksShown_;  // every look Q/E switched an object to, sorted
     line["notice"] = tick_ < noticeUntil_ ? notice_ : std::string();
+    // The HUD's boxes and the extent of the text in each (x, y, w, h in pixels), with the frame size:
+    // tests check that text fits its box and boxes fit the frame.
+    nlohmann::json hud = nlohmann::json::array();
+    for (const HudItem& item : hudLayout_) {
+      hud.push_back({{"what", item.what},
+                     {"box", {item.box.x, item.box.y, item.box.z, item.box.w}},
+                     {"text", {item.content.x, item.content.y, item.content.z, item.content.w}}});
+    }
+    const glm::ivec2 frame = app_->platform().frameSize();
+    line["hud"] = {{"frame", {frame.x, frame.y}}, {"items", std::move(hud)}};
     const auto& stats = splits_->budget().stats();
     line["budget"] = {{"deferred_total", deferredTotal_},
                       {"max_queue", maxQueue_},
@@ -705,8 +715,43 @@ void DemoGame::render(app::TickContext& c) {
   drawHud(c);
 }
 
-void DemoGame::drawHud(app::TickContext& c) {
-  render::Renderer& r = c.renderer;
+namespace {
+
+// The HUD's size follows the frame: 2 at 1280 x 720 (its design size), from 1 to 3.
+float hudScaleFor(glm::ivec2 frame) {
+  return std::clamp(std::min(float(frame.x) / 640.f, float(frame.y) / 360.f), 1.f, 3.f);
+}
+
+// stb_easy_font glyphs are about 8 px high (descenders included) at scale 1.
+constexpr float kGlyphHeight = 8.f;
+
+}  // namespace
+
+void DemoGame::hudBox(app::TickContext& c, const char* what, const glm::vec4& box, const glm::vec4& color) {
+  c.renderer.submitOverlayRect(box, color);
+  hudLayout_.push_back({what, box, glm::vec4(box.x, box.y, 0.f, 0.f)});
+}
+
+void DemoGame::hudText(app::TickContext& c, const std::string& text, glm::vec2 at, float scale, const glm::vec4& color) {
+  c.renderer.submitText(text, at, scale, color);
+  const glm::vec4 rect(at, render::Renderer::textWidth(text, scale), kGlyphHeight * scale);
+  // Text drawn inside the last box grows that box's content; text on its own is a box of its own.
+  if (!hudLayout_.empty() && hudLayout_.back().open) {
+    glm::vec4& content = hudLayout_.back().content;
+    if (content.z == 0.f && content.w == 0.f) {
+      content = rect;
+    } else {
+      const glm::vec2 lo = glm::min(glm::vec2(content), glm::vec2(rect));
+      const glm::vec2 hi = glm::max(glm::vec2(content) + glm::vec2(content.z, content.w),
+                                    glm::vec2(rect) + glm::vec2(rect.z, rect.w));
+      content = glm::vec4(lo, hi - lo);
+    }
+  } else {
+    hudLayout_.push_back({"text", rect, rect, false});
+  }
+}
+
+void DemoGame::drawStatsPanel(app::TickContext& c, float u) {
   const auto& stats = splits_->budget().stats();
   uint32_t pieces = 0;
   for (auto [e, origin] : c.world.view<components::SplitOrigin>()) {
@@ -725,14 +770,14 @@ void DemoGame::drawHud(app::TickContext& c) {
   std::snprintf(texts[3], sizeof(texts[3]), "pieces %u   tick %llu", pieces, static_cast<unsigned long long>(c.tick));
   // The panel fits its longest line: the counts as they are, the timings at their widest usual
   // figures (so that its size does not change with the wall clock).
-  float panel = 248.f;  // the graph's width
+  const float gw = 120.f * u, gh = 12.f * u;  // the split-time graph
+  float panel = gw + 4.f * u;
   const char* widest[] = {texts[1], texts[3], "FPS 9999   tick 99.99 ms", "split ms last 99.99  max 99.99"};
-  for (const char* text : widest)
-    panel = std::max(panel, render::Renderer::textWidth(text, 2.f));
-  r.submitOverlayRect(glm::vec4(8, 8, panel + 16.f, 118), dim);
-  for (int k = 0; k < 4; ++k) r.submitText(texts[k], {16, 14.f + 20.f * float(k)}, 2.f, white);
+  for (const char* text : widest) panel = std::max(panel, render::Renderer::textWidth(text, u));
+  hudBox(c, "stats", glm::vec4(4.f * u, 4.f * u, panel + 8.f * u, 59.f * u), dim);
+  for (int k = 0; k < 4; ++k) hudText(c, texts[k], {8.f * u, (7.f + 10.f * float(k)) * u}, u, white);
   // Graph: split ms per tick against the budget line.
-  const float gx = 16.f, gy = 96.f, gw = 240.f, gh = 24.f;
+  const float gx = 8.f * u, gy = 48.f * u;
   const float budget = float(splits_->budget().settings().millisecondsPerTick);
   const float scale = gh / (budget * 2.f);
   std::vector<glm::vec2> lines;
@@ -741,14 +786,42 @@ void DemoGame::drawHud(app::TickContext& c) {
     lines.push_back({x0, gy + gh - std::min(gh, splitMsHistory_[i] * scale)});
     lines.push_back({x1, gy + gh - std::min(gh, splitMsHistory_[i + 1] * scale)});
   }
-  r.submitOverlayLines(lines, glm::vec4(0.4f, 1.f, 0.5f, 1.f));
+  c.renderer.submitOverlayLines(lines, glm::vec4(0.4f, 1.f, 0.5f, 1.f));
   const glm::vec2 budgetLine[2] = {{gx, gy + gh - budget * scale}, {gx + gw, gy + gh - budget * scale}};
-  r.submitOverlayLines(budgetLine, glm::vec4(1.f, 0.4f, 0.3f, 1.f));
+  c.renderer.submitOverlayLines(budgetLine, glm::vec4(1.f, 0.4f, 0.3f, 1.f));
+  hudLayout_.back().open = false;
+}
 
+void DemoGame::drawHelp(app::TickContext& c, float u) {
+  const char* help[] = {"WASD move, mouse look",     "hold Space: split mode, drag left button to cut",
+                        "right button: push",        "1-7: spawn cube, sphere, cylinder, melon,",
+                        "     figure, skinned, torus", "Q/E: cycle the material under the crosshair",
+                        "Esc: free the mouse; Esc again: quit", "H: this help"};
+  float width = 0.f;
+  for (const char* h : help) width = std::max(width, render::Renderer::textWidth(h, u));
+  const float pad = 7.5f * u, line = 14.f * u;
+  const glm::vec2 size(width + 2.f * pad, line * float(std::size(help)) + 2.f * pad - (line - kGlyphHeight * u));
+  const glm::vec2 corner = glm::vec2(c.frameSize) * 0.5f - 0.5f * size;
+  hudBox(c, "help", glm::vec4(corner, size), glm::vec4(0, 0, 0, 0.6f));
+  float y = corner.y + pad;
+  for (const char* h : help) {
+    hudText(c, h, {corner.x + pad, y}, u, glm::vec4(1.f));
+    y += line;
+  }
+  hudLayout_.back().open = false;
+}
+
+void DemoGame::drawHud(app::TickContext& c) {
+  render::Renderer& r = c.renderer;
+  hudLayout_.clear();
+  const float u = hudScaleFor(c.frameSize);  // the text scale; 2 at 1280 x 720
+  drawStatsPanel(c, u);
   // Crosshair, drag line, help.
+  const glm::vec4 white(1.f);
   const glm::vec2 mid = glm::vec2(c.frameSize) * 0.5f;
-  const glm::vec2 cross[4] = {mid - glm::vec2(8, 0), mid + glm::vec2(8, 0), mid - glm::vec2(0, 8),
-                              mid + glm::vec2(0, 8)};
+  const float arm = 4.f * u;
+  const glm::vec2 cross[4] = {mid - glm::vec2(arm, 0), mid + glm::vec2(arm, 0), mid - glm::vec2(0, arm),
+                              mid + glm::vec2(0, arm)};
   if (!showHelp_) r.submitOverlayLines(cross, white);  // not over the help text
   if (dragging_) {
     const glm::vec2 drag[2] = {dragStart_, dragEnd_};
@@ -756,29 +829,14 @@ void DemoGame::drawHud(app::TickContext& c) {
   }
   const glm::vec4 yellow(1, 0.9f, 0.2f, 1);
   auto centred = [&](const std::string& text, float y) {
-    r.submitText(text, {mid.x - 0.5f * render::Renderer::textWidth(text, 2.f), y}, 2.f, yellow);
+    hudText(c, text, {mid.x - 0.5f * render::Renderer::textWidth(text, u), y}, u, yellow);
   };
-  if (splitMode_) centred("SPLIT MODE: drag to cut", 140.f);
-  if (mouseFree_) centred("MOUSE FREE: click to look around, Esc again to quit", 164.f);
-  if (c.tick < noticeUntil_) centred(notice_, mid.y + 24.f);
+  if (splitMode_) centred("SPLIT MODE: drag to cut", 70.f * u);
+  if (mouseFree_) centred("MOUSE FREE: click to look around, Esc again to quit", 82.f * u);
+  if (c.tick < noticeUntil_) centred(notice_, mid.y + 12.f * u);
   // A start-up hint for the first ten seconds.
-  if (c.tick < 600 && !showHelp_) centred("H: help   Esc: free the mouse (twice: quit)", float(c.frameSize.y) - 34.f);
-  if (showHelp_) {
-    const char* help[] = {"WASD move, mouse look",     "hold Space: split mode, drag left button to cut",
-                          "right button: push",        "1-7: spawn cube, sphere, cylinder, melon,",
-                          "     figure, skinned, torus", "Q/E: cycle the material under the crosshair",
-                          "Esc: free the mouse; Esc again: quit", "H: this help"};
-    float width = 0.f;
-    for (const char* h : help) width = std::max(width, render::Renderer::textWidth(h, 2.f));
-    const float height = 28.f * float(std::size(help)) + 20.f;
-    const glm::vec2 corner = mid - 0.5f * glm::vec2(width + 30.f, height);
-    r.submitOverlayRect(glm::vec4(corner, width + 30.f, height), glm::vec4(0, 0, 0, 0.6f));
-    float y = corner.y + 14.f;
-    for (const char* h : help) {
-      r.submitText(h, {corner.x + 15.f, y}, 2.f, white);
-      y += 28.f;
-    }
-  }
+  if (c.tick < 600 && !showHelp_) centred("H: help   Esc: free the mouse (twice: quit)", float(c.frameSize.y) - 17.f * u);
+  if (showHelp_) drawHelp(c, u);
 }
 
 void DemoGame::dumpExtension(ecs::Entity e, nlohmann::json& out) {

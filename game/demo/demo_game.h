@@ -71,6 +71,11 @@ class DemoGame {
   void gameplay(app::TickContext& c);
   void render(app::TickContext& c);
   void drawHud(app::TickContext& c);
+  void drawStatsPanel(app::TickContext& c, float scale);
+  void drawHelp(app::TickContext& c, float scale);
+  // A HUD rectangle, and text (inside the last open box, or on its own), both recorded in hudLayout_.
+  void hudBox(app::TickContext& c, const char* what, const glm::vec4& box, const glm::vec4& color);
+  void hudText(app::TickContext& c, const std::string& text, glm::vec2 at, float scale, const glm::vec4& color);
   void dragCut(app::TickContext& c, glm::vec2 from, glm::vec2 to);
   glm::vec3 rayDirection(glm::vec2 pixel, glm::ivec2 frame) const;
   ecs::Entity entityUnderCrosshair(glm::vec3* hitPoint = nullptr);
@@ -122,6 +127,14 @@ class DemoGame {
 
   // HUD history: split milliseconds of the last ticks.
   std::deque<float> splitMsHistory_;
+  // The last frame's HUD layout (pixels): each box and the extent of the text drawn in it.
+  struct HudItem {
+    std::string what;
+    glm::vec4 box;
+    glm::vec4 content;
+    bool open = true;  // text drawn next goes into this box
+  };
+  std::vector<HudItem> hudLayout_;
   uint32_t splitsThisTick_ = 0;
   double lastSplitMs_ = 0.0;
   double maxSplitMs_ = 0.0;

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -250,6 +251,43 @@ TEST(DemoReplay, MissedCutsAndPushesGiveFeedback) {
     const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
     ASSERT_TRUE(dump.is_object()) << c.name;
     EXPECT_EQ(dump.value("notice", "?"), c.notice) << c.name;
+  }
+}
+
+// The HUD at any window size: its stats panel, the help box and the banners fit the frame, and
+// every text fits the box it is drawn in (the dump's "hud" layout, in pixels). Help open, split
+// mode on and a notice shown, so every box is there.
+TEST(DemoReplay, HudTextFitsItsBoxesAtEveryFrameSize) {
+  const fs::path dir = scratchDir("hud");
+  const fs::path replayFile = dir / "hud.replay";
+  std::ofstream(replayFile) << "cleave-replay 1\nscene demo\nseed 1\nticks 30\n5 kd:h\n6 ku:h\n"
+                               "10 kd:space\n12 md:left@20,20\n14 mm:60,20,40,0\n16 mu:left@60,20\n";
+  const std::pair<int, int> sizes[] = {{480, 270}, {640, 360}, {800, 600}, {1280, 720}, {1920, 1080}, {2560, 1080}};
+  for (const auto& [w, h] : sizes) {
+    const std::string size = std::to_string(w) + "x" + std::to_string(h);
+    const RunResult r = run("--headless --width " + std::to_string(w) + " --height " + std::to_string(h) +
+                            " --replay \"" + replayFile.string() + "\" --dump-state \"" + (dir / "state.jsonl").string() +
+                            "\" --screenshot-dir \"" + (dir / size).string() + "\" --screenshot-every 1000");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
+    ASSERT_TRUE(dump.is_object()) << size;
+    const auto& items = dump.at("hud").at("items");
+    std::set<std::string> kinds;
+    for (const auto& item : items) {
+      const std::string what = item.at("what").get<std::string>();
+      kinds.insert(what);
+      const auto box = item.at("box").get<std::array<double, 4>>();
+      const auto text = item.at("text").get<std::array<double, 4>>();
+      EXPECT_GE(box[0], 0.0) << size << " " << what;
+      EXPECT_GE(box[1], 0.0) << size << " " << what;
+      EXPECT_LE(box[0] + box[2], w) << size << " " << what << " runs out of the frame";
+      EXPECT_LE(box[1] + box[3], h) << size << " " << what << " runs out of the frame";
+      EXPECT_GE(text[0], box[0]) << size << " " << what;
+      EXPECT_GE(text[1], box[1]) << size << " " << what;
+      EXPECT_LE(text[0] + text[2], box[0] + box[2]) << size << " the text of " << what << " runs out of its box";
+      EXPECT_LE(text[1] + text[3], box[1] + box[3]) << size << " the text of " << what << " runs out of its box";
+    }
+    EXPECT_TRUE(kinds.count("stats") && kinds.count("help") && kinds.count("text")) << size << ": boxes missing";
   }
 }
 
