@@ -107,8 +107,8 @@ bool App::init(const AppOptions& options, const std::string& title, std::string*
 }
 
 // An explicit --render-scale is used as given. Auto: a window on a software rasteriser draws the
-// scene at kSoftwareRenderScale (real time needs it there); headless runs and GPUs draw at 1, so
-// screenshots and golden images keep their full detail. A window composes its frames straight
+// scene at a dynamic scale (render/dynamic_scale.h: real time needs it there); headless runs and
+// GPUs draw at 1, so screenshots and golden images keep their full detail. A window composes its frames straight
 // into the window's framebuffer (no extra copy); on a software rasteriser it does not wait for a
 // refresh that no display paces (the fixed ticks pace the loop).
 void App::applyRenderScale() {
@@ -119,12 +119,13 @@ void App::applyRenderScale() {
     if (software) platform_->setVsync(false);
   }
   float scale = options_.renderScale;
-  if (scale <= 0.f) {
-    scale = (!platform_->headless() && software) ? kSoftwareRenderScale : 1.f;
-    if (scale < 1.f) {
-      std::fprintf(stderr, "cleave: %s is a software rasteriser: the scene is drawn at %.2f x the window "
-                   "(--render-scale 1 for full resolution)\n", device.c_str(), double(scale));
-    }
+  if (scale <= 0.f && !platform_->headless() && software) {
+    dynamicScale_.emplace();
+    scale = dynamicScale_->scale();
+    std::fprintf(stderr, "cleave: %s is a software rasteriser: the scene is drawn at 0.35 to 0.6 x the window as "
+                 "the frame time allows (--render-scale 1 for full resolution)\n", device.c_str());
+  } else if (scale <= 0.f) {
+    scale = 1.f;
   }
   renderer_->setRenderScale(scale);
 }
@@ -226,6 +227,7 @@ void App::runWindowLoop() {
   while (!quit_ && !platform_->closeRequested()) {
     platform_->pollEvents([this](const input::InputEvent& e) { liveQueue_.push(e); });
     const double now = platform_->timeSeconds();
+    const double workStart = now;
     accumulator += std::min(now - previous, kMaxCatchUpTicks * kTickSeconds);
     previous = now;
     const int due = int(accumulator / kTickSeconds);
@@ -243,6 +245,8 @@ void App::runWindowLoop() {
       const double presented = platform_->timeSeconds();
       if (lastPresent >= 0.0) frameMs_.push_back((presented - lastPresent) * 1000.0);
       lastPresent = presented;
+      if (dynamicScale_ && dynamicScale_->addFrame((presented - workStart) * 1000.0))
+        renderer_->setRenderScale(dynamicScale_->scale());
     }
     if (now - fpsWindowStart >= 0.5) {
       fps_ = fpsFrames / (now - fpsWindowStart);
@@ -297,8 +301,9 @@ int App::run() {
     double sum = 0.0;
     for (double ms : sorted) sum += ms;
     const size_t p95 = std::min(sorted.size() - 1, size_t(double(sorted.size()) * 0.95));
-    std::printf("frames: %zu  mean %.2f ms  median %.2f ms  p95 %.2f ms  max %.2f ms\n", sorted.size(),
-                sum / double(sorted.size()), sorted[sorted.size() / 2], sorted[p95], sorted.back());
+    std::printf("frames: %zu  mean %.2f ms  median %.2f ms  p95 %.2f ms  max %.2f ms  render scale %.2f\n",
+                sorted.size(), sum / double(sorted.size()), sorted[sorted.size() / 2], sorted[p95], sorted.back(),
+                double(renderer_->renderScale()));
   }
   if (options_.printStateHash)
     std::printf("state-hash: %016llx\n", static_cast<unsigned long long>(stateHash()));

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@
 #include "engine/input/input_state.h"
 #include "engine/input/input_source.h"
 #include "engine/input/replay.h"
+#include "engine/render/dynamic_scale.h"
 #include "engine/render/renderer.h"
 
 namespace cleave::app {
@@ -118,6 +120,7 @@ class App {
   std::array<double, size_t(Phase::Count)> phaseMs_{};
   double lastTickMs_ = 0.0;
   double fps_ = 0.0;
+  std::optional<render::DynamicRenderScale> dynamicScale_;  // auto scale on a software rasteriser
   double tps_ = 0.0;
   double tpsProvisional_ = 0.0;
   double tpsWindowStart_ = -1.0;  // wall-clock ms where the current tick-rate window began

@@ -45,8 +45,8 @@ std::string appOptionsUsage() {
          "  --width W --height H       frame size in pixels (default 1280x720)\n"
          "  --seed N                   seed for the scene's random choices\n"
          "  --render-scale S|auto      draw the 3D scene at S x the frame size (0.25 to 1) and the\n"
-         "                             HUD at full size; auto (default): 0.5 in a window on a\n"
-         "                             software rasteriser (llvmpipe), 1 otherwise\n"
+         "                             HUD at full size; auto (default): 0.35 to 0.6 by the frame\n"
+         "                             time in a window on a software rasteriser (llvmpipe), else 1\n"
          "  --split-threads N          worker threads for split jobs (0: on the main thread;\n"
          "                             default: hardware threads minus one); results are the same\n";
 }

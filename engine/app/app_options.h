@@ -24,14 +24,12 @@ struct AppOptions {
   uint64_t seed = 1;               // --seed N: for anything random in the scene
   int splitThreads = -1;           // --split-threads N: split worker threads (-1: the engine's default)
   float renderScale = 0.f;         // --render-scale S: the 3D scene drawn at S x the frame size (0.25 to
-                                   // 1), the HUD at full size; 0 (auto): kSoftwareRenderScale in a
-                                   // window on a CPU rasteriser (llvmpipe, ...), 1 otherwise
+                                   // 1), the HUD at full size; 0 (auto): in a window on a CPU
+                                   // rasteriser (llvmpipe, ...) a dynamic scale from 0.35 to 0.6 by
+                                   // the frame time (render/dynamic_scale.h), 1 otherwise
   std::string sceneName = "default";  // the scene word written into recorded replays (set by the game)
   std::vector<std::string> extra;  // arguments the engine does not know, for the game to read
 };
-
-// The render scale `auto` picks in a window on a software rasteriser: a quarter of the pixels.
-inline constexpr float kSoftwareRenderScale = 0.5f;
 
 struct ParseResult {
   bool ok = true;

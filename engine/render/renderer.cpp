@@ -336,10 +336,9 @@ void Renderer::setRenderScale(float scale) {
   const float clamped = std::clamp(std::isfinite(scale) ? scale : 1.f, kMinRenderScale, 1.f);
   if (clamped == r.renderScale) return;
   r.renderScale = clamped;
-  // The shadow map follows the scale (a power of two, at least 256 texels); the scene target is
-  // resized at the next frame.
-  int size = kShadowMapSize;
-  while (size > 256 && float(size) > float(kShadowMapSize) * clamped * 1.001f) size /= 2;
+  // The shadow map follows the scale in three steps (so that a dynamic scale moving a little does
+  // not remake it); the scene target is resized at the next frame.
+  const int size = clamped > 0.7f ? kShadowMapSize : clamped >= 0.3f ? kShadowMapSize / 2 : kShadowMapSize / 4;
   if (size != r.shadowSize) r.createShadowMap(size, nullptr);
 }
 

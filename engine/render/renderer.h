@@ -94,7 +94,7 @@ class Renderer {
   // target of scale x the frame size and stretched over the frame with linear filtering; the HUD
   // (overlay lines, rectangles, text) is drawn after it at the frame's full resolution. Clamped to
   // [kMinRenderScale, 1]; 1 (the default) draws the scene straight into the frame. Below 1 the
-  // shadow map shrinks with the scale (a power of two from 1024 down, at least 256 texels) and its
+  // shadow map shrinks with the scale (1024 texels above 0.7, 512 from 0.3, 256 below) and its
   // filtering drops from four taps to one. Takes effect at the next beginFrame.
   static constexpr float kMinRenderScale = 0.25f;
   void setRenderScale(float scale);

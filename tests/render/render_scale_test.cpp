@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/geometry/primitives.h"
+#include "engine/render/dynamic_scale.h"
 #include "engine/render/gl_context.h"
 #include "engine/render/renderer.h"
 #include "tests/render/image_compare.h"
@@ -166,9 +167,9 @@ TEST(RenderScale, IsClampedAndShrinksTheShadowMapToAFloor) {
   r.setRenderScale(NAN);
   EXPECT_FLOAT_EQ(r.renderScale(), 1.f);
   r.setRenderScale(0.75f);
-  EXPECT_EQ(r.shadowMapSize(), 512);  // the power of two at or below 1024 x 0.75
-  r.setRenderScale(1.f);
   EXPECT_EQ(r.shadowMapSize(), 1024);
+  r.setRenderScale(0.35f);
+  EXPECT_EQ(r.shadowMapSize(), 512);
   // A frame at the smallest scale still draws (the scene target is at least one pixel).
   const std::vector<uint8_t> tiny = scene.draw(0.25f);
   EXPECT_EQ(tiny.size(), size_t(kWidth) * kHeight * 4);
@@ -183,6 +184,28 @@ TEST(RenderScale, SoftwareRasterisersAreRecognisedByTheirGlRendererString) {
   EXPECT_FALSE(Renderer::isSoftwareRasterizer("NVIDIA GeForce RTX 3060/PCIe/SSE2"));
   EXPECT_FALSE(Renderer::isSoftwareRasterizer("AMD Radeon RX 6600 (radeonsi, navi23, LLVM 15.0.6)"));
   EXPECT_FALSE(Renderer::isSoftwareRasterizer(""));
+}
+
+
+TEST(DynamicRenderScale, StepsDownWhenFramesRunLongAndUpWhenTheyAreShortWithinItsBounds) {
+  DynamicRenderScale dynamic;
+  EXPECT_FLOAT_EQ(dynamic.scale(), 0.5f);
+  // Slow frames (25 ms of work against a 15 ms target): down by 10% a window, to the floor.
+  int changes = 0;
+  for (int k = 0; k < DynamicRenderScale::kWindow * 20; ++k) changes += dynamic.addFrame(25.0) ? 1 : 0;
+  EXPECT_FLOAT_EQ(dynamic.scale(), 0.35f);
+  EXPECT_EQ(changes, 4);  // 0.45, 0.405, 0.3645, then the floor
+  // A window of frames in the band (between 65% and 100% of the target) keeps the scale.
+  for (int k = 0; k < DynamicRenderScale::kWindow; ++k) EXPECT_FALSE(dynamic.addFrame(12.0));
+  EXPECT_FLOAT_EQ(dynamic.scale(), 0.35f);
+  // One slow frame in a window of fast ones does not move the median.
+  for (int k = 0; k < DynamicRenderScale::kWindow; ++k) dynamic.addFrame(k == 3 ? 80.0 : 5.0);
+  EXPECT_GT(dynamic.scale(), 0.35f);
+  // Fast frames: up to the ceiling and no further.
+  for (int k = 0; k < DynamicRenderScale::kWindow * 40; ++k) dynamic.addFrame(5.0);
+  EXPECT_FLOAT_EQ(dynamic.scale(), 0.6f);
+  // Not a number is not a frame.
+  EXPECT_FALSE(dynamic.addFrame(NAN));
 }
 
 }  // namespace
