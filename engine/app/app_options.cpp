@@ -32,6 +32,7 @@ bool parseRenderScale(const std::string& text, float& scale) {
 
 std::string appOptionsUsage() {
   return "engine options:\n"
+         "  --version                  print the version and exit\n"
          "  --headless                 no window; ticks run as fast as they can\n"
          "  --replay FILE              play the input recorded in FILE\n"
          "  --record FILE              record this run's input to FILE\n"
@@ -76,6 +77,8 @@ ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
     };
     if (arg == "--help" || arg == "-h") {
       result.helpRequested = true;
+    } else if (arg == "--version") {
+      result.versionRequested = true;
     } else if (arg == "--headless") {
       out.headless = true;
     } else if (arg == "--print-state-hash") {

@@ -34,6 +34,7 @@ struct AppOptions {
 struct ParseResult {
   bool ok = true;
   bool helpRequested = false;
+  bool versionRequested = false;  // --version: print the name and kVersion (cleave_version.h), exit
   std::string error;  // names the option and the reason
 };
 

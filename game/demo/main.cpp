@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "cleave_version.h"
 #include "engine/app/app.h"
 #include "game/demo/demo_game.h"
 
@@ -15,6 +16,10 @@ int main(int argc, char** argv) {
   if (!parsed.ok) {
     std::fprintf(stderr, "cleave-demo: %s\n", parsed.error.c_str());
     return 2;
+  }
+  if (parsed.versionRequested) {
+    std::printf("cleave-demo %s\n", cleave::kVersion);
+    return 0;
   }
   if (parsed.helpRequested) {
     std::printf("usage: cleave-demo [options]\n\n%s", cleave::app::appOptionsUsage().c_str());

@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cleave_version.h"
 #include "engine/anim/animation_clip.h"
 #include "engine/anim/skeleton.h"
 #include "engine/assets/mesh_io.h"
@@ -71,6 +72,7 @@ constexpr const char* kUsage =
     "                      and every piece; the weld from nothing is timed on its own)\n"
     "  --json              print one JSON object on stdout instead of text\n"
     "  --help              show this help\n"
+    "  --version           print the version\n"
     "\n"
     "Exit status: 0 success, 1 bad data or failed split, 2 bad arguments.\n";
 
@@ -92,6 +94,7 @@ struct Arguments {
   double poseSeconds = 0.0;
   bool json = false;
   bool help = false;
+  bool version = false;
 };
 
 bool parseNumber(std::string_view text, double& value) {
@@ -140,6 +143,8 @@ bool parseArguments(int argc, char** argv, Arguments& args, std::string& error) 
     };
     if (arg == "--help" || arg == "-h") {
       args.help = true;
+    } else if (arg == "--version") {
+      args.version = true;
     } else if (arg == "--plane") {
       if (!needs(4)) return false;
       double values[4];
@@ -227,7 +232,7 @@ bool parseArguments(int argc, char** argv, Arguments& args, std::string& error) 
       return false;
     }
   }
-  if (args.help) return true;
+  if (args.help || args.version) return true;
   if (args.input.empty()) {
     error = "no input file";
     return false;
@@ -289,6 +294,10 @@ int main(int argc, char** argv) {
   }
   if (args.help) {
     std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (args.version) {
+    std::printf("cleave-split %s\n", cleave::kVersion);
     return 0;
   }
 

@@ -23,6 +23,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "cleave_version.h"
 #include "tools/fuzz/fuzz_driver.h"
 
 namespace {
@@ -143,6 +144,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
+    if (arg == "--version") {
+      std::printf("%s %s\n", argv[0], cleave::kVersion);
+      return 0;
+    }
     if ((arg == "--iterations" || arg == "--seed") && i + 1 < argc) {
       iterationsGiven = iterationsGiven || arg == "--iterations";
       if (!parseCount(argv[++i], arg == "--seed" ? seed : iterations)) return usage(argv[0]);
