@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/geometry/primitives.h"
+#include "game/arena/arena_surroundings.h"
 
 namespace cleave::arena {
 
@@ -298,6 +299,24 @@ ArenaMaterials createArenaMaterials(render::Renderer& r, const std::vector<glm::
   m.pillar.baseColor = glm::vec4(1.0f, 0.96f, 0.9f, 1.f);
   m.pillar.specular = 0.5f;
   m.pillar.shininess = 50.f;
+  m.stands = m.wall;
+  m.stands.baseColor = glm::vec4(0.98f, 0.88f, 0.74f, 1.f);
+  m.stands.castsShadow = false;  // drawn for the view only: no shadows over the sand
+  m.standsRiser = m.stands;
+  m.standsRiser.baseColor = glm::vec4(0.66f, 0.56f, 0.46f, 1.f);
+  m.turf.albedo = upload(makeTurfTexture(256, 18));
+  m.turf.specular = 0.04f;
+  m.turf.castsShadow = false;
+  // The crowd: tunics of white, madder red, woad blue and ochre (crowdMesh's ids 0..3), then skin.
+  for (glm::vec4 c : {glm::vec4(0.85f, 0.82f, 0.74f, 1.f), glm::vec4(0.62f, 0.14f, 0.10f, 1.f),
+                      glm::vec4(0.16f, 0.24f, 0.50f, 1.f), glm::vec4(0.72f, 0.52f, 0.18f, 1.f),
+                      glm::vec4(0.62f, 0.42f, 0.30f, 1.f)}) {
+    render::Material mat;
+    mat.baseColor = c;
+    mat.specular = 0.05f;
+    mat.castsShadow = false;
+    m.crowd.push_back(mat);
+  }
   m.gate.albedo = wood;
   m.gate.baseColor = glm::vec4(0.35f, 0.22f, 0.14f, 1.f);
   m.gate.specular = 0.05f;

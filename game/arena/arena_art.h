@@ -44,6 +44,8 @@ geometry::MeshData gladiatorMesh();
 // Materials of the arena, created once on the renderer.
 struct ArenaMaterials {
   render::Material floor, wall, wallTrim, pillar, gate;
+  render::Material stands, standsRiser, turf;         // outside the wall (arena_surroundings.h)
+  std::vector<render::Material> crowd;               // by crowdMesh's submesh id
   render::Material crate, crateCap, urn, urnCap;
   render::Material armour, skin, cloth, flesh;       // enemies; flesh is their cap (an energy burn)
   render::Material startCube, quitCube, metalCap;

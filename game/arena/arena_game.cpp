@@ -14,6 +14,8 @@
 #include "components/splitable.h"
 #include "engine/ecs/hierarchy.h"
 #include "engine/geometry/primitives.h"
+#include "game/arena/arena_layout.h"
+#include "game/arena/arena_surroundings.h"
 
 namespace cleave::arena {
 
@@ -21,9 +23,6 @@ namespace {
 
 namespace prim = geometry::primitives;
 
-constexpr float kPi = 3.14159265358979f;
-constexpr float kArenaRadius = 12.0f;     // m, the inner face of the wall
-constexpr float kPlayerSpeed = 5.0f;      // m/s
 constexpr float kPlayerRadius = 0.35f;    // m
 constexpr float kDiscHeight = 1.0f;       // m above the floor: waist height of the gladiators
 constexpr float kDiscRadius = 0.45f;      // m
@@ -33,15 +32,10 @@ constexpr int kDiscBounces = 3;
 constexpr float kDiscFlightSeconds = 2.6f;  // it turns back after this even without its bounces
 constexpr int kSwordTicks = 10;
 constexpr int kSpinTicks = 18;
-constexpr uint64_t kSwordCooldown = 20;   // ticks
-constexpr uint64_t kSpinCooldown = 240;   // ticks
 constexpr float kSpinRadius = 2.7f;       // m
 constexpr uint64_t kPieceLifeTicks = 420;   // 7 s before a piece starts to shrink
 constexpr uint64_t kPieceShrinkTicks = 45;
 constexpr size_t kMaxPieces = 260;          // more than this: the oldest go early
-constexpr uint64_t kStartingTicks = 80;     // the Start cube's pieces fall, the camera moves
-constexpr uint64_t kQuitTicks = 50;
-constexpr uint64_t kWaveGapTicks = 120;
 constexpr int kHitFreezeTicks = 60;         // a frozen enemy whose split never comes walks on
 constexpr double kCrumbVolume = 1.5e-3;     // m^3: pieces smaller than this are not cut again
 constexpr double kLimbShare = 0.2;          // gladiator pieces under this share of its mass: no ragdoll
@@ -57,24 +51,6 @@ glm::quat rotationFromUp(const glm::vec3& to) {
   return glm::normalize(glm::quat(s * 0.5f, axis.x / s, axis.y / s, axis.z / s));
 }
 
-// Compass direction on the floor: angle 0 is north (-z), pi/2 east (+x).
-glm::vec2 compass(float angle) { return glm::vec2(std::sin(angle), -std::cos(angle)); }
-
-glm::vec2 forwardOf(float yaw) { return glm::vec2(std::sin(yaw), std::cos(yaw)); }
-
-const char* tagName(ArenaTag::Kind k) {
-  switch (k) {
-    case ArenaTag::Level: return "level";
-    case ArenaTag::Prop: return "prop";
-    case ArenaTag::MenuCube: return "menu_cube";
-    case ArenaTag::Enemy: return "enemy";
-    case ArenaTag::Piece: return "piece";
-    case ArenaTag::Player: return "player";
-    case ArenaTag::Weapon: return "weapon";
-  }
-  return "?";
-}
-
 }  // namespace
 
 uint8_t ArenaGame::weaponIndex(const std::string& splitterName) {
@@ -87,6 +63,7 @@ const char* toString(MatchState state) {
   switch (state) {
     case MatchState::Menu: return "menu";
     case MatchState::Starting: return "starting";
+    case MatchState::Intermission: return "intermission";
     case MatchState::Playing: return "playing";
     case MatchState::Defeated: return "defeated";
     case MatchState::Quitting: return "quitting";
@@ -145,6 +122,17 @@ ecs::Entity ArenaGame::addStatic(const std::string& name, geometry::MeshData mes
 }
 
 void ArenaGame::buildLevel() {
+  buildFloorAndWall();
+  buildGatesAndPillars();
+  // Outside the wall: the stands with their crowd, and turf out to the fog, so that no view from
+  // inside the arena shows the void.
+  const StandsLayout stands;
+  addStatic("stands", standsMesh(stands), {materials_.stands, materials_.stands, materials_.standsRiser}, false);
+  addStatic("crowd", crowdMesh(stands, 31), materials_.crowd, false);
+  addStatic("turf", groundRing(stands.innerRadius - 0.3f, 160.f, -0.03f, 0.15f), {materials_.turf}, false);
+}
+
+void ArenaGame::buildFloorAndWall() {
   // The sand-stone floor: a disc a little wider than the wall ring, flagstones mapped from above.
   geometry::MeshData floor = prim::cylinder(13.2f, 1.f, 96);
   prim::transform(floor, glm::translate(glm::mat4(1.f), glm::vec3(0.f, -0.5f, 0.f)));
@@ -192,7 +180,11 @@ void ArenaGame::buildLevel() {
     }
   }
   addStatic("wall", std::move(wall), {materials_.wall, materials_.wallTrim}, false);
+}
+
+void ArenaGame::buildGatesAndPillars() {
   geometry::MeshData gates;
+  bool first = true;
   first = true;
   for (int g = 0; g < 4; ++g) {
     const float angle = float(g) * kPi * 0.5f;
@@ -274,6 +266,23 @@ ecs::Entity ArenaGame::spawnProp(PropKind kind, glm::vec3 position, float yaw) {
                       rot, ArenaTag::Prop);
 }
 
+void ArenaGame::spawnProps() {
+  // Crates and urns around the sand, one crate on the north gate's path. Every match starts with
+  // these, whole, where they stand here (resetToMenu).
+  const struct {
+    PropKind kind;
+    glm::vec2 at;
+    float yaw;
+  } props[] = {
+      {PropKind::Crate, {0.8f, -5.2f}, 0.3f},   {PropKind::Crate, {-7.6f, -3.6f}, 0.8f},
+      {PropKind::Crate, {8.2f, 3.2f}, 0.1f},    {PropKind::Crate, {-3.2f, 8.4f}, 1.1f},
+      {PropKind::Crate, {5.0f, -8.8f}, 0.5f},   {PropKind::Urn, {-1.4f, -7.6f}, 0.f},
+      {PropKind::Urn, {6.4f, -5.2f}, 0.f},      {PropKind::Urn, {-8.6f, 2.2f}, 0.f},
+      {PropKind::Urn, {2.8f, 8.2f}, 0.f},       {PropKind::Urn, {-5.2f, -8.6f}, 0.f},
+  };
+  for (const auto& p : props) spawnProp(p.kind, glm::vec3(p.at.x, 0.f, p.at.y), p.yaw);
+}
+
 void ArenaGame::spawnMenuCubes() {
   components::Splitable s;
   s.convexHint = true;
@@ -320,6 +329,7 @@ void ArenaGame::createPlayer() {
 
 bool ArenaGame::setup(app::App& app, std::string* error) {
   app_ = &app;
+  health_ = tuning_.player.health;
   rng_ = app.options().seed * 0x9e3779b97f4a7c15ull + 0x632be59bd9b4e019ull;
   // The budget: 4 ms of main-thread split work a tick, charged by estimate so replays stay exact;
   // the heavy part of a split (the cut, the collider parts, the ragdoll fits) runs on workers.
@@ -347,19 +357,7 @@ bool ArenaGame::setup(app::App& app, std::string* error) {
   enemyMeshes_ = makeEnemyMeshes(character_);
   buildLevel();
   createPlayer();
-  // Props: crates and urns around the sand, one crate on the north gate's path.
-  const struct {
-    PropKind kind;
-    glm::vec2 at;
-    float yaw;
-  } props[] = {
-      {PropKind::Crate, {0.8f, -5.2f}, 0.3f},   {PropKind::Crate, {-7.6f, -3.6f}, 0.8f},
-      {PropKind::Crate, {8.2f, 3.2f}, 0.1f},    {PropKind::Crate, {-3.2f, 8.4f}, 1.1f},
-      {PropKind::Crate, {5.0f, -8.8f}, 0.5f},   {PropKind::Urn, {-1.4f, -7.6f}, 0.f},
-      {PropKind::Urn, {6.4f, -5.2f}, 0.f},      {PropKind::Urn, {-8.6f, 2.2f}, 0.f},
-      {PropKind::Urn, {2.8f, 8.2f}, 0.f},       {PropKind::Urn, {-5.2f, -8.6f}, 0.f},
-  };
-  for (const auto& p : props) spawnProp(p.kind, glm::vec3(p.at.x, 0.f, p.at.y), p.yaw);
+  spawnProps();
   spawnMenuCubes();
   ecs::updateWorldTransforms(app.world());
 
@@ -478,7 +476,7 @@ void ArenaGame::updatePlayer(app::TickContext& c) {
   if (in.held(Key::A)) move.x -= 1.f;
   if (in.held(Key::D)) move.x += 1.f;
   const glm::vec2 before = playerPosition_;
-  if (glm::length(move) > 0.f) playerPosition_ += glm::normalize(move) * kPlayerSpeed * float(c.dt);
+  if (glm::length(move) > 0.f) playerPosition_ += glm::normalize(move) * tuning_.player.speed * float(c.dt);
   for (const Obstacle& o : pillars_) {
     const glm::vec2 d = playerPosition_ - o.centre;
     const float len = glm::length(d);
@@ -504,7 +502,7 @@ void ArenaGame::throwDisc() {
   disc_.splitter = makeSplitter("energy disc", physics::ShapeDef::box(glm::vec3(kDiscRadius, 0.03f, kDiscRadius)),
                                 glm::vec3(disc_.position.x, kDiscHeight, disc_.position.y),
                                 glm::quat(1.f, 0.f, 0.f, 0.f), true);
-  ++discThrows_;
+  ++match_.discThrows;
 }
 
 void ArenaGame::swingSword(bool spin) {
@@ -523,27 +521,27 @@ void ArenaGame::swingSword(bool spin) {
     const glm::quat rot = glm::angleAxis(playerYaw_, glm::vec3(0, 1, 0)) * glm::angleAxis(swing_.tilt, glm::vec3(0, 0, 1));
     makeSplitter("spin attack", physics::ShapeDef::convexHull(points),
                  glm::vec3(playerPosition_.x, 1.05f, playerPosition_.y), rot, false);
-    ++spinAttacks_;
+    ++match_.spinAttacks;
     return;
   }
   // Alternate the slash: down to the left, then down to the right.
-  swing_.tilt = (swordSwings_ % 2 == 0) ? 0.32f : -0.32f;
+  swing_.tilt = (match_.swordSwings % 2 == 0) ? 0.32f : -0.32f;
   const glm::quat rot = glm::angleAxis(playerYaw_, glm::vec3(0, 1, 0)) * glm::angleAxis(swing_.tilt, glm::vec3(0, 0, 1));
   const glm::vec3 centre = glm::vec3(playerPosition_.x, 1.1f, playerPosition_.y) + glm::vec3(f.x, 0.f, f.y) * 1.25f;
   makeSplitter("sword swing", physics::ShapeDef::box(glm::vec3(1.9f, 0.02f, 1.0f)), centre, rot, false);
-  ++swordSwings_;
+  ++match_.swordSwings;
 }
 
 void ArenaGame::updateWeapons(app::TickContext& c) {
   const input::InputState& in = c.input;
   if (in.pressed(input::MouseButton::Left) && c.tick >= swordReadyTick_ && swing_.ticksLeft == 0) {
     swingSword(false);
-    swordReadyTick_ = c.tick + kSwordCooldown;
+    swordReadyTick_ = c.tick + ticksOf(tuning_.player.swordCooldownSeconds);
   }
   if (in.pressed(input::MouseButton::Right) && !disc_.active) throwDisc();
   if (in.pressed(input::Key::Space) && c.tick >= spinReadyTick_ && swing_.ticksLeft == 0) {
     swingSword(true);
-    spinReadyTick_ = c.tick + kSpinCooldown;
+    spinReadyTick_ = c.tick + ticksOf(tuning_.player.spinCooldownSeconds);
   }
 }
 
@@ -595,129 +593,6 @@ void ArenaGame::updateDisc(app::TickContext& c) {
     physics_->setTriggerTransform(s->trigger, physics::BodyTransform{p, rot});
 }
 
-void ArenaGame::startWave(uint64_t tick) {
-  ++wave_;
-  waveBannerTick_ = tick;
-  // Wave 1 comes through the north gate one by one; later waves through all four gates at once.
-  // Every wave mixes the kinds: 4 gladiators a wave number and one skinned warrior more than the
-  // wave number (wave 1: 4 + 2, wave 2: 8 + 3). In wave 1 the second and fifth are skinned; in later
-  // waves the skinned ones come last, one at each gate in turn.
-  const int gladiators = 4 * wave_;
-  const int skinned = wave_ + 1;
-  const int count = gladiators + skinned;
-  for (int i = 0; i < count; ++i) {
-    const int gate = wave_ == 1 ? 0 : i % 4;
-    const int slot = wave_ == 1 ? i : i / 4;
-    const float angle = float(gate) * kPi * 0.5f;
-    const glm::vec2 inward = -compass(angle);
-    const glm::vec2 side(-inward.y, inward.x);
-    const float lateral = ((slot % 2) ? 1.f : -1.f) * (0.7f + 0.9f * float(slot / 2)) + (nextRandom() - 0.5f) * 0.3f;
-    PendingSpawn s;
-    s.kind = (wave_ == 1 ? (i == 1 || i == 4) : i >= gladiators) ? EnemyKind::Skinned : EnemyKind::Gladiator;
-    s.position = compass(angle) * (kArenaRadius - 1.2f) + side * lateral;
-    s.yaw = std::atan2(inward.x, inward.y);
-    s.tick = tick + 30 + uint64_t(wave_ == 1 ? slot * 30 : slot * 6);
-    pendingSpawns_.push_back(s);
-  }
-}
-
-void ArenaGame::updateWaves(app::TickContext& c) {
-  EnemyContext ec = enemyContext();
-  for (size_t i = 0; i < pendingSpawns_.size();) {
-    if (pendingSpawns_[i].tick > c.tick) {
-      ++i;
-      continue;
-    }
-    const PendingSpawn s = pendingSpawns_[i];
-    pendingSpawns_.erase(pendingSpawns_.begin() + long(i));
-    Enemy e = spawnEnemy(ec, enemyMeshes_, s.kind, s.position, s.yaw);
-    if (e.entity.isNull()) continue;
-    c.world.add<ArenaTag>(e.entity, ArenaTag{ArenaTag::Enemy});
-    enemies_.push_back(e);
-  }
-  if (enemies_.empty() && pendingSpawns_.empty()) {
-    if (nextWaveTick_ == 0) nextWaveTick_ = c.tick + (wave_ == 0 ? 1 : kWaveGapTicks);
-    if (c.tick >= nextWaveTick_) {
-      nextWaveTick_ = 0;
-      startWave(c.tick);
-    }
-  }
-  const float damage = updateEnemies(ec, enemies_, playerPosition_, float(c.dt), pillars_, kArenaRadius);
-  if (damage > 0.f) {
-    health_ = std::max(0, health_ - int(damage));
-    hurtFlash_ = 0.35f;
-    if (health_ == 0) {
-      state_ = MatchState::Defeated;
-      stateTick_ = c.tick;
-    }
-  }
-}
-
-void ArenaGame::resetToMenu() {
-  for (const Enemy& e : enemies_) removeEntity(e.entity);
-  enemies_.clear();
-  pendingSpawns_.clear();
-  if (disc_.active) removeEntity(disc_.splitter);
-  disc_ = Disc{};
-  swing_ = Swing{};
-  health_ = 100;
-  score_ = 0;
-  wave_ = 0;
-  nextWaveTick_ = 0;
-  playerPosition_ = glm::vec2(0.f);
-  playerYaw_ = 0.f;
-  state_ = MatchState::Menu;
-  spawnMenuCubes();
-}
-
-void ArenaGame::gameplay(app::TickContext& c) {
-  const float dt = float(c.dt);
-  hurtFlash_ = std::max(0.f, hurtFlash_ - dt);
-  if (swing_.ticksLeft > 0) --swing_.ticksLeft;
-  switch (state_) {
-    case MatchState::Menu:
-      updateCamera(dt);
-      updateMenu(c);
-      playerSpeed_ = 0.f;
-      break;
-    case MatchState::Starting:
-      updateCamera(dt);
-      if (c.tick >= stateTick_ + kStartingTicks) {
-        state_ = MatchState::Playing;
-        stateTick_ = c.tick;
-        removeEntity(quitCube_);  // the menu is over: the cube that was not chosen goes
-        quitCube_ = {};
-      }
-      break;
-    case MatchState::Playing:
-      updateCamera(dt);
-      updatePlayer(c);
-      updateWeapons(c);
-      updateWaves(c);
-      break;
-    case MatchState::Defeated:
-      updateCamera(dt);
-      playerSpeed_ = 0.f;
-      if (c.tick > stateTick_ + 90 &&
-          (c.input.pressed(input::Key::Enter) || c.input.pressed(input::MouseButton::Left))) {
-        resetToMenu();
-        updateCamera(dt);
-      }
-      break;
-    case MatchState::Quitting:
-      updateCamera(dt);
-      if (c.tick >= stateTick_ + kQuitTicks) c.app.requestQuit();
-      break;
-  }
-  updateDisc(c);
-  // The player's body follows the player (it shoves pieces aside but is never cut).
-  if (const auto* rb = c.world.tryGet<components::RigidBody>(player_)) {
-    physics_->setBodyTransform(rb->body, physics::BodyTransform{glm::vec3(playerPosition_.x, 0.87f, playerPosition_.y),
-                                                                glm::quat(1.f, 0.f, 0.f, 0.f)});
-    physics_->setVelocity(rb->body, glm::vec3(0.f), glm::vec3(0.f));
-  }
-}
-
 void ArenaGame::triggers(app::TickContext& c) {
   // Who did a blade touch in the last step? Those enemies stop in their tracks until their split
   // lands (it runs within the budget from the next tick, and the plane should still meet them).
@@ -733,16 +608,14 @@ void ArenaGame::triggers(app::TickContext& c) {
     const uint8_t weapon = splitterName ? weaponIndex(splitterName->value) : 0;
     for (Enemy& e : enemies_) {
       if (e.entity == target && !e.hit) {
-        e.hit = true;
+        freezeEnemy(e, float(kHitFreezeTicks) * float(c.dt));
         e.hitBy = weapon;
-        e.lunge = 0.f;
         e.walkPhase = float(c.tick) * 1e-9f;  // the freeze pose
-        e.attackTimer = float(kHitFreezeTicks) * float(c.dt);
         ++hitsThisTick;
       }
     }
   }
-  maxEnemiesHitInOneTick_ = std::max(maxEnemiesHitInOneTick_, hitsThisTick);
+  match_.maxEnemiesHitInOneTick = std::max(match_.maxEnemiesHitInOneTick, hitsThisTick);
 }
 
 void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
@@ -803,16 +676,17 @@ void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
       physics_->applyImpulse(rb->body, impulse, t->position + glm::vec3(0.f, 0.12f, 0.f));
     }
     const size_t kind = std::min(size_t(enemy->kind), kKindCount - 1);
-    ++killsByKind_[kind][0];
-    if (enemy->hitBy > 0 && enemy->hitBy < kWeaponCount) ++killsByKind_[kind][enemy->hitBy];
+    ++match_.killsByKind[kind][0];
+    if (enemy->hitBy > 0 && enemy->hitBy < kWeaponCount) ++match_.killsByKind[kind][enemy->hitBy];
     enemies_.erase(enemy);
-    ++score_;
-    ++enemiesKilled_;
+    ++match_.score;
+    ++match_.enemiesKilled;
   }
-  if (ev.originalName == "crate" || ev.originalName == "urn") ++propsBroken_;
+  if (ev.originalName == "crate" || ev.originalName == "urn") ++match_.propsBroken;
   if (ev.original == startCube_ && state_ == MatchState::Menu) {
     state_ = MatchState::Starting;
     stateTick_ = tick;
+    ++matchesStarted_;
   } else if (ev.original == quitCube_ && state_ == MatchState::Menu) {
     state_ = MatchState::Quitting;
     stateTick_ = tick;
@@ -820,9 +694,9 @@ void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
 }
 
 void ArenaGame::committed(app::TickContext& c, const std::vector<components::SplitEvent>& events) {
-  const size_t killedBefore = enemiesKilled_;
+  const uint32_t killedBefore = match_.enemiesKilled;
   for (const components::SplitEvent& ev : events) onSplit(ev, c.tick);
-  maxKillsInOneTick_ = std::max(maxKillsInOneTick_, uint32_t(enemiesKilled_ - killedBefore));
+  match_.maxKillsInOneTick = std::max(match_.maxKillsInOneTick, match_.enemiesKilled - killedBefore);
   const auto& stats = splits_->budget().stats();
   deferredTotal_ += stats.deferred;
   maxQueue_ = std::max(maxQueue_, stats.queueLength);
@@ -986,147 +860,6 @@ void ArenaGame::render(app::TickContext& c) {
   c.renderer.submitSkinned(characterMesh_, playerModel, jointMatrices_, look);
   drawWeapons(c.renderer);
   drawHud(c);
-}
-
-void ArenaGame::drawHud(app::TickContext& c) {
-  render::Renderer& r = c.renderer;
-  const float u = float(c.frameSize.y) / 720.f;  // HUD scale: laid out for 720 lines
-  const float W = float(c.frameSize.x), H = float(c.frameSize.y);
-  const glm::vec4 white(1.f), shade(0.f, 0.f, 0.f, 0.5f), gold(1.f, 0.82f, 0.35f, 1.f);
-  char line[160];
-  if (state_ == MatchState::Menu || state_ == MatchState::Quitting) {
-    const char* title = "CLEAVE ARENA";
-    r.submitText(title, {W * 0.5f - 12.f * 7.f * 2.5f * u * 0.5f * 1.2f, 40.f * u}, 5.f * u, gold);
-    r.submitText("click a cube to cut it", {W * 0.5f - 150.f * u, 100.f * u}, 2.4f * u, white);
-  }
-  if (state_ == MatchState::Playing || state_ == MatchState::Starting || state_ == MatchState::Defeated) {
-    // Top left: the match (deterministic figures only).
-    r.submitOverlayRect(glm::vec4(10 * u, 10 * u, 300 * u, 112 * u), shade);
-    r.submitText("HEALTH", {20 * u, 20 * u}, 2.f * u, white);
-    r.submitOverlayRect(glm::vec4(110 * u, 20 * u, 185 * u, 16 * u), glm::vec4(0.2f, 0.05f, 0.05f, 0.9f));
-    r.submitOverlayRect(glm::vec4(110 * u, 20 * u, 185 * u * float(health_) / 100.f, 16 * u),
-                        glm::vec4(0.85f, 0.12f, 0.1f, 1.f));
-    std::snprintf(line, sizeof(line), "SCORE %d", score_);
-    r.submitText(line, {20 * u, 48 * u}, 2.6f * u, gold);
-    std::snprintf(line, sizeof(line), "WAVE %d   ENEMIES %zu", wave_, enemies_.size() + pendingSpawns_.size());
-    r.submitText(line, {20 * u, 80 * u}, 2.f * u, white);
-    std::snprintf(line, sizeof(line), "pieces %llu  kills %u  skinned %u",
-                  static_cast<unsigned long long>(piecesSpawned_), enemiesKilled_,
-                  killsByKind_[size_t(EnemyKind::Skinned)][0]);
-    r.submitText(line, {20 * u, 102 * u}, 1.5f * u, white);
-  }
-  // Top right: the split budget and frame figures (wall-clock, masked in golden frames).
-  const auto& stats = splits_->budget().stats();
-  const float bx = W - 290 * u;
-  r.submitOverlayRect(glm::vec4(bx, 10 * u, 280 * u, 100 * u), shade);
-  std::snprintf(line, sizeof(line), "FPS %.0f  tick %.1f ms", c.app.framesPerSecond(), c.app.lastTickMilliseconds());
-  r.submitText(line, {bx + 10 * u, 18 * u}, 1.7f * u, white);
-  std::snprintf(line, sizeof(line), "split queue %u  this tick %u", stats.queueLength, splitsThisTick_);
-  r.submitText(line, {bx + 10 * u, 36 * u}, 1.7f * u, white);
-  std::snprintf(line, sizeof(line), "split ms %.2f / %.1f  max %.2f", splitMsThisTick_,
-                splits_->budget().settings().millisecondsPerTick, maxSplitMsInATick_);
-  r.submitText(line, {bx + 10 * u, 54 * u}, 1.7f * u, white);
-  const float gx = bx + 10 * u, gy = 74 * u, gw = 260 * u, gh = 28 * u;
-  const float budget = float(splits_->budget().settings().millisecondsPerTick);
-  const float scale = gh / (budget * 2.f);
-  std::vector<glm::vec2> graph;
-  for (size_t i = 0; i + 1 < splitMsHistory_.size(); ++i) {
-    graph.push_back({gx + gw * float(i) / 120.f, gy + gh - std::min(gh, splitMsHistory_[i] * scale)});
-    graph.push_back({gx + gw * float(i + 1) / 120.f, gy + gh - std::min(gh, splitMsHistory_[i + 1] * scale)});
-  }
-  r.submitOverlayLines(graph, glm::vec4(0.4f, 1.f, 0.5f, 1.f));
-  const glm::vec2 budgetLine[2] = {{gx, gy + gh - budget * scale}, {gx + gw, gy + gh - budget * scale}};
-  r.submitOverlayLines(budgetLine, glm::vec4(1.f, 0.4f, 0.3f, 1.f));
-
-  if (state_ == MatchState::Playing && c.tick < waveBannerTick_ + 120 && wave_ > 0) {
-    std::snprintf(line, sizeof(line), "WAVE %d", wave_);
-    r.submitText(line, {W * 0.5f - 70 * u, H * 0.28f}, 5.f * u, gold);
-  }
-  if (state_ == MatchState::Defeated) {
-    r.submitOverlayRect(glm::vec4(0, H * 0.4f, W, 90 * u), glm::vec4(0.f, 0.f, 0.f, 0.6f));
-    r.submitText("DEFEATED", {W * 0.5f - 100 * u, H * 0.4f + 12 * u}, 5.f * u, glm::vec4(1.f, 0.3f, 0.2f, 1.f));
-    r.submitText("press Enter for the menu", {W * 0.5f - 130 * u, H * 0.4f + 62 * u}, 2.f * u, white);
-  }
-  if (state_ == MatchState::Playing) {
-    r.submitText("WASD move   mouse aim   left: sword   right: disc   space: spin", {20 * u, H - 30 * u}, 1.8f * u,
-                 glm::vec4(1.f, 1.f, 1.f, 0.85f));
-    const glm::vec2 m = cursorInFrame(c.input, c.frameSize);
-    const float k = 9.f * u;
-    const glm::vec2 cross[8] = {m + glm::vec2(-k, 0), m + glm::vec2(-k * 0.35f, 0), m + glm::vec2(k, 0),
-                                m + glm::vec2(k * 0.35f, 0), m + glm::vec2(0, -k), m + glm::vec2(0, -k * 0.35f),
-                                m + glm::vec2(0, k), m + glm::vec2(0, k * 0.35f)};
-    r.submitOverlayLines(cross, glm::vec4(0.6f, 1.f, 1.f, 1.f));
-  }
-}
-
-// ---------------------------------------------------------------------------------------------
-// State dump
-
-void ArenaGame::dumpEntity(ecs::Entity e, nlohmann::json& out) {
-  ecs::World& world = app_->world();
-  if (const auto* tag = world.tryGet<ArenaTag>(e)) out["kind"] = tagName(tag->kind);
-  if (const auto* mi = world.tryGet<components::MassInfo>(e)) {
-    out["mass"] = mi->mass;
-    out["volume"] = mi->volume;
-  }
-  if (const auto* rb = world.tryGet<components::RigidBody>(e)) {
-    if (const auto state = physics_->bodyState(rb->body)) {
-      out["center_of_mass"] = {state->transform.position.x, state->transform.position.y, state->transform.position.z};
-      out["linear_velocity"] = {state->linearVelocity.x, state->linearVelocity.y, state->linearVelocity.z};
-      out["angular_velocity"] = {state->angularVelocity.x, state->angularVelocity.y, state->angularVelocity.z};
-    }
-  }
-  if (const auto* origin = world.tryGet<components::SplitOrigin>(e)) out["split_from"] = origin->parentId;
-  if (const auto* f = world.tryGet<Fading>(e)) out["born_tick"] = f->bornTick;
-  if (const auto* ragdoll = world.tryGet<components::Ragdoll>(e)) out["ragdoll_bones"] = ragdoll->bones.size();
-  for (const Enemy& en : enemies_) {
-    if (en.entity != e) continue;
-    out["enemy_kind"] = kindInfo(en.kind).name;
-    out["hit"] = en.hit;
-  }
-}
-
-void ArenaGame::dumpFrame(nlohmann::json& line) {
-  line["arena"] = {{"state", toString(state_)},
-                   {"score", score_},
-                   {"wave", wave_},
-                   {"health", health_},
-                   {"enemies_killed", enemiesKilled_},
-                   {"enemies_alive", enemies_.size()},
-                   {"pieces_spawned", piecesSpawned_},
-                   {"pieces_removed", piecesRemoved_},
-                   {"props_broken", propsBroken_},
-                   {"disc_throws", discThrows_},
-                   {"sword_swings", swordSwings_},
-                   {"spin_attacks", spinAttacks_},
-                   {"max_enemies_hit_in_one_tick", maxEnemiesHitInOneTick_},
-                   {"max_kills_in_one_tick", maxKillsInOneTick_},
-                   {"ragdoll_pieces_spawned", ragdollPiecesSpawned_},
-                   {"ragdoll_pieces_removed", ragdollPiecesRemoved_},
-                   {"ragdoll_pieces_cut", ragdollPiecesCut_},
-                   {"ragdoll_bodies_leaked", ragdollBodiesLeaked_},
-                   {"player", {playerPosition_.x, playerPosition_.y}}};
-  // Kills per enemy kind, in total and by the weapon whose blade touched the enemy.
-  nlohmann::json kills = nlohmann::json::object();
-  for (size_t k = 0; k < kKindCount; ++k) {
-    nlohmann::json perKind = {{"total", killsByKind_[k][0]}};
-    for (size_t w = 1; w < kWeaponCount; ++w) perKind[kWeaponNames[w]] = killsByKind_[k][w];
-    kills[kindInfo(EnemyKind(k)).name] = std::move(perKind);
-  }
-  line["arena"]["kills_by_kind"] = std::move(kills);
-  nlohmann::json splits;
-  splitLog_.writeJson(splits);
-  line["splits"] = std::move(splits);
-  const auto& stats = splits_->budget().stats();
-  line["budget"] = {{"deferred_total", deferredTotal_},
-                    {"max_queue", maxQueue_},
-                    {"max_split_ms", stats.maxSplitMilliseconds},
-                    {"max_split_ms_in_a_tick", maxSplitMsInATick_},
-                    {"ms_per_tick", splits_->budget().settings().millisecondsPerTick},
-                    {"max_splits_per_tick", splits_->budget().settings().maxSplitsPerTick},
-                    {"max_charged_ms_in_a_tick", maxChargedMsInATick_},
-                    {"max_estimate_ms", stats.maxChargeMilliseconds},
-                    {"queue", stats.queueLength}};
 }
 
 }  // namespace cleave::arena

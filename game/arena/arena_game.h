@@ -29,16 +29,19 @@
 #include "engine/assets/procedural_character.h"
 #include "engine/physics/physics_world.h"
 #include "game/arena/arena_art.h"
+#include "game/arena/arena_tuning.h"
 #include "game/arena/enemies.h"
 
 namespace cleave::arena {
 
 enum class MatchState : uint8_t {
-  Menu,      // the Start and Quit cubes wait for a click
-  Starting,  // the Start cube was cut: its pieces fall while the camera moves behind the player
-  Playing,
-  Defeated,  // health ran out: Enter (or a click) goes back to the menu
-  Quitting,  // the Quit cube was cut: the game ends shortly
+  Menu,          // the Start and Quit cubes wait for a click (on a clean arena: see resetToMenu)
+  Starting,      // the Start cube was cut: its pieces fall while the camera moves behind the player
+  Intermission,  // no enemy on the sand: the grace period before wave 1 ("GET READY"), or the pause
+                 // after a wave ("WAVE n CLEARED", the health bar fills up again)
+  Playing,       // a wave is on
+  Defeated,      // health ran out: the enemies cheer; Enter (or a click) goes back to the menu
+  Quitting,      // the Quit cube was cut: the game ends shortly
 };
 const char* toString(MatchState state);
 
@@ -62,6 +65,9 @@ class ArenaGame {
 
   // Builds the arena and registers the systems. Returns false with a reason on failure.
   bool setup(app::App& app, std::string* error);
+
+  // The numbers the match plays by (arena_tuning.h); change them before setup.
+  ArenaTuning& tuning() { return tuning_; }
 
  private:
   struct Disc {
@@ -87,12 +93,33 @@ class ArenaGame {
     glm::vec2 position{0.f};
     float yaw = 0.f;
   };
+  // Kills per enemy kind: [kind][0] in total, [kind][w] by weapon w (disc, sword, spin).
+  static constexpr size_t kKindCount = size_t(EnemyKind::Count);
+  static constexpr size_t kWeaponCount = 4;
+  static constexpr const char* kWeaponNames[kWeaponCount] = {"", "disc", "sword", "spin"};
+  static constexpr const char* kWeaponSplitterNames[kWeaponCount] = {"", "energy disc", "sword swing", "spin attack"};
+  static uint8_t weaponIndex(const std::string& splitterName);
+  // The figures of the match being played (HUD and state dump): a new match starts from zero.
+  struct MatchStats {
+    int score = 0;
+    uint32_t enemiesKilled = 0;
+    uint32_t killsByKind[kKindCount][kWeaponCount] = {};
+    uint32_t propsBroken = 0;
+    uint32_t discThrows = 0;
+    uint32_t swordSwings = 0;
+    uint32_t spinAttacks = 0;
+    uint32_t maxEnemiesHitInOneTick = 0;
+    uint32_t maxKillsInOneTick = 0;
+  };
 
   // Building.
   void buildLevel();
+  void buildFloorAndWall();
+  void buildGatesAndPillars();
   ecs::Entity addStatic(const std::string& name, geometry::MeshData mesh, std::vector<render::Material> materials,
                         bool collide);
   ecs::Entity spawnProp(PropKind kind, glm::vec3 position, float yaw);
+  void spawnProps();
   void spawnMenuCubes();
   void createPlayer();
   ecs::Entity spawnDynamic(const std::string& name, geometry::MeshData mesh, std::vector<render::Material> materials,
@@ -115,7 +142,12 @@ class ArenaGame {
   void updateDisc(app::TickContext& c);
   void updateWaves(app::TickContext& c);
   void startWave(uint64_t tick);
-  void resetToMenu();
+  void enterIntermission(uint64_t tick, float seconds);
+  void updateIntermission(app::TickContext& c);
+  void enterDefeat(uint64_t tick);
+  void updateDefeat(app::TickContext& c);
+  void resetToMenu(uint64_t tick);
+  void clearArena();
   void throwDisc();
   void swingSword(bool spin);
   ecs::Entity makeSplitter(const std::string& name, const physics::ShapeDef& shape, glm::vec3 position,
@@ -132,12 +164,19 @@ class ArenaGame {
   // Drawing.
   void drawWeapons(render::Renderer& r);
   void drawHud(app::TickContext& c);
+  void drawMatchPanel(render::Renderer& r, float u);
+  void drawBudgetPanel(app::TickContext& c, float u);
+  void drawBanners(app::TickContext& c, float u);
+  void drawIntermission(render::Renderer& r, uint64_t tick, glm::vec2 frame, float u);
   void dumpEntity(ecs::Entity e, nlohmann::json& out);
+  void dumpEnemy(const Enemy& enemy, nlohmann::json& out);
   void dumpFrame(nlohmann::json& line);
+  nlohmann::json dumpMatch();
   components::SplitWorld splitWorld();
   EnemyContext enemyContext();
 
   app::App* app_ = nullptr;
+  ArenaTuning tuning_;
   std::unique_ptr<components::Simulation> sim_;
   physics::PhysicsWorld* physics_ = nullptr;   // sim_'s
   components::SplitSystem* splits_ = nullptr;  // sim_'s
@@ -154,10 +193,12 @@ class ArenaGame {
   uint64_t stateTick_ = 0;  // tick the state was entered
   ecs::Entity startCube_, quitCube_;
   int health_ = 100;
-  int score_ = 0;
   int wave_ = 0;
-  uint64_t nextWaveTick_ = 0;
+  uint64_t nextWaveTick_ = 0;    // Intermission: the tick the next wave begins
+  uint64_t refillTick_ = 0;      // Intermission: the tick the health bar starts to fill up
   uint64_t waveBannerTick_ = 0;
+  uint32_t matchesStarted_ = 0;  // Start cubes cut since the game began
+  MatchStats match_;
   std::vector<Enemy> enemies_;
   std::vector<PendingSpawn> pendingSpawns_;
 
@@ -187,23 +228,9 @@ class ArenaGame {
   glm::vec3 cameraTarget_{0.f, 0.9f, 1.6f};
   float cameraBlend_ = 0.f;
 
-  // Figures for the HUD and the state dump.
-  uint32_t enemiesKilled_ = 0;
+  // Figures of the whole run (every match) for the HUD and the state dump.
   uint64_t piecesSpawned_ = 0;
   uint64_t piecesRemoved_ = 0;
-  uint32_t propsBroken_ = 0;
-  uint32_t discThrows_ = 0;
-  uint32_t swordSwings_ = 0;
-  uint32_t spinAttacks_ = 0;
-  uint32_t maxEnemiesHitInOneTick_ = 0;
-  uint32_t maxKillsInOneTick_ = 0;
-  // Kills per enemy kind: [kind][0] in total, [kind][w] by weapon w (disc, sword, spin).
-  static constexpr size_t kKindCount = size_t(EnemyKind::Count);
-  static constexpr size_t kWeaponCount = 4;
-  static constexpr const char* kWeaponNames[kWeaponCount] = {"", "disc", "sword", "spin"};
-  static constexpr const char* kWeaponSplitterNames[kWeaponCount] = {"", "energy disc", "sword swing", "spin attack"};
-  static uint8_t weaponIndex(const std::string& splitterName);
-  uint32_t killsByKind_[kKindCount][kWeaponCount] = {};
   uint32_t ragdollPiecesSpawned_ = 0;
   uint32_t ragdollPiecesRemoved_ = 0;
   uint32_t ragdollPiecesCut_ = 0;     // ragdoll pieces cut again (their pieces are counted as spawned)

@@ -8,6 +8,7 @@
 #include "components/split_system.h"
 #include "components/splitable.h"
 #include "engine/ecs/hierarchy.h"
+#include "game/arena/arena_layout.h"
 
 namespace cleave::arena {
 
@@ -16,10 +17,19 @@ namespace {
 constexpr float kFootClearance = 0.02f;  // m: bodies hover this much so they never rub the floor
 
 
+constexpr float kTurnRate = 4.f;      // rad/s
+constexpr float kCheerRate = 7.85f;   // rad/s of walkPhase while cheering: a hop every 0.4 s
+constexpr float kCheerHop = 0.12f;    // m, the gladiators' hop
+constexpr float kCheerLean = 0.12f;   // rad, thrown back at the top of the hop
+
+bool cheering(const Enemy& e) { return e.behaviour == EnemyBehaviour::Cheer; }
+
 glm::quat enemyRotation(const Enemy& e) {
-  // The skinned kind's walk is in its clip: only the gladiators sway as they go.
-  const float sway = e.hit || e.kind == EnemyKind::Skinned ? 0.f : 0.07f * std::sin(e.walkPhase);
-  const float lean = e.lunge > 0.f ? 0.35f * std::sin(e.lunge / 0.4f * 3.14159265f) : 0.f;
+  // The skinned kind's walk and cheer are in its clips: only the gladiators sway and lean.
+  const bool still = e.hit || e.kind == EnemyKind::Skinned;
+  const float sway = still || cheering(e) ? 0.f : 0.07f * std::sin(e.walkPhase);
+  float lean = e.lunge > 0.f ? 0.35f * std::sin(e.lunge / 0.4f * kPi) : 0.f;
+  if (!still && cheering(e)) lean = -kCheerLean * std::abs(std::sin(e.walkPhase));
   return glm::angleAxis(e.yaw, glm::vec3(0, 1, 0)) * glm::angleAxis(lean, glm::vec3(1, 0, 0)) *
          glm::angleAxis(sway, glm::vec3(0, 0, 1));
 }
@@ -121,18 +131,69 @@ Enemy spawnSkinned(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 positio
 
 }  // namespace
 
-const EnemyKindInfo& kindInfo(EnemyKind kind) {
-  static const EnemyKindInfo kGladiator{"gladiator", 1.8f, 1.25f, 6.f, 1.1f, 0.42f};
-  // Slower and heavier-handed than the gladiators.
-  static const EnemyKindInfo kSkinned{"skinned", 1.5f, 1.3f, 8.f, 1.4f, 0.4f};
+const char* kindName(EnemyKind kind) {
   switch (kind) {
-    case EnemyKind::Skinned:
-      return kSkinned;
+    case EnemyKind::Skinned: return "skinned";
     case EnemyKind::Gladiator:
-    case EnemyKind::Count:
-      break;
+    case EnemyKind::Count: break;
   }
-  return kGladiator;
+  return "gladiator";
+}
+
+const EnemyTuning& kindTuning(const ArenaTuning& tuning, EnemyKind kind) {
+  return kind == EnemyKind::Skinned ? tuning.skinned : tuning.gladiator;
+}
+
+const char* toString(EnemyBehaviour behaviour) {
+  switch (behaviour) {
+    case EnemyBehaviour::Approach: return "approach";
+    case EnemyBehaviour::Wait: return "wait";
+    case EnemyBehaviour::Strike: return "strike";
+    case EnemyBehaviour::Frozen: return "frozen";
+    case EnemyBehaviour::Cheer: return "cheer";
+  }
+  return "?";
+}
+
+anim::AnimationClip makeCheerClip(const anim::Skeleton& skeleton) {
+  constexpr float kPeriod = 0.8f;
+  constexpr int kKeys = 16;
+  anim::AnimationClip clip;
+  clip.name = "cheer";
+  // One looping channel of `joint`, key k at phase 2 pi k / kKeys (the last key repeats the first).
+  auto loop = [&](const char* joint, anim::ChannelPath path, auto valueAt) {
+    const int32_t j = skeleton.find(joint);
+    if (j < 0) return;
+    anim::Channel channel;
+    channel.joint = uint32_t(j);
+    channel.path = path;
+    for (int k = 0; k <= kKeys; ++k) {
+      channel.times.push_back(kPeriod * float(k) / float(kKeys));
+      channel.values.push_back(valueAt(2.f * kPi * float(k % kKeys) / float(kKeys)));
+    }
+    clip.channels.push_back(std::move(channel));
+  };
+  auto turn = [](float angle, glm::vec3 axis) {
+    const glm::quat q = glm::angleAxis(angle, axis);
+    return glm::vec4(q.x, q.y, q.z, q.w);
+  };
+  const glm::vec3 forward(0.f, 0.f, 1.f), across(1.f, 0.f, 0.f);
+  // The arms hang 35 degrees out in the rest pose; about +z the left arm (+x) swings up over the head.
+  for (float side : {1.f, -1.f}) {
+    const bool left = side > 0.f;
+    loop(left ? "left_upper_arm" : "right_upper_arm", anim::ChannelPath::Rotation,
+         [&, side](float p) { return turn(side * (2.45f + 0.25f * std::sin(p)), forward); });
+    loop(left ? "left_forearm" : "right_forearm", anim::ChannelPath::Rotation,
+         [&, side](float p) { return turn(side * (0.25f + 0.2f * std::sin(p)), forward); });
+  }
+  loop("chest", anim::ChannelPath::Rotation, [&](float p) { return turn(-0.1f - 0.06f * std::sin(p), across); });
+  loop("head", anim::ChannelPath::Rotation, [&](float p) { return turn(-0.2f + 0.05f * std::sin(p), across); });
+  const int32_t hips = skeleton.find("hips");
+  const glm::vec3 rest = hips >= 0 ? skeleton.joints[size_t(hips)].rest.translation : glm::vec3(0.f);
+  loop("hips", anim::ChannelPath::Translation,
+       [&](float p) { return glm::vec4(rest + glm::vec3(0.f, 0.06f * std::max(0.f, std::sin(p)), 0.f), 0.f); });
+  clip.updateDuration();
+  return clip;
 }
 
 EnemyMeshes makeEnemyMeshes(const assets::ProceduralCharacter& character) {
@@ -141,7 +202,7 @@ EnemyMeshes makeEnemyMeshes(const assets::ProceduralCharacter& character) {
   meshes.skinned = std::make_shared<const geometry::MeshData>(character.mesh);
   auto asset = std::make_shared<components::SkinnedAsset>();
   asset->skeleton = character.skeleton;
-  asset->clips = {character.idle, character.walk};
+  asset->clips = {character.idle, character.walk, makeCheerClip(character.skeleton)};
   meshes.skinnedAsset = std::move(asset);
   return meshes;
 }
@@ -166,7 +227,9 @@ void poseEnemy(EnemyContext& c, const Enemy& enemy, glm::vec3 velocity) {
   auto* rb = world.tryGet<components::RigidBody>(enemy.entity);
   auto* t = world.tryGet<ecs::Transform>(enemy.entity);
   if (!rb || !t) return;
-  const float bob = enemy.hit || enemy.kind == EnemyKind::Skinned ? 0.f : 0.035f * std::abs(std::sin(enemy.walkPhase));
+  const float wave = std::abs(std::sin(enemy.walkPhase));
+  const bool still = enemy.hit || enemy.kind == EnemyKind::Skinned;
+  const float bob = still ? 0.f : (cheering(enemy) ? kCheerHop : 0.035f) * wave;
   const glm::quat r = enemyRotation(enemy);
   const glm::vec3 base(enemy.position.x, kFootClearance + bob, enemy.position.y);
   physics::BodyTransform bt;
@@ -177,73 +240,151 @@ void poseEnemy(EnemyContext& c, const Enemy& enemy, glm::vec3 velocity) {
   t->position = bt.position;
   t->rotation = bt.rotation;
   if (auto* wt = world.tryGet<ecs::WorldTransform>(enemy.entity)) wt->matrix = ecs::localMatrix(*t);
-  // The skinned kind walks in its clip at the pace it moves, stands in its idle clip, and holds its
-  // pose while a blade is on it (the cut happens in the pose it shows).
+  // The skinned kind walks in its clip at the pace it moves, stands in its idle clip, cheers in its
+  // cheer clip, and holds its pose while a blade is on it (the cut happens in the pose it shows).
   if (auto* skin = world.tryGet<components::SkinnedMesh>(enemy.entity); skin && skin->asset) {
     const float speed = glm::length(glm::vec2(velocity.x, velocity.z));
     const bool walking = speed > 0.3f;
-    const anim::AnimationClip* want = skin->asset->clip(walking ? "walk" : "idle");
+    const char* clip = cheering(enemy) ? "cheer" : walking ? "walk" : "idle";
+    const anim::AnimationClip* want = skin->asset->clip(clip);
     if (want && skin->animator.clip() != want) skin->animator.play(want, 0.25f);
     skin->speed = enemy.hit ? 0.f : walking ? std::clamp(speed / 2.2f, 0.6f, 1.6f) : 1.f;
   }
 }
 
-float updateEnemies(EnemyContext& c, std::vector<Enemy>& enemies, glm::vec2 player, float dt,
-                    const std::vector<Obstacle>& obstacles, float arenaRadius) {
-  float damage = 0.f;
+namespace {
+
+// Turns the enemy towards `target` at most kTurnRate a second.
+void turnTowards(Enemy& e, glm::vec2 target, float dt) {
+  const glm::vec2 to = target - e.position;
+  if (glm::length(to) <= 1e-4f) return;
+  float turn = std::atan2(to.x, to.y) - e.yaw;
+  while (turn > kPi) turn -= 2.f * kPi;
+  while (turn < -kPi) turn += 2.f * kPi;
+  e.yaw += std::clamp(turn, -kTurnRate * dt, kTurnRate * dt);
+}
+
+// Which enemies may strike this tick: the nearest maxAttackers that are not frozen, those already
+// engaged before the others (so a newcomer does not take the place of one winding up); ties go to
+// the earlier one in the list (deterministic).
+std::vector<bool> strikers(const std::vector<Enemy>& enemies, glm::vec2 player, int maxAttackers) {
+  std::vector<size_t> order;
+  for (size_t i = 0; i < enemies.size(); ++i)
+    if (!enemies[i].hit) order.push_back(i);
+  auto key = [&](size_t i) { return glm::length(enemies[i].position - player) - (enemies[i].engaged ? 100.f : 0.f); };
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return key(a) < key(b); });
+  std::vector<bool> may(enemies.size(), false);
+  for (size_t k = 0; k < order.size() && k < size_t(std::max(maxAttackers, 0)); ++k) may[order[k]] = true;
+  return may;
+}
+
+// Keeps enemy i apart from the others: the push that separates overlapping floor circles.
+glm::vec2 crowdPush(const std::vector<Enemy>& enemies, size_t i, const ArenaTuning& tuning) {
+  glm::vec2 push(0.f);
+  const float radius = kindTuning(tuning, enemies[i].kind).radius;
+  for (size_t j = 0; j < enemies.size(); ++j) {
+    if (j == i) continue;
+    const glm::vec2 d = enemies[i].position - enemies[j].position;
+    const float len = glm::length(d);
+    const float minimum = radius + kindTuning(tuning, enemies[j].kind).radius;
+    if (len < minimum && len > 1e-5f) push += d / len * (minimum - len);
+    else if (len <= 1e-5f) push += glm::vec2(j < i ? 0.05f : -0.05f, 0.f);
+  }
+  return push;
+}
+
+// `next` moved out of the pillars and inside the wall, for a floor circle of `radius`.
+glm::vec2 keepOnFloor(glm::vec2 next, float radius, const EnemyField& field) {
+  if (field.obstacles)
+    for (const Obstacle& o : *field.obstacles) {
+      const glm::vec2 d = next - o.centre;
+      const float len = glm::length(d);
+      const float minimum = o.radius + radius;
+      if (len < minimum && len > 1e-5f) next = o.centre + d / len * minimum;
+    }
+  const float fromCentre = glm::length(next);
+  if (fromCentre > field.arenaRadius - radius) next *= (field.arenaRadius - radius) / fromCentre;
+  return next;
+}
+
+// The blow of an enemy `distance` from the player: a wind-up when it steps into range, then a blow
+// every attackSeconds while it stays there. Sets its behaviour; returns the damage dealt.
+int strike(Enemy& e, const EnemyTuning& kind, float distance, bool mayStrike) {
+  if (!mayStrike || distance > kind.attackRange) {
+    if (!mayStrike || distance > kind.attackRange * 1.2f) e.engaged = false;
+    e.behaviour = mayStrike ? EnemyBehaviour::Approach : EnemyBehaviour::Wait;
+    return 0;
+  }
+  e.behaviour = EnemyBehaviour::Strike;
+  if (!e.engaged) {
+    e.engaged = true;
+    e.attackTimer = std::max(e.attackTimer, kind.windupSeconds);
+  }
+  if (e.attackTimer > 0.f) return 0;
+  e.attackTimer = kind.attackSeconds;
+  e.lunge = 0.4f;
+  return kind.attackDamage;
+}
+
+}  // namespace
+
+int updateEnemies(EnemyContext& c, std::vector<Enemy>& enemies, const EnemyField& field, const ArenaTuning& tuning,
+                  float dt) {
+  int damage = 0;
+  const std::vector<bool> may = strikers(enemies, field.player, tuning.match.maxAttackers);
   for (size_t i = 0; i < enemies.size(); ++i) {
     Enemy& e = enemies[i];
-    const EnemyKindInfo& info = kindInfo(e.kind);
+    const EnemyTuning& kind = kindTuning(tuning, e.kind);
     e.attackTimer = std::max(0.f, e.attackTimer - dt);
     e.lunge = std::max(0.f, e.lunge - dt);
     if (e.hit && e.attackTimer > 0.f) {
+      e.behaviour = EnemyBehaviour::Frozen;
       poseEnemy(c, e, glm::vec3(0.f));
       continue;
     }
     e.hit = false;  // frozen by a blade whose split never came (the plane missed): walk on
-    const glm::vec2 toPlayer = player - e.position;
+    const glm::vec2 toPlayer = field.player - e.position;
     const float distance = glm::length(toPlayer);
-    glm::vec2 want(0.f);
-    if (distance > 1e-4f) {
-      const float targetYaw = std::atan2(toPlayer.x, toPlayer.y);
-      float turn = targetYaw - e.yaw;
-      while (turn > 3.14159265f) turn -= 6.2831853f;
-      while (turn < -3.14159265f) turn += 6.2831853f;
-      e.yaw += std::clamp(turn, -4.f * dt, 4.f * dt);
-      if (distance > info.attackRange * 0.9f) want = toPlayer / distance;
-    }
-    // Crowding: keep apart from the others (earlier ones in the list win ties: deterministic).
-    glm::vec2 push(0.f);
-    for (size_t j = 0; j < enemies.size(); ++j) {
-      if (j == i) continue;
-      const glm::vec2 d = e.position - enemies[j].position;
-      const float len = glm::length(d);
-      const float minimum = info.radius + kindInfo(enemies[j].kind).radius;
-      if (len < minimum && len > 1e-5f) push += d / len * (minimum - len);
-      else if (len <= 1e-5f) push += glm::vec2(j < i ? 0.05f : -0.05f, 0.f);
-    }
-    glm::vec2 velocity = want * info.walkSpeed;
-    glm::vec2 next = e.position + velocity * dt + push * 0.5f;
-    for (const Obstacle& o : obstacles) {
-      const glm::vec2 d = next - o.centre;
-      const float len = glm::length(d);
-      const float minimum = o.radius + info.radius;
-      if (len < minimum && len > 1e-5f) next = o.centre + d / len * minimum;
-    }
-    const float fromCentre = glm::length(next);
-    if (fromCentre > arenaRadius - info.radius) next *= (arenaRadius - info.radius) / fromCentre;
-    velocity = (next - e.position) / dt;
+    turnTowards(e, field.player, dt);
+    // Those whose turn it is walk into range; the others stop where they wait.
+    const float standOff = may[i] ? kind.attackRange * 0.9f : tuning.match.waitDistance;
+    const glm::vec2 want = distance > standOff && distance > 1e-4f ? toPlayer / distance : glm::vec2(0.f);
+    const glm::vec2 next = keepOnFloor(e.position + want * kind.walkSpeed * dt + crowdPush(enemies, i, tuning) * 0.5f,
+                                       kind.radius, field);
+    const glm::vec2 velocity = (next - e.position) / dt;
     e.position = next;
-    const float speed = glm::length(velocity);
-    e.walkPhase += dt * (speed > 0.2f ? 7.5f : 2.f);
-    if (distance <= info.attackRange && e.attackTimer <= 0.f) {
-      e.attackTimer = info.attackSeconds;
-      e.lunge = 0.4f;
-      damage += info.attackDamage;
-    }
+    e.walkPhase += dt * (glm::length(velocity) > 0.2f ? 7.5f : 2.f);
+    damage += strike(e, kind, distance, may[i]);
+    if (e.behaviour != EnemyBehaviour::Strike && glm::length(want) > 0.f) e.behaviour = EnemyBehaviour::Approach;
     poseEnemy(c, e, glm::vec3(velocity.x, 0.f, velocity.y));
   }
   return damage;
+}
+
+void cheerEnemies(EnemyContext& c, std::vector<Enemy>& enemies, glm::vec2 player, float dt) {
+  for (Enemy& e : enemies) {
+    e.lunge = 0.f;
+    e.engaged = false;
+    e.attackTimer = std::max(0.f, e.attackTimer - dt);
+    if (e.hit && e.attackTimer > 0.f) {
+      e.behaviour = EnemyBehaviour::Frozen;
+      poseEnemy(c, e, glm::vec3(0.f));
+      continue;
+    }
+    e.hit = false;
+    e.behaviour = EnemyBehaviour::Cheer;
+    turnTowards(e, player, dt);
+    e.walkPhase += dt * kCheerRate;
+    poseEnemy(c, e, glm::vec3(0.f));
+  }
+}
+
+void freezeEnemy(Enemy& enemy, float seconds) {
+  enemy.hit = true;
+  enemy.engaged = false;
+  enemy.lunge = 0.f;
+  enemy.attackTimer = seconds;
+  enemy.behaviour = EnemyBehaviour::Frozen;
 }
 
 }  // namespace cleave::arena

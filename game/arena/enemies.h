@@ -6,8 +6,9 @@
 // the skinned warriors, whose SkinnedMesh plays its walk and idle clips. A blade touching it freezes it until its split is done; the split
 // system's event for its entity is its death.
 //
-// Adding a kind: a value in EnemyKind, a case in kindInfo() (name and tuning), a spawn function in
-// spawnEnemy() and, if it is not posed by moving its body, a case in poseEnemy().
+// Adding a kind: a value in EnemyKind, a case in kindName() and kindTuning() (its EnemyTuning in
+// ArenaTuning), a spawn function in spawnEnemy() and, if it is not posed by moving its body, a case
+// in poseEnemy().
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "components/skinned.h"
+#include "engine/anim/animation_clip.h"
 #include "engine/assets/procedural_character.h"
 #include "engine/ecs/entity.h"
 #include "engine/ecs/world.h"
@@ -25,6 +27,7 @@
 #include "engine/physics/physics_world.h"
 #include "engine/render/renderer.h"
 #include "game/arena/arena_art.h"
+#include "game/arena/arena_tuning.h"
 
 namespace cleave::arena {
 
@@ -34,15 +37,19 @@ enum class EnemyKind : uint8_t {
   Count
 };
 
-struct EnemyKindInfo {
-  const char* name = "";
-  float walkSpeed = 1.8f;      // m/s
-  float attackRange = 1.25f;   // m, centre to centre on the floor
-  float attackDamage = 6.f;    // health points per blow
-  float attackSeconds = 1.1f;  // between blows
-  float radius = 0.4f;         // m, on the floor (for crowding and obstacles)
+// The kind's name in the state dump ("gladiator", "skinned") and its tuning (arena_tuning.h).
+const char* kindName(EnemyKind kind);
+const EnemyTuning& kindTuning(const ArenaTuning& tuning, EnemyKind kind);
+
+// What an enemy is doing this tick (shown in the state dump as `behaviour`).
+enum class EnemyBehaviour : uint8_t {
+  Approach,  // walking towards the player, or to its place among those who wait
+  Wait,      // near the player, waiting its turn: MatchTuning::maxAttackers strike at once
+  Strike,    // in range: winding up, then a blow every attackSeconds
+  Frozen,    // a blade touches it: still until its split lands (or misses)
+  Cheer,     // the player is beaten: it stays where it is, upright, arms up and hopping; no blows
 };
-const EnemyKindInfo& kindInfo(EnemyKind kind);
+const char* toString(EnemyBehaviour behaviour);
 
 struct Enemy {
   ecs::Entity entity;
@@ -52,6 +59,9 @@ struct Enemy {
   float walkPhase = 0.f;    // radians
   float attackTimer = 0.f;  // seconds until a blow may land
   float lunge = 0.f;        // seconds left of the blow animation
+  bool engaged = false;     // in range since its wind-up began (it strikes when attackTimer runs out)
+  EnemyBehaviour behaviour = EnemyBehaviour::Approach;
+  uint64_t spawnTick = 0;   // the tick it came through its gate
   bool hit = false;         // a blade touches it: frozen until the split lands (or misses)
   uint8_t hitBy = 0;        // the weapon that touched it (ArenaGame's weapon index), for the kill count
   // The body frame (centre of mass, principal axes) in the enemy's own frame.
@@ -71,11 +81,16 @@ struct EnemyContext {
 struct EnemyMeshes {
   std::shared_ptr<const geometry::MeshData> gladiator;
   // The skinned kind: the generated character's bind-space mesh and its skeleton with the idle and
-  // walk clips.
+  // walk clips, and a "cheer" clip of its own (arms up, hopping; makeCheerClip).
   std::shared_ptr<const geometry::MeshData> skinned;
   std::shared_ptr<const components::SkinnedAsset> skinnedAsset;
 };
 EnemyMeshes makeEnemyMeshes(const assets::ProceduralCharacter& character);
+
+// The skinned warriors' cheer for the generated character's skeleton: a looping clip named "cheer"
+// (0.8 s) with both arms raised over the head and pumping, the chest thrown back and a small hop
+// (the hips rise up to 6 cm, so the feet leave the sand).
+anim::AnimationClip makeCheerClip(const anim::Skeleton& skeleton);
 
 // Creates an enemy of `kind` standing at `position` facing `yaw`. Returns an Enemy with a null
 // entity (and prints why) when its body cannot be made.
@@ -90,9 +105,27 @@ struct Obstacle {
   float radius = 0.f;
 };
 
-// One tick of every enemy: walk towards the player (steering around obstacles and each other),
-// strike when in range. Returns the damage dealt to the player this tick.
-float updateEnemies(EnemyContext& c, std::vector<Enemy>& enemies, glm::vec2 player, float dt,
-                    const std::vector<Obstacle>& obstacles, float arenaRadius);
+// Where the enemies walk: the player's place, the pillars and the wall.
+struct EnemyField {
+  glm::vec2 player{0.f};
+  const std::vector<Obstacle>* obstacles = nullptr;  // may be null: no pillars
+  float arenaRadius = 12.f;                          // m, the inner face of the wall
+};
+
+// One tick of every enemy while a wave is on. The nearest MatchTuning::maxAttackers (those already
+// striking first) walk up to the player and strike after their wind-up; the others stop
+// waitDistance from the player and wait their turn. Everyone steers around the pillars and keeps
+// apart from the others. Returns the damage dealt to the player this tick (health points).
+int updateEnemies(EnemyContext& c, std::vector<Enemy>& enemies, const EnemyField& field, const ArenaTuning& tuning,
+                  float dt);
+
+// One tick of every enemy after the player is beaten: each stays where it stands, turns to the
+// player and cheers (behaviour Cheer, upright, no blows). One still frozen by a blade stays frozen
+// until its split lands.
+void cheerEnemies(EnemyContext& c, std::vector<Enemy>& enemies, glm::vec2 player, float dt);
+
+// A blade touched the enemy: it stands still for `seconds` (its split lands meanwhile) and starts
+// its wind-up again afterwards.
+void freezeEnemy(Enemy& enemy, float seconds);
 
 }  // namespace cleave::arena

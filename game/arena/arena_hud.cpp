@@ -1,0 +1,125 @@
+// The arena's HUD, laid out for 720 lines and scaled to the frame: the match panel (top left), the
+// split budget panel (top right, wall-clock figures), the banners of the match (wave, get ready,
+// wave cleared and the refill, defeat), the controls and the crosshair.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "game/arena/arena_game.h"
+
+namespace cleave::arena {
+
+namespace {
+
+const glm::vec4 kWhite(1.f), kShade(0.f, 0.f, 0.f, 0.5f), kGold(1.f, 0.82f, 0.35f, 1.f);
+
+// `text` centred horizontally on the frame, its top at `y`.
+void centredText(render::Renderer& r, const std::string& text, float frameWidth, float y, float scale,
+                 const glm::vec4& color) {
+  r.submitText(text, {frameWidth * 0.5f - render::Renderer::textWidth(text, scale) * 0.5f, y}, scale, color);
+}
+
+}  // namespace
+
+void ArenaGame::drawHud(app::TickContext& c) {
+  render::Renderer& r = c.renderer;
+  const float u = float(c.frameSize.y) / 720.f;  // HUD scale: laid out for 720 lines
+  const float W = float(c.frameSize.x);
+  if (state_ == MatchState::Menu || state_ == MatchState::Quitting) {
+    centredText(r, "CLEAVE ARENA", W, 40.f * u, 5.f * u, kGold);
+    centredText(r, "click a cube to cut it", W, 100.f * u, 2.4f * u, kWhite);
+  } else {
+    drawMatchPanel(r, u);
+  }
+  drawBudgetPanel(c, u);
+  drawBanners(c, u);
+}
+
+void ArenaGame::drawMatchPanel(render::Renderer& r, float u) {
+  // Top left: the match (deterministic figures only).
+  char line[160];
+  const float full = float(std::max(tuning_.player.health, 1));
+  r.submitOverlayRect(glm::vec4(10 * u, 10 * u, 300 * u, 112 * u), kShade);
+  r.submitText("HEALTH", {20 * u, 20 * u}, 2.f * u, kWhite);
+  r.submitOverlayRect(glm::vec4(110 * u, 20 * u, 185 * u, 16 * u), glm::vec4(0.2f, 0.05f, 0.05f, 0.9f));
+  r.submitOverlayRect(glm::vec4(110 * u, 20 * u, 185 * u * std::clamp(float(health_) / full, 0.f, 1.f), 16 * u),
+                      glm::vec4(0.85f, 0.12f, 0.1f, 1.f));
+  std::snprintf(line, sizeof(line), "SCORE %d", match_.score);
+  r.submitText(line, {20 * u, 48 * u}, 2.6f * u, kGold);
+  std::snprintf(line, sizeof(line), "WAVE %d   ENEMIES %zu", wave_, enemies_.size() + pendingSpawns_.size());
+  r.submitText(line, {20 * u, 80 * u}, 2.f * u, kWhite);
+  std::snprintf(line, sizeof(line), "pieces %llu  kills %u  skinned %u",
+                static_cast<unsigned long long>(piecesSpawned_), match_.enemiesKilled,
+                match_.killsByKind[size_t(EnemyKind::Skinned)][0]);
+  r.submitText(line, {20 * u, 102 * u}, 1.5f * u, kWhite);
+}
+
+void ArenaGame::drawBudgetPanel(app::TickContext& c, float u) {
+  // Top right: the split budget and frame figures (wall-clock, masked in golden frames).
+  render::Renderer& r = c.renderer;
+  char line[160];
+  const auto& stats = splits_->budget().stats();
+  const float bx = float(c.frameSize.x) - 290 * u;
+  r.submitOverlayRect(glm::vec4(bx, 10 * u, 280 * u, 100 * u), kShade);
+  std::snprintf(line, sizeof(line), "FPS %.0f  tick %.1f ms", c.app.framesPerSecond(), c.app.lastTickMilliseconds());
+  r.submitText(line, {bx + 10 * u, 18 * u}, 1.7f * u, kWhite);
+  std::snprintf(line, sizeof(line), "split queue %u  this tick %u", stats.queueLength, splitsThisTick_);
+  r.submitText(line, {bx + 10 * u, 36 * u}, 1.7f * u, kWhite);
+  std::snprintf(line, sizeof(line), "split ms %.2f / %.1f  max %.2f", splitMsThisTick_,
+                splits_->budget().settings().millisecondsPerTick, maxSplitMsInATick_);
+  r.submitText(line, {bx + 10 * u, 54 * u}, 1.7f * u, kWhite);
+  const float gx = bx + 10 * u, gy = 74 * u, gw = 260 * u, gh = 28 * u;
+  const float budget = float(splits_->budget().settings().millisecondsPerTick);
+  const float scale = gh / (budget * 2.f);
+  std::vector<glm::vec2> graph;
+  for (size_t i = 0; i + 1 < splitMsHistory_.size(); ++i) {
+    graph.push_back({gx + gw * float(i) / 120.f, gy + gh - std::min(gh, splitMsHistory_[i] * scale)});
+    graph.push_back({gx + gw * float(i + 1) / 120.f, gy + gh - std::min(gh, splitMsHistory_[i + 1] * scale)});
+  }
+  r.submitOverlayLines(graph, glm::vec4(0.4f, 1.f, 0.5f, 1.f));
+  const glm::vec2 budgetLine[2] = {{gx, gy + gh - budget * scale}, {gx + gw, gy + gh - budget * scale}};
+  r.submitOverlayLines(budgetLine, glm::vec4(1.f, 0.4f, 0.3f, 1.f));
+}
+
+void ArenaGame::drawBanners(app::TickContext& c, float u) {
+  render::Renderer& r = c.renderer;
+  const float W = float(c.frameSize.x), H = float(c.frameSize.y);
+  if (state_ == MatchState::Playing && c.tick < waveBannerTick_ + 120 && wave_ > 0)
+    centredText(r, "WAVE " + std::to_string(wave_), W, H * 0.28f, 5.f * u, kGold);
+  if (state_ == MatchState::Intermission) drawIntermission(r, c.tick, glm::vec2(W, H), u);
+  if (state_ == MatchState::Defeated) {
+    // Low on the screen: the player and the cheering enemies are in the middle.
+    const float y = H * 0.72f;
+    r.submitOverlayRect(glm::vec4(0, y, W, 90 * u), glm::vec4(0.f, 0.f, 0.f, 0.6f));
+    centredText(r, "DEFEATED", W, y + 12 * u, 5.f * u, glm::vec4(1.f, 0.3f, 0.2f, 1.f));
+    centredText(r, "your foes cheer   press Enter for the menu", W, y + 62 * u, 2.f * u, kWhite);
+  }
+  if (state_ != MatchState::Playing && state_ != MatchState::Intermission) return;
+  r.submitText("WASD move   mouse aim   left: sword   right: disc   space: spin", {20 * u, H - 30 * u}, 1.8f * u,
+               glm::vec4(1.f, 1.f, 1.f, 0.85f));
+  const glm::vec2 m = cursorInFrame(c.input, c.frameSize);
+  const float k = 9.f * u;
+  const glm::vec2 cross[8] = {m + glm::vec2(-k, 0), m + glm::vec2(-k * 0.35f, 0), m + glm::vec2(k, 0),
+                              m + glm::vec2(k * 0.35f, 0), m + glm::vec2(0, -k), m + glm::vec2(0, -k * 0.35f),
+                              m + glm::vec2(0, k), m + glm::vec2(0, k * 0.35f)};
+  r.submitOverlayLines(cross, glm::vec4(0.6f, 1.f, 1.f, 1.f));
+}
+
+void ArenaGame::drawIntermission(render::Renderer& r, uint64_t tick, glm::vec2 frame, float u) {
+  // Before wave 1: GET READY and a countdown. After a wave: WAVE n CLEARED, then the refill, then
+  // the countdown to the next wave.
+  const uint64_t ticksLeft = nextWaveTick_ > tick ? nextWaveTick_ - tick : 0;
+  const int secondsLeft = int((ticksLeft + 59) / 60);
+  const float y = frame.y * 0.28f;
+  r.submitOverlayRect(glm::vec4(0, y - 12 * u, frame.x, 112 * u), glm::vec4(0.f, 0.f, 0.f, 0.35f));
+  const std::string title = wave_ == 0 ? "GET READY" : "WAVE " + std::to_string(wave_) + " CLEARED";
+  centredText(r, title, frame.x, y, 5.f * u, kGold);
+  std::string detail;
+  if (wave_ > 0 && tick >= refillTick_)
+    detail = health_ < tuning_.player.health ? "health restoring..." : "HEALTH RESTORED   ";
+  detail += "wave " + std::to_string(wave_ + 1) + " in " + std::to_string(secondsLeft);
+  centredText(r, detail, frame.x, y + 56 * u, 2.4f * u, kWhite);
+}
+
+}  // namespace cleave::arena
