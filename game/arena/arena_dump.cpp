@@ -55,6 +55,8 @@ void ArenaGame::dumpEnemy(const Enemy& enemy, nlohmann::json& out) {
   out["hit"] = enemy.hit;
   out["behaviour"] = toString(enemy.behaviour);
   out["spawn_tick"] = enemy.spawnTick;
+  if (const auto* skin = app_->world().tryGet<components::SkinnedMesh>(enemy.entity); skin && skin->animator.clip())
+    out["clip"] = skin->animator.clip()->name;
   // How far its up axis leans from the vertical, in degrees, from its body as physics has it (a
   // figure that topples over shows it here whatever the game meant to do with it).
   glm::quat rotation = app_->world().get<ecs::Transform>(enemy.entity).rotation;
@@ -96,6 +98,12 @@ nlohmann::json ArenaGame::dumpMatch() {
     kills[kindName(EnemyKind(k))] = std::move(perKind);
   }
   arena["kills_by_kind"] = std::move(kills);
+  // The numbers the match plays by, so that a check reads them instead of repeating them.
+  arena["tuning"] = {{"grace_seconds", tuning_.match.graceSeconds},
+                     {"intermission_seconds", tuning_.match.intermissionSeconds},
+                     {"arrival_seconds", tuning_.waves.arrivalSeconds},
+                     {"later_arrival_seconds", tuning_.waves.laterArrivalSeconds},
+                     {"max_attackers", tuning_.match.maxAttackers}};
   // What is alive in the engine: a match that leaves nothing behind comes back to the same figures.
   arena["resources"] = {{"entities", app_->world().size()},
                         {"bodies", physics_->bodyCount()},

@@ -23,7 +23,6 @@ namespace {
 
 namespace prim = geometry::primitives;
 
-constexpr float kPlayerRadius = 0.35f;    // m
 constexpr float kDiscHeight = 1.0f;       // m above the floor: waist height of the gladiators
 constexpr float kDiscRadius = 0.45f;      // m
 constexpr float kDiscSpeed = 13.f;        // m/s outbound

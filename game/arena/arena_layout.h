@@ -10,6 +10,7 @@ namespace cleave::arena {
 
 inline constexpr float kPi = 3.14159265358979f;
 inline constexpr float kArenaRadius = 12.0f;  // m, the inner face of the wall
+inline constexpr float kPlayerRadius = 0.35f;  // m, the player's circle on the floor
 
 // Compass direction on the floor: angle 0 is north (-z), pi/2 east (+x); the four gates are at
 // 0, pi/2, pi and 3 pi / 2.

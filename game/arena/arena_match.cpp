@@ -114,7 +114,7 @@ void ArenaGame::updateWaves(app::TickContext& c) {
     enterIntermission(c.tick, tuning_.match.intermissionSeconds);
     return;
   }
-  const EnemyField field{playerPosition_, &pillars_, kArenaRadius};
+  const EnemyField field{playerPosition_, kPlayerRadius, &pillars_, kArenaRadius};
   const int damage = updateEnemies(ec, enemies_, field, tuning_, float(c.dt));
   if (damage > 0) {
     health_ = std::max(0, health_ - damage);

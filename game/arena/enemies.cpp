@@ -293,15 +293,19 @@ glm::vec2 crowdPush(const std::vector<Enemy>& enemies, size_t i, const ArenaTuni
   return push;
 }
 
-// `next` moved out of the pillars and inside the wall, for a floor circle of `radius`.
+// `next` moved out of a round obstacle, for a floor circle of `radius`.
+glm::vec2 pushOut(glm::vec2 next, float radius, const Obstacle& o) {
+  const glm::vec2 d = next - o.centre;
+  const float len = glm::length(d);
+  const float minimum = o.radius + radius;
+  return len < minimum && len > 1e-5f ? o.centre + d / len * minimum : next;
+}
+
+// `next` moved out of the pillars and the player and inside the wall, for a floor circle of `radius`.
 glm::vec2 keepOnFloor(glm::vec2 next, float radius, const EnemyField& field) {
   if (field.obstacles)
-    for (const Obstacle& o : *field.obstacles) {
-      const glm::vec2 d = next - o.centre;
-      const float len = glm::length(d);
-      const float minimum = o.radius + radius;
-      if (len < minimum && len > 1e-5f) next = o.centre + d / len * minimum;
-    }
+    for (const Obstacle& o : *field.obstacles) next = pushOut(next, radius, o);
+  next = pushOut(next, radius, Obstacle{field.player, field.playerRadius});
   const float fromCentre = glm::length(next);
   if (fromCentre > field.arenaRadius - radius) next *= (field.arenaRadius - radius) / fromCentre;
   return next;

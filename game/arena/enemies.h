@@ -108,6 +108,7 @@ struct Obstacle {
 // Where the enemies walk: the player's place, the pillars and the wall.
 struct EnemyField {
   glm::vec2 player{0.f};
+  float playerRadius = 0.35f;                        // m: nobody walks into the player
   const std::vector<Obstacle>* obstacles = nullptr;  // may be null: no pillars
   float arenaRadius = 12.f;                          // m, the inner face of the wall
 };

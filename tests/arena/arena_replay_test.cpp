@@ -1,8 +1,10 @@
 // The arena sample's bundled replays, run headless through the real executable: the match (menu,
 // two waves of gladiators and skinned warriors, disc, sword and spin; the skinned ones fall as
 // ragdoll halves), the burst of kills the split budget has to spread, the Quit
-// cube, determinism (two runs, and a recorded-then-replayed run, give the same state hash) and
-// golden frames.
+// cube, a first-time player's first two waves (grace period, arrivals one after another, the
+// refill between waves), defeat (the enemies cheer, upright) and the clean arena of the next match,
+// determinism (two runs, and a recorded-then-replayed run, give the same state hash) and golden
+// frames (the match, and the view over the east wall).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +15,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -85,7 +88,7 @@ TEST(ArenaReplay, MatchClearsTwoWavesWithBothWeapons) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
   ASSERT_TRUE(dump.is_object());
-  EXPECT_EQ(dump.at("tick"), 1339);
+  EXPECT_EQ(dump.at("tick"), 3099);
   const auto& arena = dump.at("arena");
   // The menu click cut the Start cube and started the match; wave 3 has begun, so waves 1 and 2
   // (4 + 2 and 8 + 3 gladiators and skinned warriors) were cleared, and the player lived through it.
@@ -244,7 +247,8 @@ TEST(ArenaReplay, SameReplayGivesTheSameState) {
 }
 
 TEST(ArenaReplay, EveryReplayGivesTheSameStateOnZeroOneAndThreeSplitThreads) {
-  for (const char* name : {"arena_match.replay", "arena_burst.replay", "arena_quit.replay"})
+  for (const char* name : {"arena_match.replay", "arena_burst.replay", "arena_quit.replay", "arena_newcomer.replay",
+                           "arena_rematch.replay", "arena_east_wall.replay"})
     cleave::testing::expectSameStateOnZeroOneAndThreeSplitThreads(run, "--headless --replay " + replay(name), name);
 }
 
@@ -260,33 +264,248 @@ TEST(ArenaReplay, RecordedRunReplaysToTheSameState) {
   EXPECT_EQ(stateHash(original.output), stateHash(replayed.output));
 }
 
+// The entities of a dump line whose "kind" is `kind`.
+std::vector<nlohmann::json> entitiesOfKind(const nlohmann::json& line, const std::string& kind) {
+  std::vector<nlohmann::json> out;
+  for (const auto& e : line.at("entities"))
+    if (e.value("kind", "") == kind) out.push_back(e);
+  return out;
+}
+
+// The first line at or after `fromTick` whose match state is `state` (null when there is none).
+const nlohmann::json* firstLineInState(const std::vector<nlohmann::json>& lines, const std::string& state,
+                                       int fromTick = 0) {
+  for (const auto& line : lines)
+    if (line.at("tick").get<int>() >= fromTick && line.at("arena").at("state") == state) return &line;
+  return nullptr;
+}
+
+// A first-time player who never moves and only presses the spin attack every four seconds
+// (arena_newcomer.replay). Nobody comes through a gate during the grace period after START; the
+// enemies come one after another (never two within the tuned arrival gap) and at most
+// max_attackers strike at once; wave 1 costs health but is survived; the pause after it fills the
+// health bar up, so wave 2 begins at full health; wave 2 is survived too and wave 3 begins.
+TEST(ArenaReplay, NewcomerStandingStillSurvivesTwoWaves) {
+  const fs::path dir = scratchDir("newcomer");
+  const RunResult r = run("--headless --replay " + replay("arena_newcomer.replay") + " --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\" --dump-every 10");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::vector<nlohmann::json> lines = allDumpLines(dir / "state.jsonl");
+  ASSERT_FALSE(lines.empty());
+  const auto& tuning = lines.front().at("arena").at("tuning");
+  const int full = lines.front().at("arena").at("max_health").get<int>();
+  const nlohmann::json* grace = firstLineInState(lines, "intermission");
+  ASSERT_NE(grace, nullptr) << "no grace period after START";
+  const int graceEnd = grace->at("tick").get<int>() + int(std::lround(tuning.at("grace_seconds").get<double>() * 60));
+  std::map<uint64_t, std::pair<int, int>> arrivals;  // enemy id -> (wave, spawn tick)
+  int firstDamage = -1, lowestInWave1 = full, healthAtWave1Cleared = -1, healthAtWave2 = -1, mostStriking = 0;
+  for (const auto& line : lines) {
+    const auto& arena = line.at("arena");
+    const int tick = line.at("tick").get<int>(), wave = arena.at("wave").get<int>();
+    const int health = arena.at("health").get<int>();
+    const std::string state = arena.at("state");
+    EXPECT_NE(state, "defeated") << "tick " << tick;
+    if (health < full && firstDamage < 0) firstDamage = tick;
+    if (wave == 1 && state == "playing") lowestInWave1 = std::min(lowestInWave1, health);
+    if (wave == 1 && state == "intermission" && healthAtWave1Cleared < 0) healthAtWave1Cleared = health;
+    if (wave == 2 && state == "playing" && healthAtWave2 < 0) healthAtWave2 = health;
+    int striking = 0;
+    for (const auto& e : entitiesOfKind(line, "enemy")) {
+      arrivals.emplace(e.at("id").get<uint64_t>(), std::make_pair(wave, e.at("spawn_tick").get<int>()));
+      if (e.at("behaviour") == "strike") ++striking;
+    }
+    mostStriking = std::max(mostStriking, striking);
+  }
+  // The grace period: no arrival and no blow before it is over.
+  ASSERT_FALSE(arrivals.empty());
+  for (const auto& [id, arrival] : arrivals) EXPECT_GE(arrival.second, graceEnd) << "enemy " << id;
+  EXPECT_GE(firstDamage, graceEnd);
+  // One after another: wave 1 (4 + 2) at arrival_seconds, wave 2 (8 + 3) at later_arrival_seconds.
+  for (int wave : {1, 2}) {
+    std::vector<int> ticks;
+    for (const auto& [id, arrival] : arrivals)
+      if (arrival.first == wave) ticks.push_back(arrival.second);
+    std::sort(ticks.begin(), ticks.end());
+    EXPECT_EQ(ticks.size(), wave == 1 ? 6u : 11u) << "wave " << wave;
+    const double gap = tuning.at(wave == 1 ? "arrival_seconds" : "later_arrival_seconds").get<double>() * 60.0;
+    for (size_t k = 1; k < ticks.size(); ++k)
+      EXPECT_GE(ticks[k] - ticks[k - 1], int(std::lround(gap)) - 1) << "wave " << wave << " arrival " << k;
+  }
+  // Never surrounded: a few strike, the others wait their turn.
+  EXPECT_GE(mostStriking, 2);
+  EXPECT_LE(mostStriking, tuning.at("max_attackers").get<int>());
+  // Wave 1 costs health; the refill brings it back before wave 2.
+  EXPECT_LT(lowestInWave1, full);
+  EXPECT_GT(lowestInWave1, 0);
+  EXPECT_LT(healthAtWave1Cleared, full) << "nothing to refill: the check below would say nothing";
+  EXPECT_EQ(healthAtWave2, full);
+  const auto& last = lines.back().at("arena");
+  EXPECT_GE(last.at("wave").get<int>(), 3) << last.dump();
+  EXPECT_GT(last.at("health").get<int>(), 0);
+  EXPECT_EQ(last.at("enemies_killed"), 17) << "waves 1 and 2: 6 + 11";
+}
+
+// Beaten (arena_rematch.replay: the player stands still after one disc throw): the player lasts
+// far longer than the six seconds it took before the grace period and the staggered arrivals;
+// then every enemy still standing cheers where it stands (behaviour "cheer", the skinned ones in
+// their cheer clip), upright, hopping in place, for as long as the defeat is shown.
+TEST(ArenaReplay, DefeatedPlayerIsCheeredByUprightEnemies) {
+  const fs::path dir = scratchDir("defeat");
+  const RunResult r = run("--headless --replay " + replay("arena_rematch.replay") + " --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\" --dump-every 10");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::vector<nlohmann::json> lines = allDumpLines(dir / "state.jsonl");
+  const nlohmann::json* starting = firstLineInState(lines, "starting");
+  const nlohmann::json* defeat = firstLineInState(lines, "defeated");
+  ASSERT_NE(starting, nullptr);
+  ASSERT_NE(defeat, nullptr) << "the player was never beaten";
+  const int defeatTick = defeat->at("tick").get<int>();
+  EXPECT_GE(defeatTick - starting->at("tick").get<int>(), 20 * 60) << "beaten within 20 s of START";
+  std::map<uint64_t, nlohmann::json> atDefeat;  // enemy id -> its line when the cheering began
+  std::map<uint64_t, std::pair<double, double>> heights;  // id -> lowest and highest centre of mass
+  size_t cheeringLines = 0;
+  for (const auto& line : lines) {
+    const int tick = line.at("tick").get<int>();
+    if (line.at("arena").at("state") != "defeated" || tick < defeatTick + 30) continue;
+    ++cheeringLines;
+    const auto enemies = entitiesOfKind(line, "enemy");
+    EXPECT_GE(enemies.size(), 3u) << "tick " << tick;
+    for (const auto& e : enemies) {
+      const uint64_t id = e.at("id").get<uint64_t>();
+      EXPECT_EQ(e.at("behaviour"), "cheer") << e.dump();
+      EXPECT_LT(e.at("tilt_deg").get<double>(), 12.0) << "toppled: " << e.dump();
+      if (e.at("enemy_kind") == "skinned") {
+        EXPECT_EQ(e.value("clip", ""), "cheer") << e.dump();
+      }
+      const double y = e.at("center_of_mass")[1].get<double>();
+      EXPECT_GT(y, 0.6) << "lying on the sand: " << e.dump();
+      auto [it, first] = atDefeat.emplace(id, e);
+      if (!first) {
+        const double dx = e.at("position")[0].get<double>() - it->second.at("position")[0].get<double>();
+        const double dz = e.at("position")[2].get<double>() - it->second.at("position")[2].get<double>();
+        EXPECT_LT(std::hypot(dx, dz), 0.3) << "walked off: " << e.dump();
+      }
+      auto& h = heights.try_emplace(id, y, y).first->second;
+      h = {std::min(h.first, y), std::max(h.second, y)};
+    }
+  }
+  EXPECT_GE(cheeringLines, 10u);
+  // The gladiators hop as they cheer.
+  size_t hopping = 0;
+  for (const auto& [id, e] : atDefeat)
+    if (e.at("enemy_kind") == "gladiator" && heights[id].second - heights[id].first > 0.05) ++hopping;
+  EXPECT_GE(hopping, 2u);
+}
+
+// A new match starts from a clean arena (arena_rematch.replay: a crate, an urn and enemies cut,
+// then defeat, Enter, and the Start cube again). Back in the menu every prop stands whole where it
+// stood at the start, no piece is left (nor its body or GPU mesh: the engine's figures are back to
+// those of the first menu), and the match's figures are zero; the second match's only pieces are
+// those of its own Start cube.
+TEST(ArenaReplay, NewMatchStartsOnACleanArena) {
+  const fs::path dir = scratchDir("rematch");
+  const RunResult r = run("--headless --replay " + replay("arena_rematch.replay") + " --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\" --dump-every 10");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const std::vector<nlohmann::json> lines = allDumpLines(dir / "state.jsonl");
+  ASSERT_FALSE(lines.empty());
+  const nlohmann::json& firstMenu = lines.front();
+  ASSERT_EQ(firstMenu.at("arena").at("state"), "menu");
+  const nlohmann::json* defeat = firstLineInState(lines, "defeated");
+  ASSERT_NE(defeat, nullptr);
+  const nlohmann::json* menu = firstLineInState(lines, "menu", defeat->at("tick").get<int>());
+  ASSERT_NE(menu, nullptr) << "Enter did not go back to the menu";
+  // The last match left something to clean up.
+  const nlohmann::json* lastDefeated = nullptr;
+  for (const auto& line : lines)
+    if (line.at("arena").at("state") == "defeated") lastDefeated = &line;
+  const auto& before = lastDefeated->at("arena");
+  EXPECT_GE(before.at("enemies_killed").get<int>(), 1);
+  EXPECT_GE(before.at("props_broken").get<int>(), 1);
+  EXPECT_GE(countKind(*lastDefeated, "piece"), 1u);
+  EXPECT_LT(countKind(*lastDefeated, "prop"), countKind(firstMenu, "prop"));
+  // Props whole, where they stood: the same names, masses and places as in the first menu.
+  auto props = [](const nlohmann::json& line) {
+    std::vector<std::tuple<std::string, double, double, double>> out;
+    for (const auto& e : entitiesOfKind(line, "prop")) {
+      EXPECT_FALSE(e.contains("split_from")) << "a piece counted as a prop: " << e.dump();
+      out.emplace_back(e.at("name"), e.at("mass").get<double>(), e.at("position")[0].get<double>(),
+                       e.at("position")[2].get<double>());
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  const auto original = props(firstMenu), restored = props(*menu);
+  ASSERT_EQ(restored.size(), original.size());
+  for (size_t k = 0; k < original.size(); ++k) {
+    EXPECT_EQ(std::get<0>(restored[k]), std::get<0>(original[k]));
+    EXPECT_NEAR(std::get<1>(restored[k]), std::get<1>(original[k]), 1e-9 * std::get<1>(original[k]));
+    EXPECT_NEAR(std::get<2>(restored[k]), std::get<2>(original[k]), 1e-3);
+    EXPECT_NEAR(std::get<3>(restored[k]), std::get<3>(original[k]), 1e-3);
+  }
+  EXPECT_EQ(countKind(*menu, "piece"), 0u);
+  EXPECT_EQ(countKind(*menu, "enemy"), 0u);
+  EXPECT_EQ(countKind(*menu, "menu_cube"), 2u);
+  const auto& reset = menu->at("arena");
+  for (const char* figure : {"score", "enemies_killed", "wave", "props_broken", "disc_throws", "enemies_alive"})
+    EXPECT_EQ(reset.at(figure), 0) << figure;
+  for (const auto& [kind, kills] : reset.at("kills_by_kind").items()) EXPECT_EQ(kills.at("total"), 0) << kind;
+  EXPECT_EQ(reset.at("health"), reset.at("max_health"));
+  EXPECT_EQ(reset.at("resources"), firstMenu.at("arena").at("resources")) << "left behind by the last match";
+  EXPECT_EQ(reset.at("ragdoll_bodies_leaked"), 0);
+  // The next match: started, at zero, and every piece on the sand is its own Start cube's.
+  const nlohmann::json* next = nullptr;
+  for (const auto& line : lines)
+    if (line.at("arena").at("matches_started") == 2 && line.at("arena").at("state") == "intermission") next = &line;
+  ASSERT_NE(next, nullptr) << "the second match did not start";
+  EXPECT_EQ(next->at("arena").at("enemies_killed"), 0);
+  EXPECT_EQ(next->at("arena").at("score"), 0);
+  EXPECT_GE(countKind(*next, "piece"), 2u);
+  for (const auto& piece : entitiesOfKind(*next, "piece"))
+    EXPECT_GT(piece.at("born_tick").get<int>(), menu->at("tick").get<int>()) << "left over: " << piece.dump();
+}
+
+// Compares `frame` (a 640 x 360 screenshot in `dir`) with tests/arena/goldens/<prefix><frame>, with
+// the golden tolerance (image_compare.h). Only the wall-clock text of the top-right HUD box is
+// blanked (the FPS line, the split ms line and the graph: 2% of the frame). Goldens are refreshed
+// with CLEAVE_UPDATE_GOLDENS=1.
+void expectFrameMatchesGolden(const fs::path& dir, const std::string& frame, const std::string& prefix) {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;
+  std::string error;
+  ASSERT_TRUE(cleave::render::readPng((dir / frame).string(), width, height, rgba, &error)) << error;
+  ASSERT_EQ(width, 640);
+  ASSERT_EQ(height, 360);
+  // The HUD is laid out for 720 lines: at 360, half its units (drawBudgetPanel, box at x = W - 145).
+  cleave::testing::maskRect(rgba, width, height, 498, 8, width, 18);    // FPS, tick ms
+  cleave::testing::maskRect(rgba, width, height, 498, 26, width, 36);   // split ms
+  cleave::testing::maskRect(rgba, width, height, 498, 36, width, 53);   // the split ms graph
+  const std::string golden = std::string(CLEAVE_SOURCE_DIR) + "/tests/arena/goldens/" + prefix + frame;
+  const auto comparison = cleave::testing::compareWithGolden(golden, width, height, rgba, cleave::testing::kGoldenTolerance);
+  EXPECT_TRUE(comparison.ok) << frame << ": " << comparison.message;
+}
+
 // Frames of the match at 640 x 360 (the replay declares a 1280 x 720 window, so the clicks land on
-// the same things): the disc's first kills (a skinned warrior's halves falling), wave 2 closing in,
-// and the pieces after the spin (the skinned warriors of wave 2 still coming), with the golden
-// tolerance (image_compare.h). Only the wall-clock text of the top-right HUD box is blanked (the FPS
-// line, the split ms line and the graph: 2% of the frame). Goldens are refreshed with
-// CLEAVE_UPDATE_GOLDENS=1.
+// the same things): the disc's first kills (a skinned warrior's halves falling), wave 2 closing in
+// (three gladiators strike, the others wait around the player), and the pieces after the spin (the
+// skinned warriors of wave 2 still coming).
 TEST(ArenaReplay, MatchFramesMatchGoldenImages) {
   const fs::path dir = scratchDir("golden");
-  const RunResult r = run("--headless --replay " + replay("arena_match.replay") + " --ticks 1100 --width 640 --height 360 "
-                          "--screenshot-dir \"" + dir.string() + "\" --screenshot-every 100");
+  const RunResult r = run("--headless --replay " + replay("arena_match.replay") + " --ticks 2500 --width 640 --height 360 "
+                          "--screenshot-dir \"" + dir.string() + "\" --screenshot-every 310");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  for (const char* frame : {"frame_000300.png", "frame_001000.png", "frame_001099.png"}) {
-    int width = 0, height = 0;
-    std::vector<uint8_t> rgba;
-    std::string error;
-    ASSERT_TRUE(cleave::render::readPng((dir / frame).string(), width, height, rgba, &error)) << error;
-    ASSERT_EQ(width, 640);
-    ASSERT_EQ(height, 360);
-    // The HUD is laid out for 720 lines: at 360, half its units (drawHud, box at x = W - 145).
-    cleave::testing::maskRect(rgba, width, height, 498, 8, width, 18);    // FPS, tick ms
-    cleave::testing::maskRect(rgba, width, height, 498, 26, width, 36);   // split ms
-    cleave::testing::maskRect(rgba, width, height, 498, 36, width, 53);   // the split ms graph
-    const cleave::testing::ImageTolerance tolerance = cleave::testing::kGoldenTolerance;
-    const std::string golden = std::string(CLEAVE_SOURCE_DIR) + "/tests/arena/goldens/match_" + frame;
-    const auto comparison = cleave::testing::compareWithGolden(golden, width, height, rgba, tolerance);
-    EXPECT_TRUE(comparison.ok) << frame << ": " << comparison.message;
-  }
+  for (const char* frame : {"frame_000620.png", "frame_002170.png", "frame_002499.png"})
+    expectFrameMatchesGolden(dir, frame, "match_");
+}
+
+// The follow view at the east wall (arena_east_wall.replay): over the wall the stands, their crowd
+// and the turf fill the frame; before them this view showed the sky's empty grey below the horizon.
+TEST(ArenaReplay, EastWallViewShowsTheStandsNotTheVoid) {
+  const fs::path dir = scratchDir("east_wall");
+  const RunResult r = run("--headless --replay " + replay("arena_east_wall.replay") + " --width 640 --height 360 "
+                          "--screenshot-dir \"" + dir.string() + "\" --screenshot-every 100000");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  expectFrameMatchesGolden(dir, "frame_000399.png", "east_wall_");
 }
 
 }  // namespace
