@@ -270,32 +270,25 @@ geometry::MeshData gladiatorMesh() {
   return mesh;
 }
 
-ArenaMaterials createArenaMaterials(render::Renderer& r, const std::vector<glm::vec4>& characterColors) {
-  ArenaMaterials m;
-  auto upload = [&](const assets::Image& img) {
-    const render::TextureHandle h = r.createTexture(img.width, img.height, img.rgba);
-    m.textures.push_back(h);
-    return h;
-  };
-  const render::TextureHandle flag = upload(makeFlagstoneTexture(512, 21));
-  const render::TextureHandle stone = upload(assets::makeTexture(assets::TextureKind::Stone, 256, 4));
-  const render::TextureHandle marble = upload(assets::makeTexture(assets::TextureKind::Marble, 256, 6));
-  const render::TextureHandle wood = upload(assets::makeTexture(assets::TextureKind::Wood, 256, 8));
-  const render::TextureHandle metal = upload(assets::makeTexture(assets::TextureKind::BrushedMetal, 256, 10));
-  const render::TextureHandle clay = upload(makeTerracottaTexture(256, 12));
-  const render::TextureHandle start = upload(makeLetteredMetalTexture(256, "START", 14));
-  const render::TextureHandle quit = upload(makeLetteredMetalTexture(256, "QUIT", 16));
+namespace {
 
-  m.floor.albedo = flag;
+// The arena's textures, uploaded once (ArenaMaterials::textures owns them).
+struct ArenaTextures {
+  render::TextureHandle flag, stone, marble, wood, metal, clay, start, quit, turf;
+};
+
+// The floor, the wall and its gates, the pillars, and outside the wall the stands, turf and crowd.
+void setLevelMaterials(ArenaMaterials& m, const ArenaTextures& t) {
+  m.floor.albedo = t.flag;
   m.floor.specular = 0.12f;
   m.floor.shininess = 16.f;
   m.floor.castsShadow = false;  // it only receives: the shadow pass skips the whole arena floor
-  m.wall.albedo = stone;
+  m.wall.albedo = t.stone;
   m.wall.baseColor = glm::vec4(1.05f, 0.92f, 0.78f, 1.f);
   m.wall.specular = 0.08f;
   m.wallTrim = m.wall;
   m.wallTrim.baseColor = glm::vec4(0.85f, 0.74f, 0.62f, 1.f);
-  m.pillar.albedo = marble;
+  m.pillar.albedo = t.marble;
   m.pillar.baseColor = glm::vec4(1.0f, 0.96f, 0.9f, 1.f);
   m.pillar.specular = 0.5f;
   m.pillar.shininess = 50.f;
@@ -304,7 +297,7 @@ ArenaMaterials createArenaMaterials(render::Renderer& r, const std::vector<glm::
   m.stands.castsShadow = false;  // drawn for the view only: no shadows over the sand
   m.standsRiser = m.stands;
   m.standsRiser.baseColor = glm::vec4(0.66f, 0.56f, 0.46f, 1.f);
-  m.turf.albedo = upload(makeTurfTexture(256, 18));
+  m.turf.albedo = t.turf;
   m.turf.specular = 0.04f;
   m.turf.castsShadow = false;
   // The crowd: tunics of white, madder red, woad blue and ochre (crowdMesh's ids 0..3), then skin.
@@ -317,22 +310,47 @@ ArenaMaterials createArenaMaterials(render::Renderer& r, const std::vector<glm::
     mat.castsShadow = false;
     m.crowd.push_back(mat);
   }
-  m.gate.albedo = wood;
+  m.gate.albedo = t.wood;
   m.gate.baseColor = glm::vec4(0.35f, 0.22f, 0.14f, 1.f);
   m.gate.specular = 0.05f;
 
-  m.crate.albedo = wood;
+}
+
+// The crates and urns, the menu cubes and the weapons.
+void setPropMaterials(ArenaMaterials& m, const ArenaTextures& t) {
+  m.crate.albedo = t.wood;
   m.crate.specular = 0.12f;
   m.crate.shininess = 20.f;
   m.crateCap = m.crate;
   m.crateCap.baseColor = glm::vec4(1.15f, 1.05f, 0.9f, 1.f);
-  m.urn.albedo = clay;
+  m.urn.albedo = t.clay;
   m.urn.specular = 0.3f;
   m.urn.shininess = 30.f;
   m.urnCap.baseColor = glm::vec4(0.55f, 0.28f, 0.16f, 1.f);
   m.urnCap.specular = 0.05f;
 
-  m.armour.albedo = metal;
+  m.startCube.albedo = t.start;
+  m.startCube.specular = 1.2f;
+  m.startCube.shininess = 90.f;
+  m.startCube.reflectivity = 0.45f;
+  m.quitCube = m.startCube;
+  m.quitCube.albedo = t.quit;
+  m.metalCap.albedo = t.metal;
+  m.metalCap.baseColor = glm::vec4(0.75f, 0.75f, 0.8f, 1.f);
+  m.metalCap.specular = 0.8f;
+  m.metalCap.reflectivity = 0.15f;
+
+  m.disc.shading = render::Shading::Unlit;
+  m.disc.baseColor = glm::vec4(0.35f, 0.95f, 1.0f, 1.f);
+  m.blade = m.disc;
+  m.bladeCore.shading = render::Shading::Unlit;
+  m.bladeCore.baseColor = glm::vec4(0.85f, 1.0f, 1.0f, 1.f);
+
+}
+
+// The gladiators' parts, the player and the skinned warriors.
+void setFigureMaterials(ArenaMaterials& m, const ArenaTextures& t, const std::vector<glm::vec4>& characterColors) {
+  m.armour.albedo = t.metal;
   m.armour.baseColor = glm::vec4(0.78f, 0.42f, 0.16f, 1.f);  // bronze
   m.armour.specular = 1.2f;
   m.armour.shininess = 60.f;
@@ -343,23 +361,6 @@ ArenaMaterials createArenaMaterials(render::Renderer& r, const std::vector<glm::
   m.cloth.specular = 0.05f;
   m.flesh.shading = render::Shading::Unlit;
   m.flesh.baseColor = glm::vec4(1.0f, 0.42f, 0.08f, 1.f);  // the energy blade's burn
-
-  m.startCube.albedo = start;
-  m.startCube.specular = 1.2f;
-  m.startCube.shininess = 90.f;
-  m.startCube.reflectivity = 0.45f;
-  m.quitCube = m.startCube;
-  m.quitCube.albedo = quit;
-  m.metalCap.albedo = metal;
-  m.metalCap.baseColor = glm::vec4(0.75f, 0.75f, 0.8f, 1.f);
-  m.metalCap.specular = 0.8f;
-  m.metalCap.reflectivity = 0.15f;
-
-  m.disc.shading = render::Shading::Unlit;
-  m.disc.baseColor = glm::vec4(0.35f, 0.95f, 1.0f, 1.f);
-  m.blade = m.disc;
-  m.bladeCore.shading = render::Shading::Unlit;
-  m.bladeCore.baseColor = glm::vec4(0.85f, 1.0f, 1.0f, 1.f);
 
   // The player: the character's colours, restyled as a gladiator (bronze-red tunic).
   for (size_t i = 0; i < characterColors.size(); ++i) {
@@ -387,6 +388,30 @@ ArenaMaterials createArenaMaterials(render::Renderer& r, const std::vector<glm::
   m.skinnedEnemy[4].baseColor = glm::vec4(0.62f, 0.42f, 0.16f, 1.f);
   m.skinnedEnemy[4].specular = 0.6f;
   m.skinnedEnemy[4].shininess = 40.f;
+}
+
+}  // namespace
+
+ArenaMaterials createArenaMaterials(render::Renderer& r, const std::vector<glm::vec4>& characterColors) {
+  ArenaMaterials m;
+  auto upload = [&](const assets::Image& img) {
+    const render::TextureHandle h = r.createTexture(img.width, img.height, img.rgba);
+    m.textures.push_back(h);
+    return h;
+  };
+  ArenaTextures t;
+  t.flag = upload(makeFlagstoneTexture(512, 21));
+  t.stone = upload(assets::makeTexture(assets::TextureKind::Stone, 256, 4));
+  t.marble = upload(assets::makeTexture(assets::TextureKind::Marble, 256, 6));
+  t.wood = upload(assets::makeTexture(assets::TextureKind::Wood, 256, 8));
+  t.metal = upload(assets::makeTexture(assets::TextureKind::BrushedMetal, 256, 10));
+  t.clay = upload(makeTerracottaTexture(256, 12));
+  t.start = upload(makeLetteredMetalTexture(256, "START", 14));
+  t.quit = upload(makeLetteredMetalTexture(256, "QUIT", 16));
+  t.turf = upload(makeTurfTexture(256, 18));
+  setLevelMaterials(m, t);
+  setPropMaterials(m, t);
+  setFigureMaterials(m, t, characterColors);
   return m;
 }
 

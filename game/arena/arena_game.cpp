@@ -619,13 +619,35 @@ void ArenaGame::triggers(app::TickContext& c) {
 
 void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
   splitLog_.record(tick, ev);
-  ecs::World& world = app_->world();
   const bool cut = ev.status == geometry::SplitStatus::Ok && !ev.pieces.empty();
   auto enemy = std::find_if(enemies_.begin(), enemies_.end(), [&](const Enemy& e) { return e.entity == ev.original; });
   if (!cut) {
     if (enemy != enemies_.end()) enemy->hit = false;  // the plane missed: it walks on
     return;
   }
+  adoptPieces(ev, tick);
+  if (enemy != enemies_.end()) {
+    throwPiecesAway(*enemy, ev.pieces);
+    const size_t kind = std::min(size_t(enemy->kind), kKindCount - 1);
+    ++match_.killsByKind[kind][0];
+    if (enemy->hitBy > 0 && enemy->hitBy < kWeaponCount) ++match_.killsByKind[kind][enemy->hitBy];
+    enemies_.erase(enemy);
+    ++match_.score;
+    ++match_.enemiesKilled;
+  }
+  if (ev.originalName == "crate" || ev.originalName == "urn") ++match_.propsBroken;
+  if (ev.original == startCube_ && state_ == MatchState::Menu) {
+    state_ = MatchState::Starting;
+    stateTick_ = tick;
+    ++matchesStarted_;
+  } else if (ev.original == quitCube_ && state_ == MatchState::Menu) {
+    state_ = MatchState::Quitting;
+    stateTick_ = tick;
+  }
+}
+
+void ArenaGame::adoptPieces(const components::SplitEvent& ev, uint64_t tick) {
+  ecs::World& world = app_->world();
   // A ragdoll piece cut again (by the disc on its way back, say) is gone with all its bone bodies.
   if (auto it = ragdollBones_.find(ev.original); it != ragdollBones_.end()) {
     ++ragdollPiecesCut_;
@@ -650,45 +672,32 @@ void ArenaGame::onSplit(const components::SplitEvent& ev, uint64_t tick) {
       world.remove<components::Splitable>(piece);
     ++piecesSpawned_;
   }
-  if (enemy != enemies_.end()) {
-    // The blow throws the pieces away from the player, tumbling.
-    const glm::vec2 away = enemy->position - playerPosition_;
-    const glm::vec2 dir = glm::length(away) > 1e-3f ? glm::normalize(away) : forwardOf(enemy->yaw + kPi);
-    for (ecs::Entity piece : ev.pieces) {
-      const auto* rb = world.tryGet<components::RigidBody>(piece);
-      const auto* mi = world.tryGet<components::MassInfo>(piece);
-      const auto* t = world.tryGet<ecs::Transform>(piece);
-      if (!rb || !mi || !t) continue;
-      const float lift = t->position.y > 0.9f ? 1.2f : 0.3f;  // upper parts fly, legs buckle
-      if (const auto* ragdoll = world.tryGet<components::Ragdoll>(piece)) {
-        // A ragdoll half: every bone gets the same push (by its own mass), so the half is thrown
-        // whole and its joints only carry the tumble.
-        for (const components::RagdollBone& bone : ragdoll->bones) {
-          const auto state = physics_->bodyState(bone.body);
-          if (!state) continue;
-          const glm::vec3 impulse = glm::vec3(dir.x * 1.6f, lift * 0.6f, dir.y * 1.6f) * bone.mass;
-          physics_->applyImpulse(bone.body, impulse, state->transform.position + glm::vec3(0.f, 0.05f, 0.f));
-        }
-        continue;
+}
+
+void ArenaGame::throwPiecesAway(const Enemy& enemy, const std::vector<ecs::Entity>& pieces) {
+  // The blow throws the pieces away from the player, tumbling.
+  ecs::World& world = app_->world();
+  const glm::vec2 away = enemy.position - playerPosition_;
+  const glm::vec2 dir = glm::length(away) > 1e-3f ? glm::normalize(away) : forwardOf(enemy.yaw + kPi);
+  for (ecs::Entity piece : pieces) {
+    const auto* rb = world.tryGet<components::RigidBody>(piece);
+    const auto* mi = world.tryGet<components::MassInfo>(piece);
+    const auto* t = world.tryGet<ecs::Transform>(piece);
+    if (!rb || !mi || !t) continue;
+    const float lift = t->position.y > 0.9f ? 1.2f : 0.3f;  // upper parts fly, legs buckle
+    if (const auto* ragdoll = world.tryGet<components::Ragdoll>(piece)) {
+      // A ragdoll half: every bone gets the same push (by its own mass), so the half is thrown
+      // whole and its joints only carry the tumble.
+      for (const components::RagdollBone& bone : ragdoll->bones) {
+        const auto state = physics_->bodyState(bone.body);
+        if (!state) continue;
+        const glm::vec3 impulse = glm::vec3(dir.x * 1.6f, lift * 0.6f, dir.y * 1.6f) * bone.mass;
+        physics_->applyImpulse(bone.body, impulse, state->transform.position + glm::vec3(0.f, 0.05f, 0.f));
       }
-      const glm::vec3 impulse = glm::vec3(dir.x * 2.2f, lift, dir.y * 2.2f) * float(mi->mass);
-      physics_->applyImpulse(rb->body, impulse, t->position + glm::vec3(0.f, 0.12f, 0.f));
+      continue;
     }
-    const size_t kind = std::min(size_t(enemy->kind), kKindCount - 1);
-    ++match_.killsByKind[kind][0];
-    if (enemy->hitBy > 0 && enemy->hitBy < kWeaponCount) ++match_.killsByKind[kind][enemy->hitBy];
-    enemies_.erase(enemy);
-    ++match_.score;
-    ++match_.enemiesKilled;
-  }
-  if (ev.originalName == "crate" || ev.originalName == "urn") ++match_.propsBroken;
-  if (ev.original == startCube_ && state_ == MatchState::Menu) {
-    state_ = MatchState::Starting;
-    stateTick_ = tick;
-    ++matchesStarted_;
-  } else if (ev.original == quitCube_ && state_ == MatchState::Menu) {
-    state_ = MatchState::Quitting;
-    stateTick_ = tick;
+    const glm::vec3 impulse = glm::vec3(dir.x * 2.2f, lift, dir.y * 2.2f) * float(mi->mass);
+    physics_->applyImpulse(rb->body, impulse, t->position + glm::vec3(0.f, 0.12f, 0.f));
   }
 }
 

@@ -153,6 +153,8 @@ class ArenaGame {
   ecs::Entity makeSplitter(const std::string& name, const physics::ShapeDef& shape, glm::vec3 position,
                            glm::quat rotation, bool persistent);
   void onSplit(const components::SplitEvent& ev, uint64_t tick);
+  void adoptPieces(const components::SplitEvent& ev, uint64_t tick);
+  void throwPiecesAway(const Enemy& enemy, const std::vector<ecs::Entity>& pieces);
   void updatePieces(uint64_t tick);
   void removeEntity(ecs::Entity e);
 
