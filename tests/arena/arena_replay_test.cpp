@@ -280,17 +280,23 @@ const nlohmann::json* firstLineInState(const std::vector<nlohmann::json>& lines,
   return nullptr;
 }
 
+// Plays the bundled replay `name` headless with a state dump every 10 ticks into scratch folder
+// `scratch`; returns every line of the dump (empty, with a failure, when the run fails).
+std::vector<nlohmann::json> dumpEveryTenTicks(const std::string& name, const std::string& scratch) {
+  const fs::path dir = scratchDir(scratch);
+  const RunResult r = run("--headless --replay " + replay(name) + " --dump-state \"" + (dir / "state.jsonl").string() +
+                          "\" --dump-every 10");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  return r.exitCode == 0 ? allDumpLines(dir / "state.jsonl") : std::vector<nlohmann::json>{};
+}
+
 // A first-time player who never moves and only presses the spin attack every four seconds
 // (arena_newcomer.replay). Nobody comes through a gate during the grace period after START; the
 // enemies come one after another (never two within the tuned arrival gap) and at most
 // max_attackers strike at once; wave 1 costs health but is survived; the pause after it fills the
 // health bar up, so wave 2 begins at full health; wave 2 is survived too and wave 3 begins.
 TEST(ArenaReplay, NewcomerStandingStillSurvivesTwoWaves) {
-  const fs::path dir = scratchDir("newcomer");
-  const RunResult r = run("--headless --replay " + replay("arena_newcomer.replay") + " --dump-state \"" +
-                          (dir / "state.jsonl").string() + "\" --dump-every 10");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  const std::vector<nlohmann::json> lines = allDumpLines(dir / "state.jsonl");
+  const std::vector<nlohmann::json> lines = dumpEveryTenTicks("arena_newcomer.replay", "newcomer");
   ASSERT_FALSE(lines.empty());
   const auto& tuning = lines.front().at("arena").at("tuning");
   const int full = lines.front().at("arena").at("max_health").get<int>();
@@ -352,11 +358,8 @@ TEST(ArenaReplay, NewcomerStandingStillSurvivesTwoWaves) {
 // then every enemy still standing cheers where it stands (behaviour "cheer", the skinned ones in
 // their cheer clip), upright, hopping in place, for as long as the defeat is shown.
 TEST(ArenaReplay, DefeatedPlayerIsCheeredByUprightEnemies) {
-  const fs::path dir = scratchDir("defeat");
-  const RunResult r = run("--headless --replay " + replay("arena_rematch.replay") + " --dump-state \"" +
-                          (dir / "state.jsonl").string() + "\" --dump-every 10");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  const std::vector<nlohmann::json> lines = allDumpLines(dir / "state.jsonl");
+  const std::vector<nlohmann::json> lines = dumpEveryTenTicks("arena_rematch.replay", "defeat");
+  ASSERT_FALSE(lines.empty());
   const nlohmann::json* starting = firstLineInState(lines, "starting");
   const nlohmann::json* defeat = firstLineInState(lines, "defeated");
   ASSERT_NE(starting, nullptr);
@@ -405,11 +408,7 @@ TEST(ArenaReplay, DefeatedPlayerIsCheeredByUprightEnemies) {
 // those of the first menu), and the match's figures are zero; the second match's only pieces are
 // those of its own Start cube.
 TEST(ArenaReplay, NewMatchStartsOnACleanArena) {
-  const fs::path dir = scratchDir("rematch");
-  const RunResult r = run("--headless --replay " + replay("arena_rematch.replay") + " --dump-state \"" +
-                          (dir / "state.jsonl").string() + "\" --dump-every 10");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  const std::vector<nlohmann::json> lines = allDumpLines(dir / "state.jsonl");
+  const std::vector<nlohmann::json> lines = dumpEveryTenTicks("arena_rematch.replay", "rematch");
   ASSERT_FALSE(lines.empty());
   const nlohmann::json& firstMenu = lines.front();
   ASSERT_EQ(firstMenu.at("arena").at("state"), "menu");
