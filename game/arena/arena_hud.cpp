@@ -117,7 +117,7 @@ void ArenaGame::drawIntermission(render::Renderer& r, uint64_t tick, glm::vec2 f
   centredText(r, title, frame.x, y, 5.f * u, kGold);
   std::string detail;
   if (wave_ > 0 && tick >= refillTick_)
-    detail = health_ < tuning_.player.health ? "health restoring..." : "HEALTH RESTORED   ";
+    detail = health_ < tuning_.player.health ? "health restoring...   " : "HEALTH RESTORED   ";
   detail += "wave " + std::to_string(wave_ + 1) + " in " + std::to_string(secondsLeft);
   centredText(r, detail, frame.x, y + 56 * u, 2.4f * u, kWhite);
 }
