@@ -62,7 +62,10 @@ void ArenaGame::drawBudgetPanel(app::TickContext& c, float u) {
   const auto& stats = splits_->budget().stats();
   const float bx = float(c.frameSize.x) - 290 * u;
   r.submitOverlayRect(glm::vec4(bx, 10 * u, 280 * u, 100 * u), kShade);
-  std::snprintf(line, sizeof(line), "FPS %.0f  tick %.1f ms", c.app.framesPerSecond(), c.app.lastTickMilliseconds());
+  // Headless runs draw no frames to count: the tick rate instead.
+  const bool headless = c.app.headless();
+  std::snprintf(line, sizeof(line), "%s %.0f  tick %.1f ms", headless ? "TPS" : "FPS",
+                headless ? c.app.ticksPerSecond() : c.app.framesPerSecond(), c.app.lastTickMilliseconds());
   r.submitText(line, {bx + 10 * u, 18 * u}, 1.7f * u, kWhite);
   std::snprintf(line, sizeof(line), "split queue %u  this tick %u", stats.queueLength, splitsThisTick_);
   r.submitText(line, {bx + 10 * u, 36 * u}, 1.7f * u, kWhite);

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "cleave_version.h"
 #include "engine/app/app.h"
 #include "game/arena/arena_game.h"
 
@@ -14,6 +15,10 @@ int main(int argc, char** argv) {
   if (!parsed.ok) {
     std::fprintf(stderr, "cleave-arena: %s\n", parsed.error.c_str());
     return 2;
+  }
+  if (parsed.versionRequested) {
+    std::printf("cleave-arena %s\n", cleave::kVersion);
+    return 0;
   }
   if (parsed.helpRequested) {
     std::printf("usage: cleave-arena [options]\n\n%s", cleave::app::appOptionsUsage().c_str());
