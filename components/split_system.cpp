@@ -18,6 +18,7 @@
 #include "engine/ecs/command_buffer.h"
 #include "engine/ecs/hierarchy.h"
 #include "engine/geometry/mass_properties.h"
+#include "engine/log/log.h"
 
 namespace cleave::components {
 
@@ -66,7 +67,7 @@ void writeFailureCase(const std::string& directory, const std::string& name, uin
   for (const glm::vec3& p : mesh.positions) out << "v " << p.x << " " << p.y << " " << p.z << "\n";
   for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
     out << "f " << mesh.indices[i] + 1 << " " << mesh.indices[i + 1] + 1 << " " << mesh.indices[i + 2] + 1 << "\n";
-  std::fprintf(stderr, "cleave: failed split written to %s\n", path.c_str());
+  log::warning("cleave", "failed split written to %s", path.c_str());
 }
 
 // The frame and motion of an entity now: its body's when it has one, else its Transform's.
@@ -639,7 +640,7 @@ bool SplitSystem::prepare(SplitWorld& w, const SplitRequest& request, uint64_t t
   if ((!hierarchy && (!mr || !mr->source)) || !sp || !t) {
     ev.status = geometry::SplitStatus::InvalidInput;
     ev.message = "target has no mesh, Splitable or Transform";
-    std::fprintf(stderr, "cleave: split of %s (entity %u) at tick %llu kept whole: %s\n",
+    log::warning("cleave", "split of %s (entity %u) at tick %llu kept whole: %s",
                  ev.originalName.empty() ? "an object" : ev.originalName.c_str(), target.index,
                  static_cast<unsigned long long>(tick), ev.message.c_str());
     return false;
@@ -720,7 +721,7 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
     ev.status = status;
     ev.message = message;
     if (status != geometry::SplitStatus::Ok && status != geometry::SplitStatus::PlaneMissesMesh)
-      std::fprintf(stderr, "cleave: split of %s (entity %u) at tick %llu kept whole: %s\n",
+      log::warning("cleave", "split of %s (entity %u) at tick %llu kept whole: %s",
                    ev.originalName.empty() ? "an object" : ev.originalName.c_str(), ev.original.index,
                    static_cast<unsigned long long>(tick), message.c_str());
     ev.commitMilliseconds = nowMilliseconds() - start - waited;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/ecs/hierarchy.h"
+#include "engine/log/log.h"
 
 namespace cleave::app {
 
@@ -69,7 +70,7 @@ bool App::init(const AppOptions& options, const std::string& title, std::string*
   if (!options_.headless) {
     platform_ = createWindowPlatform(options_.width, options_.height, title, &platformError);
     if (!platform_) {
-      std::fprintf(stderr, "cleave: no window (%s); running headless\n", platformError.c_str());
+      log::warning("cleave", "no window (%s); running headless", platformError.c_str());
       options_.headless = true;
     }
   }
@@ -122,8 +123,8 @@ void App::applyRenderScale() {
   if (scale <= 0.f && !platform_->headless() && software) {
     dynamicScale_.emplace();
     scale = dynamicScale_->scale();
-    std::fprintf(stderr, "cleave: %s is a software rasteriser: the scene is drawn at 0.35 to 0.6 x the window as "
-                 "the frame time allows (--render-scale 1 for full resolution)\n", device.c_str());
+    log::info("cleave", "%s is a software rasteriser: the scene is drawn at 0.35 to 0.6 x the window as the "
+              "frame time allows (--render-scale 1 for full resolution)", device.c_str());
   } else if (scale <= 0.f) {
     scale = 1.f;
   }
@@ -260,7 +261,7 @@ int App::run() {
   const int64_t total = totalTicks();
   if (platform_->headless()) {
     if (total < 0) {
-      std::fprintf(stderr, "cleave: headless runs need --ticks N or --replay FILE\n");
+      log::error("cleave", "headless runs need --ticks N or --replay FILE");
       return 2;
     }
     // Screenshots: every N ticks when asked, otherwise four spread over the run plus the last tick.
@@ -277,7 +278,7 @@ int App::run() {
         const std::string path = (std::filesystem::path(options_.screenshotDir) / name).string();
         std::string error;
         if (!writeScreenshot(path, &error)) {
-          std::fprintf(stderr, "cleave: %s\n", error.c_str());
+          log::error("cleave", "%s", error.c_str());
           return 1;
         }
       }
@@ -288,12 +289,12 @@ int App::run() {
   if (recorder_) {
     const input::ReplaySaveResult saved = input::saveReplay(options_.recordPath, recorder_->replay());
     if (!saved.ok) {
-      std::fprintf(stderr, "cleave: %s\n", saved.error.c_str());
+      log::error("cleave", "%s", saved.error.c_str());
       return 1;
     }
-    std::printf("replay: %s\n", options_.recordPath.c_str());
+    log::info("", "replay: %s", options_.recordPath.c_str());
   }
-  for (const auto& path : screenshots_) std::printf("screenshot: %s\n", path.c_str());
+  for (const auto& path : screenshots_) log::info("", "screenshot: %s", path.c_str());
   if (!frameMs_.empty()) {
     // Frame times of the window run (present to present), for performance reports.
     std::vector<double> sorted = frameMs_;
@@ -301,12 +302,12 @@ int App::run() {
     double sum = 0.0;
     for (double ms : sorted) sum += ms;
     const size_t p95 = std::min(sorted.size() - 1, size_t(double(sorted.size()) * 0.95));
-    std::printf("frames: %zu  mean %.2f ms  median %.2f ms  p95 %.2f ms  max %.2f ms  render scale %.2f\n",
+    log::info("", "frames: %zu  mean %.2f ms  median %.2f ms  p95 %.2f ms  max %.2f ms  render scale %.2f",
                 sorted.size(), sum / double(sorted.size()), sorted[sorted.size() / 2], sorted[p95], sorted.back(),
                 double(renderer_->renderScale()));
   }
   if (options_.printStateHash)
-    std::printf("state-hash: %016llx\n", static_cast<unsigned long long>(stateHash()));
+    log::info("", "state-hash: %016llx", static_cast<unsigned long long>(stateHash()));
   std::fflush(stdout);
   return 0;
 }

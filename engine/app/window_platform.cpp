@@ -9,6 +9,7 @@
 
 #include "engine/app/platform.h"
 #include "engine/input/key.h"
+#include "engine/log/log.h"
 #include "engine/render/gl_context.h"
 
 namespace cleave::app {
@@ -152,7 +153,7 @@ class WindowPlatform final : public Platform {
 std::unique_ptr<Platform> createWindowPlatform(int width, int height, const std::string& title,
                                                std::string* error) {
   glfwSetErrorCallback([](int code, const char* text) {
-    std::fprintf(stderr, "glfw: error 0x%x: %s\n", code, text);
+    log::warning("glfw", "error 0x%x: %s", code, text);
   });
   if (!glfwInit()) {
     if (error) *error = "GLFW could not initialise (no display?)";

@@ -12,6 +12,7 @@
 
 #include "components/scene_loader.h"
 #include "engine/geometry/primitives.h"
+#include "engine/log/log.h"
 #include "tests/components/sim_harness.h"
 
 namespace cleave::components {
@@ -253,6 +254,11 @@ TEST(SplitFailure, OpenMeshKeepsTheOriginalWholeWithItsMassAndMomentumWhenAskedT
   sim.physics.setVelocity(body, glm::vec3(1.f, 0.f, 0.5f), glm::vec3(0.f, 2.f, 1.f));
   const double mass = sim.world.get<MassInfo>(e).mass;
 
+  // The failure is reported through the host's log sink (library code does not print).
+  std::vector<std::string> logged;
+  log::ScopedSink sink([&](log::Level level, std::string_view source, std::string_view message) {
+    if (level == log::Level::Warning && source == "cleave") logged.emplace_back(message);
+  });
   sim.requestCut(e, glm::dvec3(0, 1, 0), 3.0);
   sim.step();
   EXPECT_TRUE(sim.splits.lastEvents().empty());  // requested in this tick: prepared in the next one
@@ -263,6 +269,8 @@ TEST(SplitFailure, OpenMeshKeepsTheOriginalWholeWithItsMassAndMomentumWhenAskedT
   sim.step([&] { post = momentaOf(sim); });
   ASSERT_EQ(sim.splits.lastEvents().size(), 1u);
   const SplitEvent& ev = sim.splits.lastEvents()[0];
+  ASSERT_EQ(logged.size(), 1u);
+  EXPECT_NE(logged[0].find("kept whole"), std::string::npos) << logged[0];
   EXPECT_EQ(ev.status, geometry::SplitStatus::OpenSection);
   EXPECT_FALSE(ev.message.empty());
   EXPECT_TRUE(ev.pieces.empty());
