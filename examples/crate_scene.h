@@ -1,0 +1,96 @@
+// The scene of the engine examples: a headless App with splitting installed, a floor, one wooden
+// crate (a splittable rigid body) and a one-tick splitter (a thin blade) through the crate at a
+// tick of the run. Each example adds what it shows on top.
+#pragma once
+
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "components/scene_components.h"
+#include "components/simulation.h"
+#include "components/split_system.h"
+#include "engine/app/app.h"
+#include "engine/ecs/hierarchy.h"
+#include "engine/geometry/primitives.h"
+
+namespace examples {
+
+using namespace cleave;
+
+struct CrateScene {
+  app::App app;
+  std::unique_ptr<components::Simulation> sim;
+  ecs::Entity crate;
+
+  using Committed = std::function<void(app::TickContext&, const std::vector<components::SplitEvent>&)>;
+
+  // Starts a headless App for `ticks` ticks, `committed` called after each tick's commit; false
+  // with a reason printed when it cannot.
+  bool start(int ticks, Committed committed) {
+    components::SplittingHooks hooks;
+    hooks.committed = std::move(committed);
+    app::AppOptions options;
+    options.headless = true;
+    options.ticks = ticks;
+    std::string error;
+    if (!app.init(options, "example", &error)) return fail(error);
+    sim = std::make_unique<components::Simulation>(app.world(), components::SplitBudgetSettings{}, &app.renderer());
+    components::installSplitting(app, *sim, std::move(hooks));
+    return addFloor() && addCrate();
+  }
+
+  // A one-tick splitter: a 2 m x 2 m blade whose plane is its local +Y axis, through the crate.
+  void addBladeAt(uint64_t tick, const glm::vec3& position, const glm::quat& rotation) {
+    app.addSystem(app::Phase::Gameplay, "example.blade", [this, tick, position, rotation](app::TickContext& c) {
+      if (c.tick != tick) return;
+      components::Splitter blade;
+      blade.lifetime = components::SplitterLifetime::OneTick;
+      components::SplitWorld sw = sim->splitWorld();
+      components::createSplitter(sw, "blade", physics::ShapeDef::box(blade.halfExtents), position, rotation, blade);
+    });
+  }
+
+  static bool fail(const std::string& why) {
+    std::fprintf(stderr, "example: %s\n", why.c_str());
+    return false;
+  }
+
+ private:
+  bool addFloor() {
+    auto shape = sim->physics().createShape(physics::ShapeDef::box(glm::vec3(10.f, 0.5f, 10.f)));
+    if (!shape.ok()) return fail(shape.reason());
+    physics::BodyDef def;
+    def.shape = shape.value();
+    def.position = glm::vec3(0.f, -0.5f, 0.f);  // its top at y = 0
+    return sim->physics().createBody(def).ok() || fail("no floor body");
+  }
+
+  // A 1 m wooden crate (600 kg/m^3) resting on the floor, centre at y = 0.5.
+  bool addCrate() {
+    ecs::World& world = app.world();
+    crate = world.create();
+    world.add<ecs::Name>(crate, ecs::Name{"crate"});
+    ecs::Transform t;
+    t.position = glm::vec3(0.f, 0.5f, 0.f);
+    world.add<ecs::Transform>(crate, t);
+    world.add<ecs::WorldTransform>(crate, ecs::WorldTransform{ecs::localMatrix(t)});
+    components::MeshRenderer mr;
+    mr.source = std::make_shared<geometry::MeshData>(geometry::primitives::box(glm::vec3(0.5f)));
+    mr.gpu = app.renderer().uploadMesh(*mr.source);
+    mr.materials = {render::Material{}, render::Material{}};  // outside, cap
+    world.add<components::MeshRenderer>(crate, std::move(mr));
+    components::Splitable splitable;
+    splitable.density = 600.0;
+    splitable.capMaterialId = 1;
+    world.add<components::Splitable>(crate, splitable);
+    components::SplitWorld sw = sim->splitWorld();
+    std::string error;
+    if (!components::makeDynamicBody(sw, crate, splitable.density, splitable.collider, &error, &sim->splits()))
+      return fail(error);
+    return true;
+  }
+};
+
+}  // namespace examples
