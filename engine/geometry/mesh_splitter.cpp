@@ -1494,6 +1494,10 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
   size_t totalPieces = 0;
   uint32_t firstPiece[2] = {0, 0};
   for (int side = 0; side < 2; ++side) {
+    if (options.keepSide != 0 && options.keepSide != (side == 0 ? 1 : -1)) {
+      if (side == 0) loopPiece_.assign(2 * loops_.size(), 0);
+      continue;  // a clip: this side's pieces are not wanted
+    }
     std::vector<SideTriangle>& tris = sideTris_[side];
     pieceOf_.resize(tris.size());
     if (options.separateIslands) {

@@ -76,6 +76,8 @@ struct SplitOptions {
   double touchTolerance = 1e-4;         // Touching: parts this close touch, times the bounds diagonal
   double relativeTolerance = 1e-6;      // on-plane tolerance, times the cut-space bounding-box diagonal
   bool computeMass = true;              // mass properties per piece (cut space)
+  int keepSide = 0;                     // 0: the pieces of both sides; -1: only those below the plane,
+                                        // +1: only those above (a clip; fracture keeps the inside)
 };
 
 // The weld of a mesh: position ids (vertices at one point share an id), closedness and winding,

@@ -14,6 +14,7 @@
 #include "engine/ecs/hierarchy.h"
 #include "engine/assets/model.h"
 #include "engine/assets/procedural_character.h"
+#include "engine/geometry/fracture.h"
 #include "engine/geometry/mesh_splitter.h"
 #include "engine/geometry/primitives.h"
 
@@ -114,6 +115,33 @@ void BM_ConcaveSplitComb32Teeth(benchmark::State& state) {
   runSplit(state, prim::combPrism(32), plane, Kind::Concave);
 }
 BENCHMARK(BM_ConcaveSplitComb32Teeth)->Unit(benchmark::kMicrosecond);
+
+// Fracture into Voronoi cells: a 1k-triangle sphere (uvSphere 32 x 16: 960 triangles) and the demo's
+// torus (2,304 triangles) into range(0) cells; cells and seeds made once, outside the loop.
+void runFracture(benchmark::State& state, const MeshData& mesh) {
+  MeshContainer container;
+  if (container.setMesh(mesh) != SplitStatus::Ok) {
+    state.SkipWithError("setMesh failed");
+    return;
+  }
+  glm::dvec3 lo(1e30), hi(-1e30);
+  for (const glm::dvec3& p : container.cutPositions()) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const std::vector<ConvexCell> cells =
+      voronoiCells(fractureSeeds(uint32_t(state.range(0)), 1, lo, hi), lo - 0.01 * (hi - lo), hi + 0.01 * (hi - lo));
+  size_t pieces = 0;
+  for (auto _ : state) {
+    FractureResult r = fracture(container, cells);
+    pieces = r.pieces.size();
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["pieces"] = double(pieces);
+}
+
+void BM_FractureSphere1k(benchmark::State& state) { runFracture(state, primitives::uvSphere(0.5f, 32, 16)); }
+BENCHMARK(BM_FractureSphere1k)->Arg(16)->Arg(32)->Unit(benchmark::kMicrosecond);
+
+void BM_FractureDemoTorus(benchmark::State& state) { runFracture(state, primitives::torus(0.5f, 0.2f, 48, 24)); }
+BENCHMARK(BM_FractureDemoTorus)->Arg(16)->Arg(32)->Unit(benchmark::kMicrosecond);
 
 void BM_ConcaveSplitComb32TeethAlongExtrusion(benchmark::State& state) {
   Plane plane;

@@ -1,0 +1,74 @@
+// Fracture: a mesh broken into the parts that lie inside convex cells, each part capped, closed and
+// with exact mass properties, as the split core makes any piece. A convex cell is an intersection
+// of half-spaces, so the part of a mesh inside it is the mesh cut by each of the cell's planes,
+// keeping the side below; the cells of a Voronoi diagram of seed points tile space, so the parts of
+// all cells make up the whole mesh.
+//
+// Units: cut space (the container's model applied: metres in the world for the engine). Planes are
+// {x : dot(normal, x) = offset}; a cell is the set where dot(normal, x) <= offset for all its planes.
+// Caps get the split options' cap material and cap UVs; with CapUvMode::WorldPlanar (the default)
+// the caps that two neighbouring cells leave on their shared plane carry the same texture
+// coordinates, so they line up. Ownership: results are plain values. Failure: a cut the split core
+// refuses makes the whole fracture fail (status and message of that cut); nothing is thrown.
+// Deterministic: the same container, cells and options give the same bytes.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "engine/geometry/mass_properties.h"
+#include "engine/geometry/mesh_container.h"
+#include "engine/geometry/split_types.h"
+
+namespace cleave::geometry {
+
+struct ConvexCell {
+  std::vector<Plane> planes;  // the cell is below every one (dot(normal, x) <= offset)
+  glm::dvec3 seed{0.0};       // the point the cell was made for (informative)
+  bool empty = false;         // holds nothing (no planes then means all space, unless empty)
+};
+
+struct FracturePiece {
+  MeshData mesh;                // in the source space of the container, like a split piece
+  MeshWeld weld;                // as SplitPiece::weld: to cut or fracture the piece again
+  uint32_t cell = 0;            // index into the cells given
+  uint32_t capTriangles = 0;    // triangles in the cap-material run
+  MassProperties mass;          // in cut space
+  // Per triangle of `mesh`: the triangle of the container's mesh it lies in, or kFromCap | k for a
+  // cap on the cell's plane k.
+  std::vector<uint32_t> sourceTriangles;
+};
+
+struct FractureResult {
+  SplitStatus status = SplitStatus::Ok;
+  std::string message;
+  std::vector<FracturePiece> pieces;  // by cell, then as the cuts made them (deterministic)
+  uint32_t openChains = 0;            // section chains left open over all cuts (open art)
+  uint32_t cuts = 0;                  // plane cuts made (planes that missed a part are not counted)
+};
+
+// The parts of the container's mesh inside each cell. The options are those of every cut (caps,
+// cap UVs and material, islands, open sections); a cell that holds nothing of the mesh gives no
+// piece. Cost: one split per cell plane that crosses a part of the mesh still inside the cell.
+FractureResult fracture(const MeshContainer& container, std::span<const ConvexCell> cells,
+                        const SplitOptions& options = {});
+
+// The Voronoi cells of `seeds` inside the box [lo, hi]: cell i is the points nearer seed i than any
+// other seed. Only the bisector planes that bound the cell within the box are kept (one that does
+// not touch the cell clipped to the box is pruned); the box's own faces are not among them, so the
+// box must hold the mesh (its bounds, or more). A seed within 1e-9 of the box diagonal of an
+// earlier one gives an empty cell (`empty`, no piece: the earlier cell covers it). Deterministic.
+std::vector<ConvexCell> voronoiCells(std::span<const glm::dvec3> seeds, const glm::dvec3& lo, const glm::dvec3& hi);
+
+// `count` seed points in the box [lo, hi] from a seeded generator (our own, the same on every
+// platform). With impactRadius > 0, `impactShare` of them (rounded down) lie in the ball of that
+// radius around `impactPoint` (clamped to the box), so the cells are smaller there.
+std::vector<glm::dvec3> fractureSeeds(uint32_t count, uint64_t seed, const glm::dvec3& lo, const glm::dvec3& hi,
+                                      const glm::dvec3& impactPoint = glm::dvec3(0.0), double impactRadius = 0.0,
+                                      double impactShare = 0.5);
+
+}  // namespace cleave::geometry

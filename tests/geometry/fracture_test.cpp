@@ -1,0 +1,223 @@
+// Fracture (engine/geometry/fracture.h): Voronoi cells that tile their box, and meshes broken into
+// cells with the split invariants kept: every piece closed and manifold on its float positions,
+// inside its cell, volumes summing to the input's, the caps two neighbouring cells leave on their
+// shared plane covering the same area, and the same bytes from the same seed.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "engine/geometry/fracture.h"
+#include "engine/geometry/mesh_container.h"
+#include "engine/geometry/mesh_splitter.h"
+#include "engine/geometry/primitives.h"
+#include "tests/geometry/test_meshes.h"
+
+namespace cleave::geometry {
+namespace {
+
+struct Fractured {
+  FractureResult result;
+  std::vector<ConvexCell> cells;
+  double volume = 0.0;  // of the input
+};
+
+Fractured fractureMesh(const MeshData& mesh, uint32_t cellCount, uint64_t seed) {
+  Fractured f;
+  MeshContainer container;
+  EXPECT_EQ(container.setMesh(mesh), SplitStatus::Ok);
+  glm::dvec3 lo, hi;
+  testing::bounds(container.cutPositions(), lo, hi);
+  const glm::dvec3 margin = (hi - lo) * 0.01;
+  f.cells = voronoiCells(fractureSeeds(cellCount, seed, lo, hi), lo - margin, hi + margin);
+  f.result = fracture(container, f.cells);
+  f.volume = computeMassProperties(mesh).volume;
+  return f;
+}
+
+// Area of the cap triangles of `piece` on its cell's plane k (model: identity).
+double capAreaOnPlane(const FracturePiece& piece, uint32_t k) {
+  double area = 0.0;
+  for (size_t t = 0; t < piece.sourceTriangles.size(); ++t) {
+    if (piece.sourceTriangles[t] != (kFromCap | k)) continue;
+    const uint32_t* v = &piece.mesh.indices[3 * t];
+    area += testing::triangleArea(glm::dvec3(piece.mesh.positions[v[0]]), glm::dvec3(piece.mesh.positions[v[1]]),
+                                  glm::dvec3(piece.mesh.positions[v[2]]));
+  }
+  return area;
+}
+
+void expectFractureInvariants(const char* name, const MeshData& mesh, uint32_t cellCount) {
+  SCOPED_TRACE(name);
+  const Fractured f = fractureMesh(mesh, cellCount, 7);
+  ASSERT_EQ(f.result.status, SplitStatus::Ok) << f.result.message;
+  ASSERT_GE(f.result.pieces.size(), cellCount / 2) << "most cells should hold a part";
+  double sum = 0.0;
+  std::map<uint32_t, int> perCell;
+  for (const FracturePiece& piece : f.result.pieces) {
+    EXPECT_TRUE(testing::manifoldOnFloats(piece.mesh)) << "cell " << piece.cell;
+    EXPECT_GT(piece.mass.volume, 0.0);
+    EXPECT_TRUE(piece.mass.closed);
+    ASSERT_EQ(piece.sourceTriangles.size(), piece.mesh.indices.size() / 3);
+    sum += piece.mass.volume;
+    ++perCell[piece.cell];
+    // Inside its cell: no vertex above any of the cell's planes (beyond float rounding).
+    const ConvexCell& cell = f.cells[piece.cell];
+    for (const glm::vec3& p : piece.mesh.positions)
+      for (const Plane& plane : cell.planes) ASSERT_LE(glm::dot(plane.normal, glm::dvec3(p)) - plane.offset, 1e-5);
+  }
+  EXPECT_NEAR(sum, f.volume, 1e-6 * f.volume) << "the cells' volumes do not add up to the mesh's";
+  std::printf("[ fracture] %s: %u cells, %zu pieces, %u cuts, volume %.9f of %.9f\n", name, cellCount,
+              f.result.pieces.size(), f.result.cuts, sum, f.volume);
+  // Neighbouring cells' caps on their shared plane: the same area from both sides.
+  size_t sharedPlanes = 0;
+  double largest = 0.0;
+  for (uint32_t i = 0; i < f.cells.size(); ++i) {
+    for (uint32_t k = 0; k < f.cells[i].planes.size(); ++k) {
+      const Plane& p = f.cells[i].planes[k];
+      for (uint32_t j = i + 1; j < f.cells.size(); ++j) {
+        for (uint32_t m = 0; m < f.cells[j].planes.size(); ++m) {
+          const Plane& q = f.cells[j].planes[m];
+          if (glm::dot(p.normal, q.normal) > -1.0 + 1e-12 || std::abs(p.offset + q.offset) > 1e-9) continue;
+          double a = 0.0, b = 0.0;
+          for (const FracturePiece& piece : f.result.pieces) {
+            if (piece.cell == i) a += capAreaOnPlane(piece, k);
+            if (piece.cell == j) b += capAreaOnPlane(piece, m);
+          }
+          if (a == 0.0 && b == 0.0) continue;
+          ++sharedPlanes;
+          // Within float precision: each side's cap is made from its own float cut points, so the
+          // areas may differ by about the cap's perimeter (4 sqrt(area)) times a few float steps.
+          const double area = std::max(a, b);
+          largest = std::max(largest, std::abs(a - b) / area);
+          EXPECT_NEAR(a, b, 1e-5 * area + 4e-6 * std::sqrt(area)) << "cells " << i << " and " << j;
+        }
+      }
+    }
+  }
+  EXPECT_GT(sharedPlanes, 0u) << "no two cells share a capped plane: the check saw nothing";
+  std::printf("[ fracture] %s: %zu shared capped planes, largest relative cap area difference %.2g\n", name,
+              sharedPlanes, largest);
+}
+
+TEST(Fracture, GeneratedMeshesBreakIntoClosedCellsThatAddUp) {
+  expectFractureInvariants("sphere", primitives::uvSphere(1.f, 32, 16), 16);
+  expectFractureInvariants("torus", primitives::torus(1.f, 0.35f, 48, 24), 16);
+  expectFractureInvariants("hollow sphere", primitives::hollowSphere(1.f, 0.7f, 32, 16), 16);
+  expectFractureInvariants("comb", primitives::combPrism(16), 16);
+  expectFractureInvariants("sphere, 32 cells", primitives::uvSphere(1.f, 32, 16), 32);
+}
+
+// SplitOptions::keepSide, the clip fracture cuts with: the pieces of one side, the same bytes as
+// that side of a split that keeps both.
+TEST(Fracture, KeepSideGivesTheSameBytesAsThatSideOfAFullSplit) {
+  const MeshData torus = primitives::torus(1.f, 0.35f, 48, 24);
+  MeshContainer container;
+  ASSERT_EQ(container.setMesh(torus), SplitStatus::Ok);
+  auto splitter = makeConcaveSplitter();
+  const Plane plane{glm::normalize(glm::dvec3(0.3, 1.0, 0.2)), 0.1};
+  SplitResult both, below, above;
+  SplitOptions options;
+  ASSERT_EQ(splitter->split(container, plane, options, both), SplitStatus::Ok);
+  options.keepSide = -1;
+  ASSERT_EQ(splitter->split(container, plane, options, below), SplitStatus::Ok);
+  options.keepSide = 1;
+  ASSERT_EQ(splitter->split(container, plane, options, above), SplitStatus::Ok);
+  size_t a = 0, b = 0;
+  for (const SplitPiece& piece : both.pieces) {
+    const SplitResult& one = piece.side > 0 ? above : below;
+    size_t& k = piece.side > 0 ? a : b;
+    ASSERT_LT(k, one.pieces.size());
+    const SplitPiece& same = one.pieces[k++];
+    EXPECT_EQ(same.side, piece.side);
+    EXPECT_EQ(same.mesh.indices, piece.mesh.indices);
+    ASSERT_EQ(same.mesh.positions.size(), piece.mesh.positions.size());
+    EXPECT_EQ(std::memcmp(same.mesh.positions.data(), piece.mesh.positions.data(),
+                          piece.mesh.positions.size() * sizeof(glm::vec3)), 0);
+    EXPECT_EQ(same.mass.volume, piece.mass.volume);
+    EXPECT_EQ(same.capLoops, piece.capLoops);
+  }
+  EXPECT_EQ(a, above.pieces.size());
+  EXPECT_EQ(b, below.pieces.size());
+  EXPECT_GT(a, 0u);
+  EXPECT_GT(b, 0u);
+}
+
+TEST(Fracture, SameSeedGivesTheSameBytesAndAnotherSeedOtherCells) {
+  const MeshData torus = primitives::torus(1.f, 0.35f, 48, 24);
+  const Fractured a = fractureMesh(torus, 16, 3), b = fractureMesh(torus, 16, 3), c = fractureMesh(torus, 16, 4);
+  ASSERT_EQ(a.result.pieces.size(), b.result.pieces.size());
+  for (size_t k = 0; k < a.result.pieces.size(); ++k) {
+    const MeshData& x = a.result.pieces[k].mesh;
+    const MeshData& y = b.result.pieces[k].mesh;
+    ASSERT_EQ(x.positions.size(), y.positions.size());
+    EXPECT_EQ(std::memcmp(x.positions.data(), y.positions.data(), x.positions.size() * sizeof(glm::vec3)), 0);
+    EXPECT_EQ(x.indices, y.indices);
+  }
+  EXPECT_NE(a.cells[0].seed, c.cells[0].seed);
+}
+
+TEST(Fracture, OneCellIsTheWholeMeshAndAnEmptyCellGivesNothing) {
+  const MeshData sphere = primitives::uvSphere(1.f, 16, 8);
+  MeshContainer container;
+  ASSERT_EQ(container.setMesh(sphere), SplitStatus::Ok);
+  std::vector<ConvexCell> cells(2);
+  cells[1].empty = true;
+  const FractureResult r = fracture(container, cells);
+  ASSERT_EQ(r.status, SplitStatus::Ok);
+  ASSERT_EQ(r.pieces.size(), 1u);
+  EXPECT_EQ(r.pieces[0].mesh.indices, sphere.indices);
+  EXPECT_NEAR(r.pieces[0].mass.volume, computeMassProperties(sphere).volume, 1e-12);
+  EXPECT_EQ(r.cuts, 0u);
+}
+
+TEST(Fracture, VoronoiCellsTileTheBoxByNearestSeed) {
+  const glm::dvec3 lo(-1.0), hi(1.0);
+  std::vector<glm::dvec3> seeds = fractureSeeds(24, 11, lo, hi);
+  seeds.push_back(seeds[5]);  // a repeated seed gets an empty cell
+  const std::vector<ConvexCell> cells = voronoiCells(seeds, lo, hi);
+  ASSERT_EQ(cells.size(), seeds.size());
+  EXPECT_TRUE(cells.back().empty);
+  size_t pruned = 0;
+  for (const ConvexCell& cell : cells) pruned += seeds.size() - 1 - cell.planes.size();
+  EXPECT_GT(pruned, 0u) << "no bisector was pruned";
+  // Every sample point is inside exactly the cell of its nearest seed.
+  std::mt19937_64 rng(5);
+  auto unit = [&] { return double(rng() >> 11) * 0x1.0p-53; };
+  for (int n = 0; n < 2000; ++n) {
+    const glm::dvec3 x = lo + glm::dvec3(unit(), unit(), unit()) * (hi - lo);
+    size_t nearest = 0;
+    for (size_t i = 1; i + 1 < seeds.size(); ++i)
+      if (glm::length(seeds[i] - x) < glm::length(seeds[nearest] - x)) nearest = i;
+    int inside = 0;
+    for (size_t i = 0; i < cells.size(); ++i) {
+      if (cells[i].empty) continue;
+      bool in = true;
+      for (const Plane& p : cells[i].planes) in = in && glm::dot(p.normal, x) <= p.offset + 1e-12;
+      if (in) {
+        ++inside;
+        EXPECT_EQ(i, nearest);
+      }
+    }
+    EXPECT_EQ(inside, 1);
+  }
+}
+
+TEST(Fracture, SeedsGatherAroundTheImpactPoint) {
+  const glm::dvec3 lo(-1.0), hi(1.0), impact(0.6, 0.0, 0.0);
+  const std::vector<glm::dvec3> seeds = fractureSeeds(40, 9, lo, hi, impact, 0.3, 0.5);
+  int near = 0;
+  for (const glm::dvec3& s : seeds) {
+    EXPECT_TRUE(s.x >= lo.x && s.x <= hi.x && s.y >= lo.y && s.y <= hi.y && s.z >= lo.z && s.z <= hi.z);
+    near += glm::length(s - impact) <= 0.3 ? 1 : 0;
+  }
+  EXPECT_GE(near, 20);
+  EXPECT_EQ(fractureSeeds(40, 9, lo, hi, impact, 0.3, 0.5), seeds);
+}
+
+}  // namespace
+}  // namespace cleave::geometry
