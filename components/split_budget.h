@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "components/shatter.h"
 #include "engine/ecs/entity.h"
 
 namespace cleave::components {
@@ -26,6 +27,8 @@ struct SplitRequest {
   bool playerCaused = false;
   uint64_t requestedTick = 0;         // the tick the request was gathered in (executed from N+1)
   uint64_t sequence = 0;              // arrival order, filled by the budget
+  bool shatter = false;               // break into cells (shatterSpec) instead of cutting by the plane
+  ShatterSpec shatterSpec;
 };
 
 // Worker threads by default: the hardware threads but one (the main thread's), at least 0.

@@ -6,12 +6,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <span>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "components/skinned.h"
 #include "engine/geometry/convex_polytope.h"
+#include "engine/geometry/fracture.h"
 #include "engine/geometry/mass_properties.h"
 #include "engine/geometry/primitives.h"
 #include "engine/physics/shape_def.h"
@@ -82,6 +85,7 @@ struct PieceContext {
   std::vector<glm::dmat4> globals;        // ragdolls: joint world transforms in the cut pose
   std::vector<geometry::ColliderPartSet> clipped;  // carried parts per piece (rigid jobs)
   bool carried = false;                   // `clipped` is meaningful
+  bool shatter = false;                   // cells, not a cut: skinned pieces are baked
 };
 
 void planRagdollPiece(const PieceContext& c, const geometry::SplitPiece& piece, const geometry::MeshData& posed,
@@ -138,7 +142,7 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
   spec.kind = small ? PieceKind::Debris : PieceKind::Rigid;
   if (job.skinned()) {
     bakeSkin(piece.mesh, job.jointMatrices, posed);
-    const SkinnedPieceMode mode = small ? SkinnedPieceMode::Bake : sp.skinnedPieces;
+    const SkinnedPieceMode mode = small || c.shatter ? SkinnedPieceMode::Bake : sp.skinnedPieces;
     spec.kind = small ? PieceKind::Debris
                 : mode == SkinnedPieceMode::Bake ? PieceKind::Baked
                 : mode == SkinnedPieceMode::Ragdoll ? PieceKind::Ragdoll
@@ -171,6 +175,13 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
   if (c.carried) carried = std::make_shared<const geometry::ColliderPartSet>(std::move(c.clipped[index]));
   ColliderPlan plan = planCollider(colliderMesh, spec.frame.meshOffset, sp.collider, sp.convexHint, std::move(carried),
                                    *c.scratch.concave);
+  // A shatter piece much smaller than the carried parts around it (a sliver of a curved part): its
+  // own hull fits it better.
+  if (c.shatter && plan.colliderVolume > 1.5 * spec.volume) {
+    ColliderPlan hull = planCollider(colliderMesh, spec.frame.meshOffset, ColliderMode::ConvexHull, true, nullptr,
+                                     *c.scratch.concave);
+    if (!hull.hulls.empty() && hull.colliderVolume < plan.colliderVolume) plan = std::move(hull);
+  }
   spec.hulls = std::move(plan.hulls);
   spec.concavePositions = std::move(plan.concavePositions);
   spec.concaveIndices = std::move(plan.concaveIndices);
@@ -184,12 +195,12 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
 
 // The carried parts of a rigid job, clipped by the plane into the pieces (mesh space). Decomposes
 // the source first when its parts are not known yet (handed back for the split system to keep).
-void clipCarriedParts(PieceContext& c, SplitOutcome& out) {
+geometry::SharedColliderParts carriedParts(PieceContext& c, SplitOutcome& out) {
   const SplitJob& job = c.job;
   const Splitable& sp = job.settings;
   const bool usesParts = sp.collider == ColliderMode::Auto || sp.collider == ColliderMode::Compound ||
                          (sp.convexHint && sp.collider != ColliderMode::ConcaveMesh);
-  if (job.hierarchy() || job.skinned() || !usesParts) return;
+  if (job.hierarchy() || job.skinned() || !usesParts) return nullptr;
   geometry::SharedColliderParts parts = job.parts;
   if (!parts) {
     geometry::ColliderPartSet decomposed;
@@ -204,7 +215,58 @@ void clipCarriedParts(PieceContext& c, SplitOutcome& out) {
     // Kept for the mesh's other instances, unless it is one hull only because this Splitable says so.
     if (!sp.convexHint) out.sourceParts = parts;
   }
-  geometry::clipPartsToPieces(*parts, planeInMeshSpace(job.plane, job.model), c.scratch.result, {}, c.clipped);
+  return parts;
+}
+
+void clipCarriedParts(PieceContext& c, SplitOutcome& out) {
+  const geometry::SharedColliderParts parts = carriedParts(c, out);
+  if (!parts) return;
+  geometry::clipPartsToPieces(*parts, planeInMeshSpace(c.job.plane, c.job.model), c.scratch.result, {}, c.clipped);
+  c.carried = true;
+}
+
+// Of the pieces `mates` (one cell's), the one whose bounds are nearest `point` (0 inside them); the
+// larger piece on a tie.
+size_t ownerOf(const std::vector<geometry::SplitPiece>& pieces, std::span<const size_t> mates, const glm::dvec3& point) {
+  size_t owner = mates.front();
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t j : mates) {
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (const glm::vec3& p : pieces[j].mesh.positions) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+    const double d = glm::length(glm::max(glm::max(lo - point, point - hi), glm::dvec3(0.0)));
+    if (d < best || (d == best && pieces[j].mass.volume > pieces[owner].mass.volume)) {
+      best = d;
+      owner = j;
+    }
+  }
+  return owner;
+}
+
+// Shatter: the carried parts clipped by each piece's cell (mesh space: exact, no hull computed);
+// a part of a cell with several pieces goes to the piece whose bounds hold its centroid.
+void clipCarriedPartsToCells(PieceContext& c, SplitOutcome& out, std::span<const geometry::ConvexCell> cells,
+                             std::span<const uint32_t> pieceCell) {
+  const geometry::SharedColliderParts parts = carriedParts(c, out);
+  if (!parts) return;
+  const std::vector<geometry::SplitPiece>& pieces = c.scratch.result.pieces;
+  c.clipped.assign(pieces.size(), {});
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    if (!c.clipped[i].empty()) continue;  // filled with an earlier piece of its cell
+    const geometry::ConvexCell& cell = cells[pieceCell[i]];
+    std::vector<size_t> mates;
+    for (size_t j = i; j < pieces.size(); ++j)
+      if (pieceCell[j] == pieceCell[i]) mates.push_back(j);
+    for (const geometry::ConvexPolytope& part : *parts) {
+      geometry::ConvexPolytope clipped = part;
+      for (const geometry::Plane& world : cell.planes) {
+        const geometry::Plane plane = planeInMeshSpace(world, c.job.model);
+        clipped = geometry::clipPolytope(clipped, plane.normal, plane.offset, 1e-9);
+        if (clipped.empty()) break;
+      }
+      if (clipped.empty()) continue;
+      c.clipped[ownerOf(pieces, mates, geometry::polytopeCentroid(clipped))].push_back(std::move(clipped));
+    }
+  }
   c.carried = true;
 }
 
@@ -315,11 +377,53 @@ ColliderPlan planCollider(const geometry::MeshData& mesh, const glm::dmat4& mesh
     plan.parts = carried->empty() ? hullOfPoints() : std::move(carried);
   }
   plan.hulls = hullsInBodyFrame(*plan.parts, meshOffset, &plan.colliderVolume);
-  if (plan.hulls.empty() && plan.parts->size() != 1) {  // every part flat: try the hull of the points
+  if (plan.hulls.empty()) {  // every part flat (or one part that decomposition got wrong): the hull of the points
     plan.parts = hullOfPoints();
     plan.hulls = hullsInBodyFrame(*plan.parts, meshOffset, &plan.colliderVolume);
   }
   return plan;
+}
+
+// A shatter: the container broken into the Voronoi cells of the request's seeds (cut space), the
+// pieces put into s.result as a split's would be (side +1, their cell's caps as the cap run).
+geometry::SplitStatus shatterInto(const SplitJob& job, SplitComputeScratch& s, std::string& message,
+                                  std::vector<geometry::ConvexCell>& cells, std::vector<uint32_t>& pieceCell) {
+  const ShatterSpec& spec = job.request.shatterSpec;
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const glm::dvec3& p : s.container.cutPositions()) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::dvec3 margin = 0.01 * (hi - lo) + glm::dvec3(1e-6);
+  const std::vector<glm::dvec3> seeds =
+      geometry::fractureSeeds(std::max<uint32_t>(spec.cells, 1), spec.seed, lo, hi, spec.impactPoint, spec.impactRadius);
+  cells = geometry::voronoiCells(seeds, lo - margin, hi + margin);
+  geometry::FractureResult fractured = geometry::fracture(s.container, cells, job.options);
+  message = fractured.message;
+  s.result.pieces.clear();
+  s.result.openChains = fractured.openChains;
+  pieceCell.clear();
+  if (fractured.status != geometry::SplitStatus::Ok) return fractured.status;
+  for (geometry::FracturePiece& f : fractured.pieces) {
+    pieceCell.push_back(f.cell);
+    geometry::SplitPiece piece;
+    piece.mesh = std::move(f.mesh);
+    piece.weld = std::move(f.weld);
+    piece.side = 1;
+    piece.capTriangles = f.capTriangles;
+    piece.mass = f.mass;
+    piece.reached = true;
+    piece.sourceTriangles = std::move(f.sourceTriangles);
+    s.result.pieces.push_back(std::move(piece));
+  }
+  return geometry::SplitStatus::Ok;
+}
+
+// Shatter pieces: named by their order, moving with the parent plus the outward impulse.
+void finishShatterPiece(const SplitJob& job, uint32_t k, PieceSpec& spec) {
+  const ShatterSpec& shatter = job.request.shatterSpec;
+  const glm::dvec3 away = spec.frame.position - shatter.impactPoint;
+  const double length = glm::length(away);
+  spec.impulse = length > 1e-9 ? away * (shatter.outwardImpulse / length) : glm::dvec3(0.0);
+  spec.velocity = job.parent.velocity + glm::cross(job.parent.angularVelocity, spec.offsetFromParent) + spec.impulse;
+  spec.name = (job.targetName.empty() ? std::string("piece") : job.targetName) + "/s" + std::to_string(k);
 }
 
 void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out) {
@@ -339,16 +443,24 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
                                                        s.container.mirrored())
                           .volume;
   }
-  out.status = splitter.split(s.container, job.plane, job.options, s.result);
+  std::string shatterMessage;
+  std::vector<geometry::ConvexCell> cells;
+  std::vector<uint32_t> pieceCell;
+  if (job.request.shatter) {
+    out.status = shatterInto(job, s, shatterMessage, cells, pieceCell);
+  } else {
+    out.status = splitter.split(s.container, job.plane, job.options, s.result);
+  }
   s.container.release();  // do not keep the (doomed) target's mesh alive
   out.geometryMilliseconds = nowMilliseconds() - geometryStart;
   if (out.status != geometry::SplitStatus::Ok) {
-    out.message = s.result.message;
+    out.message = job.request.shatter ? shatterMessage : s.result.message;
     out.computeMilliseconds = nowMilliseconds() - start;
     return;
   }
   out.openChains = s.result.openChains;
-  PieceContext c{job, s, job.hierarchy() ? &merged : nullptr, 0.0, false, glm::dvec3(0.0), {}, {}, false};
+  PieceContext c{job, s, job.hierarchy() ? &merged : nullptr, 0.0, false, glm::dvec3(0.0), {}, {}, false,
+                 job.request.shatter};
   for (const auto& piece : s.result.pieces) c.totalVolume += std::max(piece.mass.volume, 0.0);
   out.piecesVolume = c.totalVolume;
   if (!(c.totalVolume > 0.0)) {
@@ -358,17 +470,22 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
     return;
   }
   const double colliderStart = nowMilliseconds();
-  c.normal = glm::normalize(job.plane.normal);
+  c.normal = job.request.shatter ? glm::dvec3(0.0) : glm::normalize(job.plane.normal);
   // Skinned targets share the parent's mass by posed volume whatever the mass mode: skinning does not
   // keep volume exactly, so density x posed volume would make the mass drift with the pose.
   c.shareParentMass = job.settings.massMode == MassMode::KeepParentMass || (job.skinned() && job.parent.mass > 0.0);
   if (job.skinned() && job.settings.skinnedPieces == SkinnedPieceMode::Ragdoll)
     posedJointGlobals(job.skin->skeleton, job.jointMatrices, job.model, c.globals);
-  clipCarriedParts(c, out);
+  if (job.request.shatter) {
+    clipCarriedPartsToCells(c, out, cells, pieceCell);
+  } else {
+    clipCarriedParts(c, out);
+  }
   uint32_t k = 0;
   for (size_t i = 0; i < s.result.pieces.size(); ++i) {
     PieceSpec spec;
     if (!planPiece(c, i, s.result.pieces[i], k, spec)) continue;
+    if (job.request.shatter) finishShatterPiece(job, k, spec);
     out.pieces.push_back(std::move(spec));
     ++k;
   }

@@ -435,6 +435,11 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
     r.splitter = splitterEntity;
     r.playerCaused = splitter->playerCaused;
     r.requestedTick = tick;
+    if (splitter->kind == SplitterKind::Shatter) {
+      r.shatter = true;
+      r.shatterSpec = splitter->shatter;
+      r.shatterSpec.impactPoint = origin;
+    }
     budget_.enqueue(r);
     splitter->cuts++;
   }
@@ -486,6 +491,12 @@ SplitCost estimateSplit(SplitWorld& w, const SplitBudgetSettings& s, const Split
                 s.estimatedMainMillisecondsPerTriangle * triangles;
     cost.worker += parts ? s.estimatedWorkerMillisecondsPerPartWork * geometry::partsWork(*parts)
                          : s.estimatedDecomposeMillisecondsPerTriangle * triangles;
+  }
+  if (r.shatter) {
+    // About a piece per cell (a split makes two) and a few plane cuts per cell on shrinking parts.
+    const double cells = double(std::max<uint32_t>(r.shatterSpec.cells, 1));
+    cost.main *= 0.5 * cells;
+    cost.worker *= 1.5 * cells;
   }
   return cost;
 }

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "components/shatter.h"
 #include "engine/geometry/mesh_splitter.h"
 #include "engine/physics/physics_ids.h"
 #include "engine/render/renderer.h"
@@ -83,9 +84,16 @@ enum class SplitterLifetime : uint8_t {
   OneTick,     // cuts what it touches during one physics step, then is gone (the sword swing)
 };
 
+enum class SplitterKind : uint8_t {
+  Plane,    // cuts by its plane (the default)
+  Shatter,  // breaks what it touches into cells (`shatter`; the impact point is the splitter's position)
+};
+
 // The cutting plane is the splitter's local up axis (+Y) through its position, in world space. A
 // splitter with a trigger only cuts bodies its trigger volume touches.
 struct Splitter {
+  SplitterKind kind = SplitterKind::Plane;
+  ShatterSpec shatter;          // Shatter: its impactPoint is set from the splitter's position
   SplitterLifetime lifetime = SplitterLifetime::OneTick;
   bool playerCaused = false;
   physics::TriggerId trigger;   // the finite trigger shape (a thin box along the plane)
