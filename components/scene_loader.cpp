@@ -695,10 +695,34 @@ bool readEntity(Reader& rd, const Node& n, const std::string& baseDirectory, boo
   return true;
 }
 
+// "kind" and, for "shatter", its fields (geometry::fracture through a split job).
+bool readShatter(Reader& rd, const Node& n, ScheduledSplitter& s) {
+  int kind = 0;
+  if (!rd.choice(n, "kind", {"plane", "shatter"}, kind)) return false;
+  s.kind = kind == 1 ? SplitterKind::Shatter : SplitterKind::Plane;
+  if (s.kind == SplitterKind::Plane) {
+    for (const char* key : {"cells", "seed", "impact_point", "impact_radius", "outward_impulse"})
+      if (n.has(key)) return rd.fail(n.child(key), std::string("only a shatter splitter has '") + key + "'");
+    return true;
+  }
+  uint64_t cells = s.shatter.cells;
+  glm::vec3 impact(0.f);
+  if (!rd.integer(n, "cells", cells, 1, 256) || !rd.integer(n, "seed", s.shatter.seed) ||
+      !rd.vec3(n, "impact_point", impact) || !rd.nonNegative(n, "impact_radius", s.shatter.impactRadius) ||
+      !rd.nonNegative(n, "outward_impulse", s.shatter.outwardImpulse))
+    return false;
+  s.shatter.cells = uint32_t(cells);
+  s.shatter.impactGiven = n.has("impact_point");
+  s.shatter.impactPoint = glm::dvec3(impact);
+  return true;
+}
+
 bool readSplitter(Reader& rd, const Node& n, ScheduledSplitter& s) {
   if (!rd.expectObject(n, {"name", "lifetime", "half_extents", "transform", "velocity", "fire_tick",
-                           "start_tick", "end_tick", "player_caused"}))
+                           "start_tick", "end_tick", "player_caused", "kind", "cells", "seed", "impact_point",
+                           "impact_radius", "outward_impulse"}))
     return false;
+  if (!readShatter(rd, n, s)) return false;
   int lifetime = 1;
   if (!rd.string(n, "name", s.name) || !rd.choice(n, "lifetime", {"persistent", "one_tick"}, lifetime) ||
       !rd.vec3(n, "half_extents", s.halfExtents, true) || !rd.vec3(n, "velocity", s.velocity) ||
@@ -1017,6 +1041,8 @@ ecs::Entity createSplitterEntity(SplitWorld& w, const ScheduledSplitter& s) {
       s.schedule == SplitterSchedule::Persistent ? SplitterLifetime::Persistent : SplitterLifetime::OneTick;
   splitter.playerCaused = s.playerCaused;
   splitter.halfExtents = s.halfExtents;
+  splitter.kind = s.kind;
+  splitter.shatter = s.shatter;
   return createSplitter(w, s.name, physics::ShapeDef::box(s.halfExtents), s.position, s.rotation, splitter);
 }
 

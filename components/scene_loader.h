@@ -88,6 +88,8 @@ struct ScheduledSplitter {
   std::optional<uint64_t> endTick;         // Persistent: removed at the start of this tick
   uint64_t fireTick = 0;                   // OneTick: the tick whose physics step it cuts in
   bool playerCaused = false;
+  SplitterKind kind = SplitterKind::Plane;  // "kind": "plane" (default) or "shatter"
+  ShatterSpec shatter;                     // kind Shatter: cells, seed, impact point and radius, impulse
   ecs::Entity entity;                      // null until created (and after it is gone)
   bool created = false;                    // it has been created (it may be gone again)
   uint64_t createdTick = 0;

@@ -14,7 +14,8 @@ namespace cleave::components {
 struct ShatterSpec {
   uint32_t cells = 16;
   uint64_t seed = 0;
-  glm::dvec3 impactPoint{0.0};  // world
+  glm::dvec3 impactPoint{0.0};  // world (a Splitter's requests: its position, unless impactGiven)
+  bool impactGiven = false;     // a Splitter keeps impactPoint as given instead of its position
   double impactRadius = 0.0;    // metres; 0: seeds evenly in the bounds
   double outwardImpulse = 0.0;  // m/s
 };

@@ -438,7 +438,7 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
     if (splitter->kind == SplitterKind::Shatter) {
       r.shatter = true;
       r.shatterSpec = splitter->shatter;
-      r.shatterSpec.impactPoint = origin;
+      if (!r.shatterSpec.impactGiven) r.shatterSpec.impactPoint = origin;
     }
     budget_.enqueue(r);
     splitter->cuts++;

@@ -93,7 +93,7 @@ enum class SplitterKind : uint8_t {
 // splitter with a trigger only cuts bodies its trigger volume touches.
 struct Splitter {
   SplitterKind kind = SplitterKind::Plane;
-  ShatterSpec shatter;          // Shatter: its impactPoint is set from the splitter's position
+  ShatterSpec shatter;          // Shatter: the impact point is the splitter's position unless impactGiven
   SplitterLifetime lifetime = SplitterLifetime::OneTick;
   bool playerCaused = false;
   physics::TriggerId trigger;   // the finite trigger shape (a thin box along the plane)

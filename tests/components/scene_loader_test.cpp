@@ -211,6 +211,22 @@ BadCase loadBad(const std::string& name, const std::string& text) {
   return c;
 }
 
+// The bundled shatter scene: a stone block broken into cells by a shatter splitter, its mass kept.
+TEST(SceneLoader, ShatterSplitterBreaksTheBlockIntoCells) {
+  Sim sim;
+  ASSERT_TRUE(sim.load(scenePath("shatter_block.json"))) << sim.scene.error;
+  ASSERT_EQ(sim.scene.splitters.size(), 1u);
+  EXPECT_EQ(sim.scene.splitters[0].kind, SplitterKind::Shatter);
+  EXPECT_EQ(sim.scene.splitters[0].shatter.cells, 16u);
+  EXPECT_DOUBLE_EQ(sim.scene.splitters[0].shatter.outwardImpulse, 1.5);
+  const std::vector<SplitEvent> events = sim.runUntil(40);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, geometry::SplitStatus::Ok) << events[0].message;
+  EXPECT_GE(events[0].pieces.size(), 10u);
+  EXPECT_NEAR(events[0].piecesMass, events[0].parentMass, 1e-6 * events[0].parentMass);
+  EXPECT_NEAR(events[0].parentMass, 2400.0, 1e-6 * 2400.0);
+}
+
 TEST(SceneLoaderErrors, SyntaxErrorNamesFileLineAndField) {
   const BadCase c = loadBad("bad_syntax.json",
                             "{\n"
@@ -333,6 +349,9 @@ TEST(SceneLoaderErrors, SemanticChecks) {
       {R"({"splitters": [{"lifetime": "one_tick"}]})", "/splitters/0: a one-tick splitter needs 'fire_tick'"},
       {R"({"splitters": [{"lifetime": "sometimes", "fire_tick": 1}]})", "/splitters/0/lifetime: unknown value 'sometimes'"},
       {R"({"gravity": [0, 1]})", "/gravity: expected an array of 3 numbers"},
+      {R"({"splitters": [{"fire_tick": 1, "cells": 8}]})", "/splitters/0/cells: only a shatter splitter has 'cells'"},
+      {R"({"splitters": [{"kind": "shatter", "fire_tick": 1, "cells": 0}]})", "/splitters/0/cells"},
+      {R"({"splitters": [{"kind": "smash", "fire_tick": 1}]})", "/splitters/0/kind: unknown value 'smash'"},
       {R"({"entities": [{"transform": {"rotation": {"quaternion": [0, 0, 0, 0]}}}]})", "quaternion has zero length"},
       {R"({"budget": {"max_splits_per_tick": -1}})", "/budget/max_splits_per_tick"},
       {R"([1, 2])", ": /: expected an object"},
