@@ -892,6 +892,23 @@ void addPieceComponents(CommitContext& c, const PieceSpec& spec, ecs::Entity e, 
 
 }  // namespace
 
+namespace {
+
+// Continuous collision for small pieces (shatter cells, chips): a piece under 15 cm across is swept
+// as a sphere of a third of its smallest extent, so that it does not pass through the floor.
+float smallPieceCcdRadius(const PieceSpec& spec) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const HullSpec& hull : spec.hulls)
+    for (const glm::vec3& p : hull.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  if (!(lo.x <= hi.x)) return 0.f;
+  const glm::vec3 size = hi - lo;
+  const float largest = std::max({size.x, size.y, size.z});
+  const float smallest = std::min({size.x, size.y, size.z});
+  return largest < 0.15f ? smallest / 3.f : 0.f;
+}
+
+}  // namespace
+
 // The rigid body of a piece with a collider, woken now or queued for a later tick. Null (and no
 // shape left behind) when the bridge refuses it.
 RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs::Entity e,
@@ -910,6 +927,7 @@ RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs
   def.angularVelocity = glm::vec3(angularVelocity);
   def.localInertia = glm::vec3(spec.frame.moments);
   def.userData = toUserData(e);
+  def.ccdRadius = smallPieceCcdRadius(spec);
   const bool awakeNow = scratch_->activationsThisTick < budget_.settings().maxActivationsPerTick;
   def.startAwake = awakeNow;
   auto created = w.physics.createBody(def);

@@ -37,6 +37,10 @@ struct BodyDef {
   // A body whose speeds stay below both thresholds for two seconds is ready to sleep; its island
   // sleeps when every body in it is (Bullet's rule). Defaults are Bullet's; jointed bodies that
   // jitter (ragdoll bones) need higher ones. Both finite and >= 0.
+  // Continuous collision: a body that moves more than this radius (metres) in a step is swept as a
+  // sphere of this radius against what it would pass through, so a small fast body does not tunnel
+  // through a floor. 0 (the default): off. Finite and >= 0.
+  float ccdRadius = 0.0f;
   float sleepLinearSpeed = 0.8f;   // m/s
   float sleepAngularSpeed = 1.0f;  // rad/s
   uint64_t userData = 0;        // opaque to physics (e.g. the entity id)

@@ -411,6 +411,9 @@ Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
     return R::failure(PhysicsStatus::InvalidArgument,
                       "createBody: restitution and damping must be in [0, 1]");
   }
+  if (!(def.ccdRadius >= 0.0f && std::isfinite(def.ccdRadius))) {
+    return R::failure(PhysicsStatus::InvalidArgument, "createBody: ccdRadius must be finite and >= 0");
+  }
   if (!(def.sleepLinearSpeed >= 0.0f && std::isfinite(def.sleepLinearSpeed)) ||
       !(def.sleepAngularSpeed >= 0.0f && std::isfinite(def.sleepAngularSpeed))) {
     return R::failure(PhysicsStatus::InvalidArgument, "createBody: sleep thresholds must be finite and >= 0");
@@ -441,6 +444,10 @@ Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
   info.m_linearSleepingThreshold = def.sleepLinearSpeed;
   info.m_angularSleepingThreshold = def.sleepAngularSpeed;
   auto body = std::make_unique<btRigidBody>(info);
+  if (dynamic && def.ccdRadius > 0.0f) {
+    body->setCcdMotionThreshold(def.ccdRadius);
+    body->setCcdSweptSphereRadius(def.ccdRadius);
+  }
   if (dynamic) {
     body->setLinearVelocity(toBt(def.linearVelocity));
     body->setAngularVelocity(toBt(def.angularVelocity));

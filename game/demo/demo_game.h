@@ -105,6 +105,7 @@ class DemoGame {
   uint64_t noticeUntil_ = 0;
   uint64_t tick_ = 0;
   void notify(const std::string& text);
+  void shatterUnderCrosshair(app::TickContext& c);
   bool lineCrossesSplitable(glm::vec2 from, glm::vec2 to, glm::ivec2 frame) const;
 
   // Materials: seven looks the player cycles with Q/E, and the matching cap materials.

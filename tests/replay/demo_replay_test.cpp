@@ -111,6 +111,28 @@ TEST(DemoReplay, BurstOfCutsIsSpreadByTheBudgetAndKeepsMass) {
 // The positive control of the mass check every replay and arena test runs on its split log: it
 // fails on a cut whose pieces miss mass, and on a skinned cut whose pieces' masses add up (as they
 // do by construction) while their volumes do not add up to the posed character's.
+// The shatter replay: F breaks four objects into cells (split jobs on workers), each keeping its
+// mass; nothing falls through the floor; frames written.
+TEST(DemoReplay, ShatterBreaksFourObjectsIntoCellsAndKeepsMass) {
+  const fs::path dir = scratchDir("shatter");
+  const RunResult r = run("--headless --replay \"" + kReplays + "/demo_shatter.replay\" --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\" --screenshot-dir \"" + dir.string() + "\"");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
+  ASSERT_TRUE(dump.is_object());
+  std::vector<std::string> shattered;
+  for (const auto& split : dump.at("splits")) {
+    EXPECT_GE(split.at("pieces").get<int>(), 10) << split.dump();
+    shattered.push_back(split.at("original").get<std::string>());
+  }
+  const std::vector<std::string> expected = {"marble cylinder", "metal sphere", "wooden cube", "melon"};
+  EXPECT_EQ(shattered, expected);
+  expectEveryCutKeepsMass(dump);
+  expectNothingLost(dump);
+  EXPECT_GE(countPieces(dump), 50u);
+  EXPECT_TRUE(fs::exists(dir / "frame_000479.png"));
+}
+
 TEST(DemoReplay, MassCheckFailsOnLostMassAndOnLostSkinnedVolume) {
   const auto logOf = [](const nlohmann::json& split) {
     nlohmann::json dump;
@@ -139,7 +161,7 @@ TEST(DemoReplay, SameReplayGivesTheSameState) {
 }
 
 TEST(DemoReplay, EveryReplayGivesTheSameStateOnZeroOneAndThreeSplitThreads) {
-  for (const char* name : {"demo_tour.replay", "demo_burst.replay"})
+  for (const char* name : {"demo_tour.replay", "demo_burst.replay", "demo_shatter.replay"})
     cleave::testing::expectSameStateOnZeroOneAndThreeSplitThreads(
         run, "--headless --replay \"" + kReplays + "/" + name + "\"", name);
 }
