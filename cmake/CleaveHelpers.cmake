@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # cleave_add_library(<name> [PUBLIC_LIBS ...] [PRIVATE_LIBS ...])
 # Builds every .cpp of the calling folder into static library cleave_<name>, exported as Cleave::<name>.
 # Headers are included from the repository root: #include "engine/<layer>/<file>.h".

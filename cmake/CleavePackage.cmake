@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 get_property(cleave_targets GLOBAL PROPERTY CLEAVE_EXPORTED_TARGETS)

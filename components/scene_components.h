@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Plain-struct components shared by the demos: what an entity looks like and how it moves.
 // They hold handles into the renderer and the physics world, never GL or Bullet objects.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Data-driven scenes: a JSON file (docs/scene-format.md) describing objects, splitters, the split
 // budget, gravity and a floor, turned into entities, bodies and scheduled splitters.
 //

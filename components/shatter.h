@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shatter: what a split request carries to break its target into cells instead of cutting it by a
 // plane (a Splitter of kind Shatter makes such requests; the compute stage runs geometry::fracture).
 #pragma once

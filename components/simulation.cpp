@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "components/simulation.h"
 
 #include "components/skinned.h"

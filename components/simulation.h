@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Simulation: the world's physics and splitting stepped in the phase order of engine/app/phase.h,
 // one stage per phase. It serves both games (installSplitting registers its stages in an App's
 // phases once), the component tests and the benchmarks (step() runs a whole tick without an App).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Skinned meshes as components: an animated character (SkinnedMesh), the Animation-phase system that
 // plays it, CPU skinning for baking a pose, and the ragdolls that skinned split pieces can become.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SplitBudget: the resource manager the thesis left as future work. Split requests wait in a
 // priority queue; each tick the split system takes them in order while the tick's time and count
 // budgets last, and the rest wait for later ticks. Requests whose entity is gone are dropped.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The clock the split stages report their times with (milliseconds, steady). Times are reported,
 // never used to decide anything in deterministic scheduling.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The compute stage: container set-up, the cut, and a PieceSpec per piece with its collider planned
 // (carried parts clipped by the plane, hulls shrunk by their margin) and, for skinned ragdoll pieces,
 // its bones and joints planned. Nothing here touches the world, physics or the renderer.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The compute stage of a split: a pure function of a SplitJob (split_job.h). It runs on any thread:
 // it touches no world, no physics and no renderer, only the job's shared immutable data and the
 // scratch it is given. The same job gives the same outcome, byte for byte, on every thread.

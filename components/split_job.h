@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The plain data of one split as it goes through the three stages (docs/architecture.md):
 //
 //   prepare (main thread, Split phase)  reads the world into a SplitJob;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "components/split_log.h"
 
 #include <nlohmann/json.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SplitLog: every split of a run, for state dumps and replay tests (mass before and after each cut,
 // piece count, status, time spent). Games record the split system's events each tick and write the
 // log into their state dump; tests check mass conservation per cut from it.

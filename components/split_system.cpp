@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "components/split_system.h"
 #include "components/split_clock.h"
 #include "components/skinned.h"

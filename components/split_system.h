@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The split systems: turn splitter touches into split requests (Triggers phase), prepare the
 // requests gathered in earlier ticks within the SplitBudget (Split phase), compute them on worker
 // threads, and commit their pieces at a fixed tick (Commit phase). The three stages and their plain

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "components/split_workers.h"
 #include "components/split_clock.h"
 

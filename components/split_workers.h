@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SplitWorkers: where the compute stage of split jobs runs. A pool of worker threads of our own
 // (std::thread), or a task callback the host supplies (its own job system), or inline on the
 // calling thread (0 threads). Whichever runs a job, the outcome is the same: computeSplit is a pure

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Splitable and Splitter: the thesis's two components as plain data.
 //
 // Put a Splitable on an object (with a MeshRenderer and a RigidBody) and touch it with a Splitter:

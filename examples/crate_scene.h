@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene of the engine examples: a headless App with splitting installed, a floor, one wooden
 // crate (a splittable rigid body) and a one-tick splitter (a thin blade) through the crate at a
 // tick of the run. Each example adds what it shows on top.

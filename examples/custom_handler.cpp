@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A custom split handler: named by the crate's Splitable, called on the main thread at commit with
 // the computed pieces, before anything is created. This one sends the upper piece up at 3 m/s and
 // renames the lower one; a handler may also drop or add pieces, or keep the original whole.

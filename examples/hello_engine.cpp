@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Hello, engine: a headless App with splitting installed, one splittable crate, and a one-tick
 // splitter that cuts it at tick 5. The split is prepared in the next tick, computed on a worker and
 // committed at a fixed tick; the pieces become rigid bodies with exact masses.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Hello, split: the split core alone (Cleave::geometry, which needs only GLM). A one-metre box is
 // cut by the plane y = 0.25; the pieces come back capped, closed, with exact mass properties.
 #include <cstdio>

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs the Debian packages Cleave builds and tests with. Idempotent; runs apt-get update first.
 # `tools/install-deps.sh DIR...` also installs the npm packages some tests use into each DIR (the
 # build folder's npm/, see below); that part only warns when npm or the registry is not there, and

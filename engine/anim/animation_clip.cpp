@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Clip sampling and the crossfading Animator.
 //
 // Key search is a binary search over the channel's times (upper_bound), so sampling costs

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Animation clips: keyframed translation, rotation and scale channels per joint (the glTF model),
 // sampled into a local Pose; and an Animator that plays one clip at a time with crossfades.
 //

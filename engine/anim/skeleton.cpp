@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Skeleton poses. Joints may be stored in any order, so localToGlobal resolves parents first: the
 // common case (every parent before its child) is one forward pass; otherwise joints are resolved in
 // repeated passes, each finishing at least one more level of the tree.

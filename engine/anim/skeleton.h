@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Skeleton and pose: joints with a parent, a rest transform and an inverse bind matrix; local poses
 // to global transforms; global transforms to the joint matrices that skin a mesh.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/app/app.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The engine loop: fixed 60 Hz ticks run as phases of registered systems, on a window or headless
 // platform, with input from the live window or a replay, optional recording, screenshots, a state
 // hash and a JSON-lines state dump.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Command-line options shared by every Cleave executable that runs the engine loop (the tech demo,
 // the arena, the replay runner).
 #pragma once

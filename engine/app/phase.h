@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The phases of one fixed tick, declared in one place. Systems are free functions registered for a
 // phase; phases run in this order every tick (Render only on ticks that produce a frame).
 #pragma once

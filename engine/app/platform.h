@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Where frames go and live input comes from: a real window (GLFW, OpenGL 3.3 core) or a headless
 // offscreen context (EGL surfaceless on Mesa, OSMesa as fallback). Both give the renderer a current
 // GL context; only the window delivers live input and shows frames.

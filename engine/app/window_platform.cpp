@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GLFW window backend: an OpenGL 3.3 core context in a real window, with keyboard and mouse
 // callbacks turned into engine input events. GLFW appears only here (and GL only in engine/render).
 #define GLFW_INCLUDE_NONE

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GLB writing core of glb_builder.h: the buffer, views and accessors, the mesh with its
 // materials and primitives, the scene and the serialisation that both GLB writers share (the
 // copy of source materials is in glb_materials.cpp).

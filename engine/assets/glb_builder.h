@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Internal to engine/assets: the GLB writing core that the static mesh writer (gltf_io.cpp) and the
 // skinned writer (skinned_glb_writer.cpp) share, so the buffer, the accessors, the materials and
 // the primitives are built in one place. A writer starts a model, adds the mesh's vertex attributes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The material part of the GLB writing core (glb_builder.h): source materials copied into a GLB
 // with the textures, samplers and images they use. An image is embedded as the bytes the source
 // file stored, not decoded and encoded again (that would change the bytes, lose the encoder's

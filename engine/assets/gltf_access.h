@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Internal to engine/assets: checked access to glTF accessors and nodes through tinygltf, shared by
 // the static mesh reader (gltf_io.cpp) and the model loader (gltf_model.cpp). Not installed for
 // users' code in any other way than as a header of the assets layer; it needs <tiny_gltf.h>.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // glTF 2.0 through tinygltf: the static-mesh reader (default scene, node transforms applied, every
 // triangle primitive merged into one MeshData with one material run per primitive) and the GLB
 // writer (the GLB writing core of glb_builder.h without a skin). tinygltf parses the JSON and the

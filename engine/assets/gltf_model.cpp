@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The glTF model loader: scene nodes, static and skinned meshes, materials with their textures,
 // samplers and images (decoded, and kept as the file's bytes), skins and animations (see model.h).
 // tinygltf parses the JSON and the GLB container; everything it hands over (indices of nodes,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Materials of a glTF model as plain data: images (decoded pixels and the file's encoded bytes),
 // samplers, textures and PBR metallic-roughness materials, indexed the way glTF indexes them. The
 // loader (model.h) fills them; the GLB writers (mesh_io.h, model.h) copy them into the files they

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Dispatch by extension, file access, the helpers shared by the readers, and the OBJ writer.
 #include "engine/assets/mesh_io.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Mesh files to and from the plain MeshData of the split core.
 //
 // Readers: OBJ, OFF, STL (ascii and binary), PLY (ascii, binary little and big endian) and glTF 2.0

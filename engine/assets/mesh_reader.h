@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Internal to engine/assets: the per-format readers behind mesh_io.h and the small helpers they share
 // (one-line errors, a line scanner for text formats, locale-independent number parsing, the final
 // validation every reader runs). Not part of the public interface.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Models: glTF 2.0 scenes with static and skinned meshes, materials with their textures (decoded,
 // and as the file's encoded bytes), skins and animations, as plain data (no tinygltf type leaks
 // out of engine/assets).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Wavefront OBJ reader: v (optionally with r g b), vt, vn, f with any polygon size (triangulated)
 // and 1-based or negative (relative) indices, usemtl as material runs. Corners with the same
 // v/vt/vn triple become one vertex, so a closed OBJ stays closed by index where its seams allow.

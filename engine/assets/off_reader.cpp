@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Geomview OFF reader: the optional header "[ST][C][N]OFF", counts "vertices faces edges", one vertex
 // per line (x y z, then nx ny nz with N, a colour with C, s t with ST), one polygon per line
 // ("n i0 ... i(n-1)" with 0-based indices, an optional colour after it is ignored).

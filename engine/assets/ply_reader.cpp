@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Stanford PLY reader: ascii, binary_little_endian and binary_big_endian. Reads the `vertex` element
 // (x y z; nx ny nz; u v, s t, texture_u texture_v or texture_s texture_t; red green blue [alpha])
 // and the `face` element's vertex_indices (or vertex_index) list with any count and index types,

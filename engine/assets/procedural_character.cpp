@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The generated humanoid: a signed distance field of capsules meshed by surface nets, skinned by
 // distance to the bones, with keyframed idle and walk clips (see procedural_character.h).
 //

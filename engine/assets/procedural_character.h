@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A skinned humanoid made in code, so demos and tests need no outside files: a closed mesh of about
 // 4,000 triangles with a 17-joint skeleton and two looping clips, "idle" and "walk".
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/assets/procedural_textures.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The skinned GLB writer (see model.h): a skinned mesh in bind space with its skeleton and clips as
 // binary glTF 2.0 that loadModel reads back and the Khronos validator accepts.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // STL reader, ascii and binary.
 //
 // Detection: a file is ascii when it starts with "solid" (after optional whitespace) AND holds only

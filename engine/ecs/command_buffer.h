@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CommandBuffer: structural changes recorded during iteration, carried out by World::apply().
 //
 //   CommandBuffer commands(world);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sparse-set storage of one component type (internal to the World; use World's member functions).
 //
 // Layout: `dense_` holds the entities that have the component and `components_` their values at the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Entity: a generational id naming one object of a World.
 //
 // An entity is a 32-bit slot index plus the 32-bit generation the slot had when the entity was

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scene hierarchy and transforms as plain components, plus the functions that keep them
 // consistent.
 //

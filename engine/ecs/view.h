@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // View: iteration over the entities that have all of a set of component types.
 //
 //   for (auto [entity, position, velocity] : world.view<Position, Velocity>()) { ... }

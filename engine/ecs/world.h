@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // World: the entity registry and the component storage of one simulation.
 //
 // Entities are generational ids (entity.h). Components are plain structs stored by value in one

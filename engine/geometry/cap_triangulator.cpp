@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cap triangulation: ear clipping of polygons with holes.
 //
 // Method. The holes are bridged into the outer ring one by one, leftmost first, with David Eberly's

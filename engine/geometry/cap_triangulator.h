@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Triangulation of the cap polygons of a split: planar polygons with holes, in 2D cap coordinates.
 // (Also of the polygon faces of mesh files, for the readers: see triangulateFace.)
 //

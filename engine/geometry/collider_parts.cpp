@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Collider parts: decomposition by recursive mid-plane cuts (each part then hulled), and the
 // clipping of carried parts by a cut plane into the pieces of the split.
 #include "engine/geometry/collider_parts.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Collider parts: the convex parts a mesh's collider is made of, worked out once per authored mesh
 // and carried with it through every cut.
 //

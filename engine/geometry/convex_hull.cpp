@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Quickhull in double precision (Barber, Dobkin, Huhdanpaa, "The Quickhull Algorithm for Convex
 // Hulls", ACM TOMS 1996).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex hulls of point sets and a convexity test for closed meshes.
 //
 // Units follow the input positions (metres). Output triangles are counter-clockwise seen from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex polytopes as face loops. Clipping follows Sutherland-Hodgman per face: each face polygon
 // keeps its corners below the plane and gains a section point where an edge crosses it; the section
 // points of one edge are shared by its two faces (keyed by the edge), and the new face is the ring of

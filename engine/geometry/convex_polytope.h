@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ConvexPolytope: a convex solid as faces (outward plane and corner loop), the form a carried
 // collider part takes between cuts.
 //

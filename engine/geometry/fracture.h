@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fracture: a mesh broken into the parts that lie inside convex cells, each part capped, closed and
 // with exact mass properties, as the split core makes any piece. A convex cell is an intersection
 // of half-spaces, so the part of a mesh inside it is the mesh cut by each of the cell's planes,

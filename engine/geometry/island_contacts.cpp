@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/geometry/island_contacts.h"
 
 #include <algorithm>

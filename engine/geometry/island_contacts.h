@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Island contacts: which surface components of a piece touch, overlap or hold one another, so that
 // multi-part art (a robot built of plates, bolts and limbs that only touch or pass into one
 // another) stays one piece per side when it is cut, unless a side really falls apart.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Mass properties by the divergence theorem.
 //
 // Each triangle (a, b, c), taken relative to a reference point r, spans a signed tetrahedron with r.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Mass properties of closed triangle meshes, in double precision.
 //
 // Method: divergence theorem over signed tetrahedra from the origin (Mirtich 1996 / Eberly,

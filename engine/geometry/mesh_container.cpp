@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // MeshContainer: validation, welding by position, cut-space positions, triangle extraction.
 //
 // Welding. Vertices within 1e-6 of the bounding-box diagonal of each other share a position id (UV,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // MeshContainer: a mesh ready to be cut (the thesis's MeshContainer). It shares or copies the
 // source arrays, welds vertices by position into position ids (so UV and normal seams never break a
 // cut loop), and keeps the cut-space positions (model matrix or skinning pose). Failure: setMesh and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // MeshData: the plain triangle mesh that flows through the whole split core.
 //
 // Units: metres. Winding: triangles are counter-clockwise seen from outside (their normal, by the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The split core: classification, shared-edge cutting, boundary loops, caps, islands, mass.
 //
 // Method, in the order of split():

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The split core: cut a triangle mesh by a plane, cap the holes, separate islands, and compute the
 // mass properties of every piece. Plain data in and out; no engine types; deterministic output.
 //

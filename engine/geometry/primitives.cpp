@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Procedural meshes. Curved shapes are parametric grids; every angle is computed from an integer
 // step taken modulo the period, so a seam vertex is a bit-exact copy of its twin and poles are
 // exact points. Triangles with two equal positions (at poles and disc centres) are skipped, and

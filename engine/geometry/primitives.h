@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Procedural closed meshes for the demo, the tests and the benchmarks.
 //
 // Units: metres, centred on the origin unless stated; +y is "up" (the axis of cylinders, capsules,

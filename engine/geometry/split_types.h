@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The plain data of a split: the plane, the options, the status, the weld of a mesh, and the
 // pieces of a result. Units follow the mesh's positions (metres in the engine); cut space is the
 // space the container's model matrix or pose maps the mesh into (mesh_container.h). Winding:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Input events of one simulation tick, as produced by the window layer or read from a replay.
 //
 // Coordinates are window pixels with the origin at the top-left corner and y pointing down (the

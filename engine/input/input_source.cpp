@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/input/input_source.h"
 
 #include <utility>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Where the events of each tick come from: the live window, or a replay.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // InputState: the events of each tick folded into "held", "pressed this tick", "released this
 // tick", the mouse position and motion, scroll and window size. Gameplay reads this, not events.
 //

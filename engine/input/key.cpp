@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/input/key.h"
 
 #include <array>

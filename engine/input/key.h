@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Keyboard keys and mouse buttons of the input layer, with stable text names.
 //
 // The names are the GLFW key names lower-cased without the GLFW_KEY_ prefix ("w", "space",

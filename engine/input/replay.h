@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Replays: the input events of a run, per tick, in a versioned line-based text format.
 //
 // The format is specified in docs/replay-format.md. In short:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The engine's messages: engine and component code never print; they hand each message to one sink
 // the host sets (a game, a tool, a test, an editor's console). The default sink prints: Info to
 // standard output, Warning and Error to standard error, as "<source>: <message>" (the message alone

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // BodyDef and TriggerDef: checked descriptions of rigid bodies and sensor triggers.
 //
 // Units: metres, kilograms, seconds, radians; velocities in m/s and rad/s, world frame. The body

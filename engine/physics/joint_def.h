@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // JointDef: the checked description of a constraint between two bodies, given to
 // PhysicsWorld::createJoint.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Results of a physics step and of queries, as plain values.
 //
 // Event arrays are rebuilt by each PhysicsWorld::step and sorted deterministically (by the handle

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Generational handles for physics objects (bodies, shapes, triggers, joints).
 //
 // A handle is an index into a slot table plus the generation the slot had when the object was

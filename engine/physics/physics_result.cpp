@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/physics/physics_result.h"
 #include "engine/physics/joint_def.h"
 

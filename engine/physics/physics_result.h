@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Status results of the physics layer: an error code plus a reason a person can act on.
 //
 // No call of the physics layer throws or crashes on bad input; data-dependent failures come back as

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PhysicsWorld over Bullet's btDiscreteDynamicsWorld.
 //
 // Pipeline of one step: Bullet's own stepSimulation with maxSubSteps = 0 (exactly one substep of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PhysicsWorld: the Bullet bridge. Rigid bodies, shared collision shapes, sensor triggers, ray
 // casts, and contact/trigger events read as plain arrays after each step.
 //

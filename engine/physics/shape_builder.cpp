@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Builds Bullet collision shapes from ShapeDefs.
 //
 // Convex hulls: btConvexHullComputer (Bullet's exact 3D hull, Preparata-Hong style divide and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/physics/shape_def.h"
 
 #include <utility>

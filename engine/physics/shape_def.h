@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ShapeDef: the checked description of a collision shape, given to PhysicsWorld::createShape.
 //
 // Units: metres. Every shape is expressed in the local frame of the body that uses it, whose origin

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/render/dynamic_scale.h"
 
 #include <algorithm>

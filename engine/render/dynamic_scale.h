@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Dynamic render scale: the render scale a window uses on a software rasteriser, chosen from the
 // time its frames take. Plain arithmetic, no GL: the app feeds it each frame's work time (ticks,
 // drawing and the swap, not the wait for the next tick) and applies the scale it returns.

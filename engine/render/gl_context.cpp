@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/render/gl_context.h"
 
 #include <glad/gl.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // OpenGL context creation and the GL function loader.
 //
 // The renderer needs a current OpenGL 3.3 core context. A window backend (GLFW, in engine/app) makes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/render/packed_mesh.h"
 
 #include <cstring>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PackedMesh: a mesh in the vertex layout the renderer uploads, worked out on the CPU without GL,
 // so it can be prepared on any thread (the split pipeline packs piece meshes on its workers) and
 // handed to Renderer::uploadPacked on the GL thread, which then only copies buffers.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/render/renderer.h"
 
 #include <glad/gl.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Forward renderer on OpenGL 3.3 core: a directional sun with a shadow map, ambient and specular
 // light, textured materials, a procedural sky, a world-space checker floor and a debug-normals view.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/render/shaders.h"
 
 #include "engine/render/renderer.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLSL 330 core sources of the renderer, kept in one place so every program shares the same sky and
 // lighting functions.
 #pragma once

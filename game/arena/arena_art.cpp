@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "game/arena/arena_art.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The arena's art, all made in code: textures (flagstones, terracotta, lettered metal), materials,
 // and meshes (the lathe-turned urn, the multi-part gladiator, the round floor, the wall ring).
 //

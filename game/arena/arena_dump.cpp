@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The arena's fields in the state dump (--dump-state, JSON lines): per entity what it is, its mass
 // and motion, and for enemies their kind and behaviour; per line the match, the run's figures, the
 // engine resources alive, the split log and the budget. docs/arena.md lists the fields.

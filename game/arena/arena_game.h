@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The arena sample: a round gladiator arena where waves of enemies (multi-part gladiators and skinned
 // warriors that fall as ragdoll halves) walk to the player,
 // who cuts them with a thrown energy disc (a persistent Splitter that bounces off the wall and comes

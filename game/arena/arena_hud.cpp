@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The arena's HUD, laid out for 720 lines and scaled to the frame: the match panel (top left), the
 // split budget panel (top right, wall-clock figures), the banners of the match (wave, get ready,
 // wave cleared and the refill, defeat), the controls and the crosshair.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The arena's floor plan, shared by the files of ArenaGame: its size and the two directions on the
 // sand. Units: metres and radians; the floor is the plane y = 0, seen from above north is -z, east +x.
 #pragma once

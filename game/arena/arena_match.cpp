@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The match of the arena sample as a state machine (see MatchState): menu, starting, the grace period
 // and the pauses between waves (intermission), the waves, defeat, and the reset that gives every
 // match a clean arena. The numbers it plays by are ArenaTuning's.

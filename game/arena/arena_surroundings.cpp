@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "game/arena/arena_surroundings.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What lies outside the arena's wall, so that no view from inside (the menu's low view, the follow
 // view at the wall) shows the empty sky below the horizon: tiered stone stands (the cavea) rising
 // behind the wall with a tall outer wall, a crowd of spectators on the tiers, and dry turf out to

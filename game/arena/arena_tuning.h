@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // How a match of the arena plays, as data: the player's health and cooldowns, each enemy kind's pace
 // and blows, the waves and the pauses between them. Nothing else in the arena holds a difficulty
 // number; change one here and every system reads it (ArenaGame keeps a copy, `ArenaGame::tuning`).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "game/arena/enemies.h"
 
 #include <algorithm>

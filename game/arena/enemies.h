@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Arena enemies: kinds, spawning and the walk-to-the-player-and-strike behaviour.
 //
 // An enemy is one entity with a MeshRenderer, a Splitable and a rigid body that the game moves

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // cleave-arena: the gladiator arena sample. In a window: click the Start cube, then WASD to move,
 // the mouse to aim, left button for the sword, right button for the disc, Space for a spin attack.
 // Headless: plays a replay and writes screenshots and state dumps (see --help).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The demo's split benchmarks (cleave-demo --bench-splits N, --bench-burst; docs/performance.md).
 // They measure, they do not test: medians of wall times on this machine, printed as a table or JSON.
 #include <algorithm>

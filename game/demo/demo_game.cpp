@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "game/demo/demo_game.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The tech demo: the thesis's playable scene. A checker floor under a sky, objects to cut with a
 // drag on screen, spawn keys, material cycling, pushes and a HUD with the split budget's figures.
 #pragma once

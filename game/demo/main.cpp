@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // cleave-demo: the tech demo. In a window: WASD, mouse look, hold Space and drag to cut. Headless:
 // plays a replay and writes screenshots (see --help).
 #include <algorithm>

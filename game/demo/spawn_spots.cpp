@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "game/demo/spawn_spots.h"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Where the demo drops a spawned object: the first free spot in front of the player, so objects
 // spawned one after another stand side by side instead of piling up at one point.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // engine/anim: skeleton poses, clip sampling (step, linear, cubic spline), looping, crossfades and
 // joint matrices, on small cases with exact expected values.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The arena sample's bundled replays, run headless through the real executable: the match (menu,
 // two waves of gladiators and skinned warriors, disc, sword and spin; the skinned ones fall as
 // ragdoll halves), the burst of kills the split budget has to spread, the Quit

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helpers for the mesh readers: a temporary folder, the unit cube [0,1]^3 written in every
 // format the engine reads (built here byte by byte, so the tests need no files from elsewhere), and
 // where the set-up puts the npm packages that some tests use when they are there.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Corpus test over real models that the set-up installs (see tools/install-deps.sh): from Debian
 // packages, the meshes of CGAL's data set (libcgal-demo ships them as
 // /usr/share/doc/libcgal-dev/data.tar.gz, unpacked here with tar) and assimp's test models

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bad input of every kind gives a one-line error that names the file, an empty mesh, and no crash.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLB pieces keep their materials. The model loader keeps a glTF file's images as the bytes the
 // file stores (with their mime type), its textures, samplers and material properties; the static
 // and the skinned GLB writers copy them (MeshWriteOptions::materials) into the pieces of a cut, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The glTF model loader: a crafted skinned and animated file read exactly, crafted broken files
 // that must fail with a reason naming the file, the real characters of the shared models folder
 // (skipped when absent) and the glTF files of Debian's assimp-testmodels (skipped when absent).

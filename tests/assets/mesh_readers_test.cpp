@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The readers on small files written by the tests: the unit cube in every format and encoding,
 // plus the format details each reader promises (welding, negative indices, materials, attributes).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Writers read back by the readers (OBJ and GLB), and a glTF built with tinygltf itself then read.
 #include <cstring>
 

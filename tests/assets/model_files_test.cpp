@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Corpus check on real glTF files when the shared models folder is there (skipped otherwise), and the
 // cleave-split tool run end to end on a generated cube.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The generated humanoid: closed, about 4,000 triangles, weights summing to 1, a valid skeleton and
 // clips, and cuttable with caps in a walking pose.
 #include "engine/assets/procedural_character.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The skinned GLB writer and `cleave-split --pose`: a skinned mesh with its skeleton and clips
 // written as GLB reads back through loadModel with the same joints, clips, triangles and skin, and
 // poses the same; pieces cut in a pose keep their skin and animations; the Khronos validator (when

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helpers that run programs: a shell command with its output captured, build/bin/cleave-split,
 // and the Khronos glTF validator (tools/gltf-validate) when node and the npm package gltf-validator
 // are there (./cleave test installs it into <build>/npm).

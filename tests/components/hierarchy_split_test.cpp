@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One Splitable on a parent cuts the meshes of its children together and copies the hierarchy to
 // each side: a box body with a sphere "head" and a rotated, offset box "arm" as child entities.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "components/scene_loader.h"
 
 #include <cmath>

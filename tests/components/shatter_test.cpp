@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shatter splitters (SplitterKind::Shatter, components/shatter.h): what their trigger touches is
 // broken into Voronoi cells as a split job (computed on workers, committed at the commit tick), the
 // pieces rigid bodies with the parent's mass and momentum, the same pieces on 0 or 2 threads.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A headless simulation for the component tests: a World, a PhysicsWorld and a SplitSystem without
 // renderer (a components::Simulation), stepped tick by tick in the App's phase order
 // (engine/app/phase.h): Gameplay (scene splitters) -> Triggers (gather the last step's touches) ->

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cutting an animated skinned character in its current pose, through the split system: the three
 // piece modes (keep animating, ragdoll, bake), mass kept per cut, and the pose (not the bind pose)
 // being what is cut.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "components/split_budget.h"
 
 #include <map>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Allocation counting over the split system's compute stage: a warm scratch cutting a mesh whose
 // weld and collider parts are known allocates for what it hands to commit (a mesh, a weld, hulls
 // per piece) and nothing per triangle: a sphere with 16 times the triangles of another costs the same

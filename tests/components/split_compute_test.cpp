@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The compute stage of the split pipeline as plain data: jobs made by hand, computed without any
 // world, physics or renderer; the same job gives the same bytes on every thread and through a
 // host's task callback; pieces share the parent's mass and carry its velocity at their centre;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The split pipeline in the engine: prepare, compute on workers, commit at a fixed tick. Threads
 // never change a result; the commit tick is prepare + commitDelayTicks; a target gone before its
 // commit leaves nothing behind; a custom handler edits the pieces or keeps the original whole; and

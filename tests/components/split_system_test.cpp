@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Headless simulations of the split components: conservation across a cut, caps with holes,
 // islands, persistent and one-tick splitters, the split budget over a burst of splits, contact
 // quality of new pieces, and determinism.

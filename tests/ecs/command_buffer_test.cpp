@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/ecs/command_buffer.h"
 
 #include <gtest/gtest.h>

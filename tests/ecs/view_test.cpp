@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/ecs/view.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Random create/destroy/add/remove sequences checked against a simple reference model.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/ecs/world.h"
 
 #include <gtest/gtest.h>

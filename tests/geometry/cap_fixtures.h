@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cap polygons as test fixtures, in the style of earcut's: a polygon with holes taken from a real
 // section, with the triangle count and area deviation its triangulation gave when it was recorded.
 //

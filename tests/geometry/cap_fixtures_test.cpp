@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The cap triangulator on a fixture corpus of real section polygons (tests/geometry/data/caps, see
 // cap_fixtures.h), each with the triangle count and area deviation recorded when it was written,
 // and on the sections of the generated meshes cut here and now. Every polygon that ever failed is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CapTriangulator::triangulateFace: the polygon faces of mesh files. The concave faces here come
 // from CGAL's data set. Fanned from their first corner, as the readers of engine/assets do, they
 // fold: the mesh intersects itself (CGAL's self-intersection test finds 152 crossing triangle pairs

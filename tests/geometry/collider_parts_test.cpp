@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Carried collider parts: the decomposition of concave meshes, the clip of parts into the pieces of
 // a split (each part in the island that holds it, every piece with parts), and the fit of the
 // clipped parts to the pieces they stand for.

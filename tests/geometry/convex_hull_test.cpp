@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex hulls: exact small cases, containment and convexity on random clouds, degenerate inputs,
 // determinism; and the convexity test the physics layer uses to pick a collider.
 #include "engine/geometry/convex_hull.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Convex polytopes as carried collider parts: exact clips of small cases, clips through vertices and
 // faces that add no sliver, shrinking by a margin, mirrored transforms, simplification that never
 // grows a part, and invariants of random clips (volumes add up, both sides stay convex).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fracture (engine/geometry/fracture.h): Voronoi cells that tile their box, and meshes broken into
 // cells with the split invariants kept: every piece closed and manifold on its float positions,
 // inside its cell, volumes summing to the input's, the caps two neighbouring cells leave on their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Closed meshes wound inwards (negative signed volume): the container treats them as mirrored, so
 // the splitter caps them like any other mesh; the pieces keep the input's winding, caps included,
 // and report positive volumes. Real files come this way (CGAL's beam.off, tetrahedron.off and

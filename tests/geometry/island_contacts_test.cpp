@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Island contacts (island_contacts.h) and IslandMode::Touching in the splitter: multi-part art stays
 // one piece per side unless the cut really separates it. Exact small cases: parts that pass into
 // one another, lie flush, hold one another, or stand apart, cut in both island modes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Mass properties against exact and analytic values, principal axes, and the procedural primitives
 // (closed, outward, exact seams, analytic volumes) they are measured on.
 #include "engine/geometry/mass_properties.h"

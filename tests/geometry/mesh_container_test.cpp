@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // MeshContainer: validation, welding, cut space (transform, mirroring, skinning), extraction.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cutting skinned meshes in their pose: merged and renormalised weights on new vertices, cap
 // vertices weighted like the cut edges, the joints each piece keeps, and cuts placed in pose space.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Small, hand-checkable splits: exact volumes, cap areas, normals, UVs, islands, failure cases, the
 // thesis's two failure cases, submesh reuse, determinism and the no-allocation guarantee.
 #include <gtest/gtest.h>

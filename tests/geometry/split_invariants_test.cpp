@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Invariants of the split over generated meshes and many seeded planes, for the concave splitter
 // (every mesh) and the convex splitter (convex meshes):
 //   - the status is Ok when the plane crosses the mesh beyond the tolerance, PlaneMissesMesh when it

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared helpers for the geometry tests: topology and volume checks, a section area computed
 // independently of the splitter, seeded random planes, and a dump of a failing case in a text form
 // (an OBJ file with the plane and transforms in comment lines) that can become a corpus entry.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine/input/input_state.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The message sink (engine/log/log.h): messages reach the sink the host sets, formatted, with their
 // level and source; an empty sink restores the default; ScopedSink puts the previous one back;
 // writes from several threads arrive whole, one at a time.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Joints (cone-twist and hinge constraints): a pendulum chain holds together and swings, limits are
 // respected, destroying a body drops its joints, bad defs are refused, runs are deterministic; and
 // the two body options ragdolls need: collision groups and kinematic bodies.

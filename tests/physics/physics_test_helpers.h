@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared scene pieces for the physics tests.
 #pragma once
 

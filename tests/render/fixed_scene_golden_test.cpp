@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A fixed scene rendered headless and compared with a committed golden PNG: checker floor, sky,
 // shadows, a textured lit cube, a reflective sphere, a debug-normals torus and a split cube whose
 // cap uses a solid checker. Tolerance: per-channel difference and share of differing pixels; on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The golden tolerance (image_compare.h, kGoldenTolerance) against what it must tell apart: a scene
 // drawn twice gives the same pixels (what the software renderer varies by: nothing), and the same
 // scene with its light turned by 3 degrees, without shadows, or without one of its pieces each

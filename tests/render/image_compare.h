@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Golden-image comparison for headless render tests: tolerance = largest allowed per-channel
 // difference plus the share of pixels allowed to exceed it. On failure the actual image and a diff
 // image are written next to the golden so a person can look at them.

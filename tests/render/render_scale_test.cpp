@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The render scale (Renderer::setRenderScale): the 3D scene drawn at a fraction of the frame and
 // stretched over it, the HUD at the frame's full resolution. Checked against the same scene at scale
 // 1: the frame keeps its size, the HUD's pixels are the same bit for bit, the scene is the same

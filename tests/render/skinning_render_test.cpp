@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GPU skinning against the CPU: the generated character in a walking pose rendered with
 // submitSkinned must look like the same pose skinned on the CPU and drawn statically; a skinned cut
 // piece, rendered in the same pose, must cover exactly its half of the uncut character.

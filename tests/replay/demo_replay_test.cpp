@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The tech demo's bundled replays, run headless through the real executable: final state
 // (pieces, mass kept by every cut, nothing lost through the floor), determinism (two runs and a
 // recorded-then-replayed run give the same state hash), bad replay files, and golden frames.

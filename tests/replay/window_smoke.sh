@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Real-window smoke test: the tech demo in a window on a virtual X server (Xvfb), driven by xdotool
 # like a player: hold Space, drag across the wooden cube, release. The state dump of the last tick
 # must show at least one split that produced pieces.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Allocation counting for tests: the global operator new and delete (plain, array, nothrow, sized)
 // replaced with malloc and free, counting allocations while cleave::testing::gCountAllocations is
 // set. Every form is replaced, so that no allocation of the sanitizer's own operator new reaches

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Running the engine's executables from tests: capture the output and exit status, a clean scratch
 // folder per test, the printed state hash (and its check over split thread counts), the last line of a JSON-lines state dump, and the
 // per-cut mass check on a dump's split log (components/split_log.h).

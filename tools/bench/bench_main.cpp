@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // cleave-bench's entry point: Google Benchmark's, plus --version.
 #include <benchmark/benchmark.h>
 

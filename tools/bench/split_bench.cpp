@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Split + cap cost against triangle count. Each case builds its mesh and container once, warms a
 // reused splitter and SplitResult up (so steady-state runs allocate nothing), then times split()
 // alone. Counters: triangles of the input, pieces and cap triangles of the last run.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // cleave-split: reads a mesh file, cuts it by a plane with the concave splitter (caps, islands, mass
 // properties) and reports the pieces, optionally writing one file per piece. With --pose it cuts the
 // skinned mesh of a glTF model in a sampled pose and writes skinned, animated pieces. See

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The contract between a fuzz driver and the standalone runner (fuzz_main.cpp). Each driver defines
 // LLVMFuzzerTestOneInput (the libFuzzer entry point) and fuzzSeeds(), a few valid inputs to start
 // mutating from. A driver aborts (so that libFuzzer or the runner reports it) when an invariant the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Standalone runner for a fuzz driver when libFuzzer is not used: a seeded mutation loop over the
 // driver's built-in seeds, so CI can run a short deterministic smoke.
 //

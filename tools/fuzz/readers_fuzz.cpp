@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz driver for the mesh file readers. Input: one byte choosing the format (modulo 6: OBJ, OFF,
 // STL, PLY, glTF, GLB), then the file bytes. Every accepted mesh must satisfy the MeshData contract
 // and survive an OBJ and a GLB round trip through the writers and readers.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz driver for the split core. Input layout (all bytes, so every mutation is a valid layout):
 //   [0]     flags: bit 0 cap, bit 1 separate islands, bit 2 normalized-bounds cap UVs,
 //           bit 3 convex splitter instead of concave, bit 4 a non-trivial model matrix

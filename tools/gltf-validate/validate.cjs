@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Runs the Khronos glTF validator (npm package gltf-validator) on .gltf/.glb files and prints one
 // JSON line per file: {file, errors, warnings, infos, messages}. Exit status 1 when any file has an
 // error. The package is looked up in CLEAVE_GLTF_VALIDATOR_DIR (a folder where

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Private (not installed): conversions between glm and Bullet value types. Bullet is built in
 // single precision here (pkg-config `bullet`), so btScalar is float.
 #pragma once

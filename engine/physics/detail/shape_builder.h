@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Private (not installed): turns a checked ShapeDef into Bullet collision shapes.
 #pragma once
 

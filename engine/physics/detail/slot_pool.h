@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Private (not installed): a slot table with generations, behind the public handles.
 //
 // Freed slots are reused last-in first-out, so the handle sequence depends only on the sequence of

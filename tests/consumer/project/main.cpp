@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Splits a box through the installed library and checks the two halves.
 #include <cstdio>
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs the two builds of mass_dump and compares their output byte for byte.
 # compare.sh DUMP SCALAR_DUMP, or compare.sh DUMP --one-digit-changed (must fail).
 set -euo pipefail

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Prints the mass properties of a set of generated meshes with every double in hex (%a), so that
 // two builds of the mass integration (the SSE2 lanes and the scalar loop, CLEAVE_MASS_SCALAR) can
 // be compared byte for byte: the claim that they agree bit for bit is tested, not assumed.

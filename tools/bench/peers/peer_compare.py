@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Peer comparison of the cleave-split core against VTK and manifold.
 
 Run from the repository root:
