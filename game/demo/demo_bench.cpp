@@ -45,11 +45,17 @@ void DemoGame::benchmarkSplits(int repeats, bool json) {
   ecs::World& world = app_->world();
   components::SplitWorld sw = splitWorld();
   const char* names[] = {"", "wooden cube", "metal sphere", "marble cylinder", "melon",
-                         "multi-part figure", "skinned character", "torus"};
+                         "multi-part figure", "skinned character", "torus", "stone block"};
+  // Every object cut once by a plane, then three shattered into 16 cells (F in the demo).
+  struct Case {
+    int kind;
+    uint32_t cells;  // 0: a plane cut
+  };
+  const Case cases[] = {{1, 0}, {2, 0}, {3, 0}, {4, 0}, {5, 0}, {6, 0}, {7, 0}, {8, 0}, {2, 16}, {7, 16}, {8, 16}};
   std::vector<ObjectRun> runs;
-  for (int kind = 1; kind <= 7; ++kind) {
+  for (const auto [kind, cells] : cases) {
     ObjectRun run;
-    run.name = names[kind];
+    run.name = std::string(names[kind]) + (cells ? ", shatter " + std::to_string(cells) : "");
     for (int i = 0; i < repeats; ++i) {
       const glm::vec3 at(100.f + 5.f * float(kind), 2.f, 100.f);
       const ecs::Entity e = spawn(ObjectKind(kind), at, glm::quat(1.f, 0.f, 0.f, 0.f));
@@ -64,6 +70,9 @@ void DemoGame::benchmarkSplits(int repeats, bool json) {
       request.target = e;
       request.planeNormal = glm::normalize(glm::dvec3(0.3, 1.0, 0.2));
       request.planeOffset = glm::dot(request.planeNormal, centre);
+      request.shatter = cells > 0;
+      request.shatterSpec.cells = cells;
+      request.shatterSpec.impactPoint = centre;
       const components::SplitEvent ev = splits_->splitNow(sw, e, request, 0);
       run.mainMs.push_back(ev.mainMilliseconds);
       run.workerMs.push_back(ev.computeMilliseconds);

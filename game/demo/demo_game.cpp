@@ -237,6 +237,13 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
       look = 6;
       name = "torus";
       break;
+    case ObjectKind::StoneBlock:
+      mesh = geometry::primitives::box(glm::vec3(0.4f, 0.3f, 0.3f));
+      splitable.convexHint = true;
+      splitable.density = 2400.0;
+      look = 2;  // marble
+      name = "stone block";
+      break;
   }
   splitable.capMaterial = capLooks_[size_t(look)];
   splitable.capMaterialId = 1;
@@ -281,6 +288,7 @@ Footprint footprintOf(ObjectKind kind) {
     case ObjectKind::MultiPart: return {1.05f, 0.6f};
     case ObjectKind::Skinned: return {0.6f, 0.5f};
     case ObjectKind::Torus: return {0.2f, 0.7f};
+    case ObjectKind::StoneBlock: return {0.3f, 0.5f};
   }
   return {0.5f, 0.7f};
 }
@@ -676,8 +684,9 @@ void DemoGame::gameplay(app::TickContext& c) {
   cameraPosition_.y = std::max(cameraPosition_.y, 0.3f);
 
   if (in.pressed(Key::H)) showHelp_ = !showHelp_;
-  const Key spawnKeys[7] = {Key::Num1, Key::Num2, Key::Num3, Key::Num4, Key::Num5, Key::Num6, Key::Num7};
-  for (int k = 0; k < 7; ++k)
+  const Key spawnKeys[8] = {Key::Num1, Key::Num2, Key::Num3, Key::Num4,
+                            Key::Num5, Key::Num6, Key::Num7, Key::Num8};
+  for (int k = 0; k < 8; ++k)
     if (in.pressed(spawnKeys[k])) spawnInFront(ObjectKind(k + 1), forward);
   if (in.pressed(Key::Q) || (in.pressed(Key::E) && !in.held(Key::LeftShift))) {
     const ecs::Entity target = entityUnderCrosshair();
@@ -818,8 +827,8 @@ void DemoGame::drawStatsPanel(app::TickContext& c, float u) {
 
 void DemoGame::drawHelp(app::TickContext& c, float u) {
   const char* help[] = {"WASD move, mouse look",     "hold Space: split mode, drag left button to cut",
-                        "right button: push",        "1-7: spawn cube, sphere, cylinder, melon,",
-                        "     figure, skinned, torus", "Q/E: cycle the material under the crosshair",
+                        "right button: push",        "1-8: spawn cube, sphere, cylinder, melon,",
+                        "     figure, skinned, torus, stone block", "Q/E: cycle the material under the crosshair",
                         "F: shatter what is under the crosshair",
                         "Esc: free the mouse; Esc again: quit", "H: this help"};
   float width = 0.f;

@@ -30,6 +30,7 @@ enum class ObjectKind : int {
   MultiPart,
   Skinned,
   Torus,
+  StoneBlock,  // key 8: a dense block to shatter (F)
 };
 
 class DemoGame {
@@ -40,9 +41,9 @@ class DemoGame {
   // Builds the scene and registers the systems. Returns false with a reason on failure.
   bool setup(app::App& app, std::string* error);
 
-  // Spawns an object of the given kind at a position (used by keys 1-7 and by scenes).
+  // Spawns an object of the given kind at a position (used by keys 1-8 and by scenes).
   ecs::Entity spawn(ObjectKind kind, const glm::vec3& position, const glm::quat& rotation);
-  // Spawns at the first free spot in front of the player (keys 1-7), standing on the floor.
+  // Spawns at the first free spot in front of the player (keys 1-8), standing on the floor.
   ecs::Entity spawnInFront(ObjectKind kind, const glm::vec3& forward);
 
   components::SplitSystem& splits() { return *splits_; }

@@ -144,5 +144,47 @@ TEST(Shatter, SamePiecesOnZeroAndTwoThreads) {
   }
 }
 
+// A piece of a shatter is shattered again (depth 2), and with maxDepth 1 its pieces are no longer
+// splitable at all.
+TEST(Shatter, PiecesShatterAgainUpToTheSplitablesDepth) {
+  for (uint32_t maxDepth : {2u, 1u}) {
+    Sim sim;
+    const ecs::Entity crate = addCrate(sim, geometry::primitives::box(glm::vec3(0.5f)));
+    sim.world.get<Splitable>(crate).maxDepth = maxDepth;
+    addShatter(sim, 8, 0.0);
+    std::vector<SplitEvent> events = sim.runUntil(6);
+    ASSERT_EQ(events.size(), 1u);
+    ASSERT_GE(events[0].pieces.size(), 4u);
+    // The largest piece, shattered where it is now.
+    ecs::Entity largest;
+    double most = 0.0;
+    for (ecs::Entity piece : events[0].pieces) {
+      const double mass = sim.world.get<MassInfo>(piece).mass;
+      if (mass > most) most = mass, largest = piece;
+    }
+    EXPECT_EQ(sim.world.has<Splitable>(largest), maxDepth > 1) << "maxDepth " << maxDepth;
+    if (maxDepth == 1) continue;
+    Splitter s;
+    s.kind = SplitterKind::Shatter;
+    s.shatter.cells = 8;
+    s.shatter.seed = 3;
+    s.halfExtents = glm::vec3(1.f);
+    SplitWorld sw = sim.sw();
+    const glm::vec3 at = sim.world.get<ecs::Transform>(largest).position;
+    ASSERT_NE(createSplitter(sw, "second", physics::ShapeDef::box(s.halfExtents), at, glm::quat(1.f, 0.f, 0.f, 0.f), s),
+              ecs::kNullEntity);
+    events = sim.runUntil(12);
+    size_t again = 0;
+    for (const SplitEvent& ev : events) {
+      if (ev.original != largest) continue;
+      ++again;
+      EXPECT_EQ(ev.status, geometry::SplitStatus::Ok) << ev.message;
+      EXPECT_GE(ev.pieces.size(), 2u);
+      EXPECT_NEAR(ev.piecesMass, most, 1e-6 * most);
+    }
+    EXPECT_EQ(again, 1u) << "the largest piece was not shattered again";
+  }
+}
+
 }  // namespace
 }  // namespace cleave::components
