@@ -226,14 +226,18 @@ void clipCarriedParts(PieceContext& c, SplitOutcome& out) {
   c.carried = true;
 }
 
+struct PieceBounds {
+  glm::dvec3 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
+};
+
 // Of the pieces `mates` (one cell's), the one whose bounds are nearest `point` (0 inside them); the
 // larger piece on a tie.
-size_t ownerOf(const std::vector<geometry::SplitPiece>& pieces, std::span<const size_t> mates, const glm::dvec3& point) {
+size_t ownerOf(const std::vector<geometry::SplitPiece>& pieces, std::span<const PieceBounds> bounds,
+               std::span<const size_t> mates, const glm::dvec3& point) {
   size_t owner = mates.front();
   double best = std::numeric_limits<double>::infinity();
   for (size_t j : mates) {
-    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-    for (const glm::vec3& p : pieces[j].mesh.positions) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+    const glm::dvec3 lo = bounds[j].lo, hi = bounds[j].hi;
     const double d = glm::length(glm::max(glm::max(lo - point, point - hi), glm::dvec3(0.0)));
     if (d < best || (d == best && pieces[j].mass.volume > pieces[owner].mass.volume)) {
       best = d;
@@ -251,6 +255,10 @@ void clipCarriedPartsToCells(PieceContext& c, SplitOutcome& out, std::span<const
   if (!parts) return;
   const std::vector<geometry::SplitPiece>& pieces = c.scratch.result.pieces;
   c.clipped.assign(pieces.size(), {});
+  std::vector<PieceBounds> bounds(pieces.size());
+  for (size_t i = 0; i < pieces.size(); ++i)
+    for (const glm::vec3& p : pieces[i].mesh.positions)
+      bounds[i].lo = glm::min(bounds[i].lo, glm::dvec3(p)), bounds[i].hi = glm::max(bounds[i].hi, glm::dvec3(p));
   for (size_t i = 0; i < pieces.size(); ++i) {
     if (!c.clipped[i].empty()) continue;  // filled with an earlier piece of its cell
     const geometry::ConvexCell& cell = cells[pieceCell[i]];
@@ -265,7 +273,7 @@ void clipCarriedPartsToCells(PieceContext& c, SplitOutcome& out, std::span<const
         if (clipped.empty()) break;
       }
       if (clipped.empty()) continue;
-      c.clipped[ownerOf(pieces, mates, geometry::polytopeCentroid(clipped))].push_back(std::move(clipped));
+      c.clipped[ownerOf(pieces, bounds, mates, geometry::polytopeCentroid(clipped))].push_back(std::move(clipped));
     }
   }
   c.carried = true;
@@ -390,8 +398,7 @@ ColliderPlan planCollider(const geometry::MeshData& mesh, const glm::dmat4& mesh
 geometry::SplitStatus shatterInto(const SplitJob& job, SplitComputeScratch& s, std::string& message,
                                   std::vector<geometry::ConvexCell>& cells, std::vector<uint32_t>& pieceCell) {
   const ShatterSpec& spec = job.request.shatterSpec;
-  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (const glm::dvec3& p : s.container.cutPositions()) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::dvec3 lo = s.container.boundsMin(), hi = s.container.boundsMax();
   const glm::dvec3 margin = 0.01 * (hi - lo) + glm::dvec3(1e-6);
   const std::vector<glm::dvec3> seeds =
       geometry::fractureSeeds(std::max<uint32_t>(spec.cells, 1), spec.seed, lo, hi, spec.impactPoint, spec.impactRadius);

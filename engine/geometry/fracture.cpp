@@ -23,6 +23,9 @@ struct Part {
   std::vector<uint32_t> source;  // per triangle: see FracturePiece::sourceTriangles
   MassProperties mass;
   uint32_t capTriangles = 0;
+  // The part set up for cutting (cut-space positions, weld), made once when a plane first meets it
+  // and kept while later planes leave the part whole.
+  std::unique_ptr<MeshContainer> container;
 };
 
 enum class Against { Inside, Outside, Crossing };
@@ -84,18 +87,22 @@ struct CellRun {
   FractureResult& result;
 };
 
-// The container a part is cut from: the source itself, or `scratch` set to the part's mesh. Null
+// The container a part is cut from: the source itself, or the part's own, set up on first use. Null
 // (with the result's status set) when the part's mesh is refused.
-const MeshContainer* containerOf(CellRun& run, const Part& part, MeshContainer& scratch) {
+const MeshContainer* containerOf(CellRun& run, Part& part) {
   if (part.whole) return &run.source;
+  if (part.container) return part.container.get();
+  auto container = std::make_unique<MeshContainer>();
   std::string why;
-  if (scratch.setMesh(part.mesh, part.weld, &why) != SplitStatus::Ok && scratch.setMesh(part.mesh, &why) != SplitStatus::Ok) {
+  if (container->setMesh(part.mesh, part.weld, &why) != SplitStatus::Ok &&
+      container->setMesh(part.mesh, &why) != SplitStatus::Ok) {
     run.result.status = SplitStatus::InvalidInput;
     run.result.message = "a fracture part cannot be cut again: " + why;
     return nullptr;
   }
-  scratch.setTransform(glm::mat4(run.source.model()));
-  return &scratch;
+  container->setTransform(glm::mat4(run.source.model()));
+  part.container = std::move(container);
+  return part.container.get();
 }
 
 FracturePiece pieceOf(CellRun& run, Part& part, uint32_t cellIndex) {
@@ -122,11 +129,10 @@ bool carveCell(CellRun& run, const ConvexCell& cell, uint32_t cellIndex) {
   parts[0].whole = true;
   parts[0].source.resize(run.source.mesh().indices.size() / 3);
   std::iota(parts[0].source.begin(), parts[0].source.end(), 0u);
-  MeshContainer scratch;
   for (uint32_t k = 0; k < cell.planes.size() && !parts.empty(); ++k) {
     std::vector<Part> kept;
     for (Part& part : parts) {
-      const MeshContainer* c = containerOf(run, part, scratch);
+      const MeshContainer* c = containerOf(run, part);
       if (!c) return false;
       const Against where = classify(c->cutPositions(), cell.planes[k], run.tolerance);
       if (where == Against::Outside) continue;

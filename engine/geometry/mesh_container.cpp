@@ -91,6 +91,8 @@ void MeshContainer::clear() {
   representatives_.clear();
   positionIdCount_ = 0;
   boundsDiagonal_ = 0.0;
+  boundsMin_ = glm::dvec3(INFINITY);
+  boundsMax_ = glm::dvec3(-INFINITY);
   closed_ = false;
   inverted_ = false;
   cutIsSource_ = false;
@@ -253,6 +255,8 @@ void MeshContainer::weld() {
     hi = glm::max(hi, glm::dvec3(p));
   }
   boundsDiagonal_ = source_->positions.empty() ? 0.0 : glm::length(hi - lo);
+  boundsMin_ = lo;  // source space: the cut space until a transform is set (setTransform updates it)
+  boundsMax_ = hi;
   const double tolerance = kWeldRelative * boundsDiagonal_;
   if (!weldHashed(tolerance, lo, hi)) weldSorted(tolerance, lo);
   positionIdCount_ = static_cast<uint32_t>(representatives_.size());
@@ -520,6 +524,8 @@ void MeshContainer::updateBounds() {
     hi = glm::max(hi, p);
   }
   boundsDiagonal_ = cutPositions_.empty() ? 0.0 : glm::length(hi - lo);
+  boundsMin_ = lo;
+  boundsMax_ = hi;
 }
 
 void MeshContainer::setTransform(const glm::mat4& model) {

@@ -62,6 +62,9 @@ class MeshContainer {
   // split as if mirrored: its pieces keep that winding (caps included) and report positive volumes.
   bool inverted() const { return inverted_; }
   double boundsDiagonal() const { return boundsDiagonal_; }
+  // Axis-aligned bounds of the cut-space positions (infinite, lo > hi, without a mesh).
+  const glm::dvec3& boundsMin() const { return boundsMin_; }
+  const glm::dvec3& boundsMax() const { return boundsMax_; }
   // The model matrix given to setTransform or setSkinningPose (identity after setMesh).
   const glm::dmat4& model() const { return model_; }
   // The joint matrices of the last setSkinningPose; empty when the cut space is a plain transform.
@@ -92,6 +95,7 @@ class MeshContainer {
   bool mirrored_ = false;
   bool inverted_ = false;  // closed and wound inwards in source space
   double boundsDiagonal_ = 0.0;
+  glm::dvec3 boundsMin_{INFINITY}, boundsMax_{-INFINITY};
   // Additions (private): see mesh_container.cpp.
   bool weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi);
   void weldSorted(double tolerance, const glm::dvec3& lo);

@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/geometry/mesh_splitter.h"
+#include "engine/geometry/primitives.h"
 
 namespace cleave::geometry {
 namespace {
@@ -280,6 +281,33 @@ TEST(MeshContainer, ExtractTrianglesRemapsVerticesAndKeepsRuns) {
     EXPECT_EQ(out.positions[out.indices[k]], m.positions[source]);
     EXPECT_EQ(out.colors[out.indices[k]], m.colors[source]);
   }
+}
+
+}  // namespace
+}  // namespace cleave::geometry
+
+namespace cleave::geometry {
+namespace {
+
+// The cut-space bounds the container keeps with its diagonal: after setMesh (welded or with a
+// weld), after a transform, after a pose change back to none, and infinite once released.
+TEST(MeshContainer, KeepsTheCutSpaceBoundsOfItsPositions) {
+  const MeshData box = primitives::box(glm::vec3(0.5f, 1.f, 2.f));
+  MeshContainer c;
+  ASSERT_EQ(c.setMesh(box), SplitStatus::Ok);
+  EXPECT_EQ(c.boundsMin(), glm::dvec3(-0.5, -1.0, -2.0));
+  EXPECT_EQ(c.boundsMax(), glm::dvec3(0.5, 1.0, 2.0));
+  c.setTransform(glm::translate(glm::mat4(1.f), glm::vec3(10.f, 0.f, 0.f)));
+  EXPECT_EQ(c.boundsMin(), glm::dvec3(9.5, -1.0, -2.0));
+  EXPECT_EQ(c.boundsMax(), glm::dvec3(10.5, 1.0, 2.0));
+  EXPECT_DOUBLE_EQ(c.boundsDiagonal(), glm::length(c.boundsMax() - c.boundsMin()));
+  MeshWeld weld;
+  c.copyWeld(weld);
+  MeshContainer d;
+  ASSERT_EQ(d.setMesh(box, weld), SplitStatus::Ok);
+  EXPECT_EQ(d.boundsMax(), glm::dvec3(0.5, 1.0, 2.0));
+  d.release();
+  EXPECT_GT(d.boundsMin().x, d.boundsMax().x);
 }
 
 }  // namespace

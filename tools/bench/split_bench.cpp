@@ -125,8 +125,7 @@ void runFracture(benchmark::State& state, const MeshData& mesh) {
     state.SkipWithError("setMesh failed");
     return;
   }
-  glm::dvec3 lo(1e30), hi(-1e30);
-  for (const glm::dvec3& p : container.cutPositions()) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::dvec3 lo = container.boundsMin(), hi = container.boundsMax();
   const std::vector<ConvexCell> cells =
       voronoiCells(fractureSeeds(uint32_t(state.range(0)), 1, lo, hi), lo - 0.01 * (hi - lo), hi + 0.01 * (hi - lo));
   size_t pieces = 0;
