@@ -20,23 +20,10 @@ using testing::Sim;
 
 // A 1 m crate (600 kg/m^3; or another mesh) on a dynamic body at height 3, moving.
 ecs::Entity addCrate(Sim& sim, const geometry::MeshData& mesh) {
-  const ecs::Entity e = sim.world.create();
-  ecs::Transform t;
-  t.position = glm::vec3(0.f, 3.f, 0.f);
-  sim.world.add<ecs::Transform>(e, t);
-  sim.world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
-  sim.world.add<ecs::Name>(e, ecs::Name{"crate"});
-  MeshRenderer mr;
-  mr.source = std::make_shared<geometry::MeshData>(mesh);
-  mr.materials = {render::Material{}, render::Material{}};
-  sim.world.add<MeshRenderer>(e, mr);
   Splitable sp;
   sp.density = 600.0;
   sp.minPieceVolume = 0.0;  // every cell a rigid body (no debris), so the momenta count them all
-  sim.world.add<Splitable>(e, sp);
-  SplitWorld sw = sim.sw();
-  std::string error;
-  EXPECT_TRUE(makeDynamicBody(sw, e, sp.density, ColliderMode::Auto, &error, &sim.splits)) << error;
+  const ecs::Entity e = testing::addSplitableBody(sim, "crate", mesh, sp, sp.density, glm::vec3(0.f, 3.f, 0.f));
   sim.physics.setVelocity(sim.world.get<RigidBody>(e).body, glm::vec3(1.f, 0.f, 0.f), glm::vec3(0.f, 0.5f, 0.f));
   return e;
 }

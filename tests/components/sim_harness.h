@@ -100,6 +100,27 @@ struct Sim {
   }
 };
 
+// An entity named `name` drawing `mesh` (an outside and a cap material), with `splitable` and a
+// dynamic body of `density` at `position` (its collider parts kept in the split system's cache).
+inline ecs::Entity addSplitableBody(Sim& sim, const std::string& name, const geometry::MeshData& mesh,
+                                    const Splitable& splitable, double density, const glm::vec3& position) {
+  const ecs::Entity e = sim.world.create();
+  ecs::Transform t;
+  t.position = position;
+  sim.world.add<ecs::Transform>(e, t);
+  sim.world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
+  sim.world.add<ecs::Name>(e, ecs::Name{name});
+  MeshRenderer mr;
+  mr.source = std::make_shared<geometry::MeshData>(mesh);
+  mr.materials = {render::Material{}, render::Material{}};
+  sim.world.add<MeshRenderer>(e, mr);
+  sim.world.add<Splitable>(e, splitable);
+  SplitWorld sw = sim.sw();
+  std::string error;
+  EXPECT_TRUE(makeDynamicBody(sw, e, density, ColliderMode::Auto, &error, &sim.splits)) << error;
+  return e;
+}
+
 // Total mass, linear momentum, centre of mass and angular momentum about it, in double precision
 // from the bodies the solver integrates: L = sum R diag(I) R^T w + m (x - c) x v.
 struct Momenta {

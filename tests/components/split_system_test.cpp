@@ -227,24 +227,9 @@ geometry::MeshData openBox() {
 
 // An open box on a dynamic body at height 3, its Splitable with `mode`.
 ecs::Entity addOpenBox(Sim& sim, geometry::OpenSectionMode mode) {
-  const geometry::MeshData open = openBox();
-  const ecs::Entity e = sim.world.create();
-  ecs::Transform t;
-  t.position = glm::vec3(0.f, 3.f, 0.f);
-  sim.world.add<ecs::Transform>(e, t);
-  sim.world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
-  sim.world.add<ecs::Name>(e, ecs::Name{"open box"});
-  MeshRenderer mr;
-  mr.source = std::make_shared<geometry::MeshData>(open);
-  mr.materials = {render::Material{}};
-  sim.world.add<MeshRenderer>(e, mr);
   Splitable sp;
   sp.openSections = mode;
-  sim.world.add<Splitable>(e, sp);
-  SplitWorld sw = sim.sw();
-  std::string error;
-  EXPECT_TRUE(makeDynamicBody(sw, e, 500.0, ColliderMode::Auto, &error)) << error;
-  return e;
+  return testing::addSplitableBody(sim, "open box", openBox(), sp, 500.0, glm::vec3(0.f, 3.f, 0.f));
 }
 
 TEST(SplitFailure, OpenMeshKeepsTheOriginalWholeWithItsMassAndMomentumWhenAskedToRefuse) {
