@@ -42,9 +42,12 @@
 #include "engine/geometry/mesh_splitter.h"
 
 #include <algorithm>
+#include <cassert>
 #include <bit>
 #include <cmath>
 #include <numeric>
+#include <system_error>
+#include <thread>
 
 #include "engine/geometry/cap_triangulator.h"
 #include "engine/geometry/island_contacts.h"
@@ -68,6 +71,8 @@ constexpr uint32_t kNone = 0xffffffffu;
 constexpr uint32_t kReachedBit = 0x80000000u;  // SideTriangle::source of a triangle the plane reached
 constexpr uint32_t kCapBit = 0x40000000u;      // SideTriangle::source of a cap triangle: | its loop
 constexpr uint32_t kSourceMask = kCapBit - 1;   // the source triangle (or loop) of SideTriangle::source
+// SplitOptions::threads: below this many side triangles a second thread costs more than it saves.
+constexpr size_t kParallelTriangles = 50000;
 constexpr double kPi = 3.14159265358979323846;
 
 uint64_t pairKey(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
@@ -168,6 +173,8 @@ struct LoopInfo {
 class Splitter final : public IMeshSplitter {
  public:
   explicit Splitter(bool convexFastPath) : convexFastPath_(convexFastPath) {}
+  Splitter(const Splitter&) = delete;  // sideTris_ and friends point into the splitter itself
+  Splitter& operator=(const Splitter&) = delete;
 
   SplitStatus split(const MeshContainer& container, const Plane& plane, const SplitOptions& options,
                     SplitResult& result) override;
@@ -185,7 +192,33 @@ class Splitter final : public IMeshSplitter {
   uint32_t pairVertex(uint32_t a, uint32_t b) const;
   glm::dvec2 project(const glm::dvec3& p) const { return {glm::dot(p - origin_, u_), glm::dot(p - origin_, v_)}; }
 
+  void classify(double tolerance);
+  void collectCrossingEdges();
   void cutTriangles();
+  struct CutOutput;
+  void cutRange(uint32_t begin, uint32_t end, CutOutput& out);
+  void countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2]) const;
+  // How many chunks (threads) a pass over `count` items uses: threads_ for big passes, else 1.
+  uint32_t chunkCount(size_t count) const {
+    return threads_ > 1 && count >= kParallelTriangles ? std::min<uint32_t>(threads_, 8) : 1;
+  }
+  // Runs job(chunk, begin, end) over [0, count) cut into `chunks` equal ranges: chunk 0 on the
+  // calling thread, the others on threads of their own (all here if none can be started).
+  template <class Job>
+  static void inChunks(uint32_t chunks, uint32_t count, Job&& job) {
+    auto range = [&](uint32_t c) { return uint32_t(uint64_t(count) * c / chunks); };
+    std::vector<std::thread> others;
+    uint32_t started = 1;
+    try {
+      for (; started < chunks; ++started) {
+        others.emplace_back([&job, &range, started] { job(started, range(started), range(started + 1)); });
+      }
+    } catch (const std::system_error&) {
+    }
+    for (uint32_t c = started; c < chunks; ++c) job(c, range(c), range(c + 1));
+    job(0, range(0), range(1));
+    for (std::thread& t : others) t.join();
+  }
   void collectBoundary(int side, std::vector<uint64_t>& boundary);
   void buildLoops();
   void sortSegmentEnds();
@@ -209,15 +242,59 @@ class Splitter final : public IMeshSplitter {
   void pushCapTriangles();
   bool flatCapTriangle(size_t t) const;
   bool flipCapTriangle(uint32_t t);
-  uint32_t find(uint32_t x);
   uint32_t weldedOfAny(uint32_t ref) const;
   glm::dvec3 cutOfAny(uint32_t ref) const;
-  uint32_t mergeCavities(int side, uint32_t pieces);
-  uint32_t joinTouching(int side, uint32_t pieces, const SplitOptions& options);
-  uint32_t regroup(std::span<const uint32_t> root, uint32_t pieces);
+  uint32_t weldedRef(uint32_t ref) const {  // writePieces: the welded id of a vertex reference
+    return ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_];
+  }
+
+  // Scratch of one side's islands and pieces: each side has its own, so the two can be written at
+  // once (SplitOptions::threads).
+  struct SideWork {
+    std::vector<uint32_t> parent, label, pieceOf, pieceMap, order, bucket, vertexRefs;
+    std::vector<uint64_t> stampRemap;  // per vertex reference: stamp << 32 | index in the piece
+    std::vector<uint64_t> weldRemap;   // per welded id: stamp << 32 | position id in the piece
+    uint32_t stampValue = 0;
+    std::vector<glm::dvec3> pieceCut;  // cut-space positions of the piece being written
+    std::vector<uint32_t> flipped;
+    std::vector<double> volume;
+    std::vector<uint32_t> firstTriangle, groupNumber;
+    std::vector<glm::dvec3> contactCorners;  // joinTouching: 3 cut-space corners per side triangle
+    std::vector<uint32_t> contactRoot;
+    std::vector<uint8_t> contactReached;
+    std::vector<glm::dvec3> contactLo, contactHi;  // joinTouching: bounds per piece, then per group
+    ContactScratch contactScratch;
+  };
+  static uint32_t find(SideWork& w, uint32_t x);
+  uint32_t labelSide(int side, SideWork& w, const SplitOptions& options);
+  uint32_t mergeCavities(int side, SideWork& w, uint32_t pieces) const;
+  uint32_t joinTouching(int side, SideWork& w, uint32_t pieces, const SplitOptions& options) const;
+  static uint32_t regroup(SideWork& w, std::span<const uint32_t> root, uint32_t pieces);
   void writePieces(const SplitOptions& options, SplitResult& result);
-  void gatherVertices(MeshData& m);
-  void pieceWeld(MeshWeld& weld, bool closed);
+  void orderSide(int side, SideWork& w, uint32_t pieces) const;
+  void writeSide(int side, SideWork& w, uint32_t pieces, uint32_t firstPiece, bool weldKnown,
+                 const SplitOptions& options, SplitResult& result);
+  static void beginPiece(SideWork& w, int side, SplitPiece& out);
+  size_t writeTriangles(int side, SideWork& w, size_t k, uint32_t p, const SplitOptions& options, SplitPiece& out);
+  void gatherVertices(SideWork& w, MeshData& m) const;
+  void pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const;
+  void pieceMass(SideWork& w, SplitPiece& out) const;
+  // Runs job(0) and job(1): the first on a thread of its own when `parallel` (both here if no
+  // thread can be started), the second on the calling thread.
+  template <class Job>
+  static void bothSides(bool parallel, Job&& job) {
+    std::thread other;
+    if (parallel) {
+      try {
+        other = std::thread([&job] { job(0); });
+      } catch (const std::system_error&) {
+        parallel = false;
+      }
+    }
+    if (!parallel) job(0);
+    job(1);
+    if (other.joinable()) other.join();
+  }
   uint32_t aliasRoot(uint32_t welded) const {
     while (welded >= idCount_ && welded - idCount_ < alias_.size() && alias_[welded - idCount_] != welded)
       welded = alias_[welded - idCount_];
@@ -254,12 +331,21 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint32_t> pairEdge_;     // per pair: welded edge
   MeshData extra_;                     // attributes of new and cap vertices
   uint32_t capBase_ = 0;               // first cap vertex reference
-  std::vector<SideTriangle> sideTris_[2];  // [0] above, [1] below
-  std::vector<uint32_t> planeTris_[2];     // per side: the triangles that may have an on-plane edge
-  std::vector<uint32_t> cutTris_[2];       // per side: the triangles made by cutting one (not whole ones)
+  // Step 3's output per chunk of source triangles; chunk 0's lists are the split's (below).
+  struct CutOutput {
+    std::vector<SideTriangle> sideTris[2];  // [0] above, [1] below
+    std::vector<uint32_t> planeTris[2];     // per side: the triangles that may have an on-plane edge
+    std::vector<uint32_t> cutTris[2];       // per side: the triangles made by cutting one (not whole ones)
+    std::vector<uint64_t> crossing, crossingPairs;  // chunks 1, 2, ...: step 2's crossing edges
+    uint32_t count[2] = {0, 0};  // side triangles the chunk gives (step 2 counts them)
+    uint32_t first[2] = {0, 0};  // where they start in sideTris_
+  };
+  CutOutput cutMain_;
+  std::vector<CutOutput> cutChunks_;  // chunks 1, 2, ... (cutChunks_[c - 1])
+  std::vector<SideTriangle>* const sideTris_ = cutMain_.sideTris;
+  std::vector<uint32_t>* const planeTris_ = cutMain_.planeTris;
+  std::vector<uint32_t>* const cutTris_ = cutMain_.cutTris;
   size_t capStart_[2] = {0, 0};            // per side: the first cap triangle
-  std::vector<uint32_t> bucket_;           // counting sort of the output triangles
-  std::vector<uint32_t> vertexRefs_;       // the vertex references of the piece being written, in order
   std::vector<uint64_t> boundary_[2];
   std::vector<uint64_t> segments_;     // section segments, sorted, counter-clockwise seen from +normal
   std::vector<uint64_t> reversed_;
@@ -286,27 +372,12 @@ class Splitter final : public IMeshSplitter {
   uint32_t closedLoops_ = 0;
   uint32_t slotCount_ = 0;  // output runs of the input
   uint32_t capSlot_ = 0;
-  std::vector<uint32_t> parent_;
-  std::vector<uint32_t> label_;
-  std::vector<uint32_t> pieceOf_;
-  std::vector<uint32_t> order_;
-  std::vector<uint64_t> stampRemap_;  // per vertex reference: stamp << 32 | index in the piece
-  std::vector<uint64_t> weldRemap_;   // per welded id: stamp << 32 | position id in the piece
   std::vector<uint32_t> alias_;       // per welded cut edge: the welded id it was merged into
   std::vector<uint32_t> extraWelded_;  // per vertex reference past the source: its welded id
-  uint32_t stampValue_ = 0;
-  std::vector<glm::dvec3> pieceCut_;
-  std::vector<uint32_t> flipped_;
   std::vector<uint32_t> loopPiece_;
-  std::vector<uint32_t> pieceMap_;
-  std::vector<double> volume_;
-  std::vector<uint32_t> firstTriangle_;
-  std::vector<uint32_t> groupNumber_;  // regroup: the new piece number of a group, by its root
-  std::vector<glm::dvec3> contactCorners_;  // joinTouching: 3 cut-space corners per side triangle
-  std::vector<uint32_t> contactRoot_;
-  std::vector<uint8_t> contactReached_;
-  std::vector<glm::dvec3> contactLo_, contactHi_;  // joinTouching: bounds per piece, then per group
-  ContactScratch contactScratch_;
+  std::vector<glm::dvec3> capBounds_;  // makeCapVertices: per cap group, [2 g] = lo, [2 g + 1] = hi
+  SideWork work_[2];
+  uint32_t threads_ = 1;  // SplitOptions::threads of the call
   std::vector<SplitPiece> spare_;
 };
 
@@ -367,6 +438,7 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   result.uncappedLoops = 0;
   result.sidesDisagree = false;
   container_ = &container;
+  threads_ = options.threads;
   mesh_ = &container.mesh();
   const MeshData& mesh = *mesh_;
   cut_ = container.cutPositions();
@@ -397,28 +469,9 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   const double tolerance = options.relativeTolerance * diagonal;
   onPlaneTolerance_ = tolerance;
 
-  // 1. Classification per position id.
-  distance_.resize(idCount_);
-  side_.resize(idCount_);
-  for (uint32_t id = 0; id < idCount_; ++id) {
-    const double d = glm::dot(normal_, cut_[reps_[id]]) - offset_;
-    distance_[id] = d;
-    side_[id] = d > tolerance ? 1 : (d < -tolerance ? -1 : 0);
-  }
-
-  // 2. Crossing edges.
-  weldedEdges_.clear();
-  pairs_.clear();
-  const size_t triangleCount = mesh.indices.size() / 3;
-  for (size_t t = 0; t < triangleCount; ++t) {
-    for (int e = 0; e < 3; ++e) {
-      const uint32_t a = mesh.indices[3 * t + e], b = mesh.indices[3 * t + (e + 1) % 3];
-      if (side_[ids_[a]] * side_[ids_[b]] < 0) {
-        weldedEdges_.push_back(pairKey(ids_[a], ids_[b]));
-        pairs_.push_back(pairKey(a, b));
-      }
-    }
-  }
+  // 1, 2. Classification per position id, then the crossing edges.
+  classify(tolerance);
+  collectCrossingEdges();
   std::sort(weldedEdges_.begin(), weldedEdges_.end());
   weldedEdges_.erase(std::unique(weldedEdges_.begin(), weldedEdges_.end()), weldedEdges_.end());
   std::sort(pairs_.begin(), pairs_.end());
@@ -566,30 +619,28 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   return SplitStatus::Ok;
 }
 
-void Splitter::cutTriangles() {
+// The triangles [begin, end) of the source, cut or kept, written to the side lists from
+// out.first[side] on (sized already: collectCrossingEdges counted them); out's plane and cut lists
+// get their indices.
+void Splitter::cutRange(uint32_t begin, uint32_t end, CutOutput& out) {
   const MeshData& mesh = *mesh_;
-  sideTris_[0].clear();
-  sideTris_[1].clear();
-  planeTris_[0].clear();
-  planeTris_[1].clear();
-  cutTris_[0].clear();
-  cutTris_[1].clear();
-  const size_t triangleCount = mesh.indices.size() / 3;
   uint32_t run = 0;
   uint32_t runEnd = mesh.submeshes.empty() ? kNone : mesh.submeshes[0].firstIndex + mesh.submeshes[0].indexCount;
+  uint32_t next[2] = {out.first[0], out.first[1]};
+  SideTriangle* side0 = sideTris_[0].data();
+  SideTriangle* side1 = sideTris_[1].data();
   auto push = [&](int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
-    sideTris_[side > 0 ? 0 : 1].push_back({{a, b, c}, source, run});
+    const int index = side > 0 ? 0 : 1;
+    (index == 0 ? side0 : side1)[next[index]++] = {{a, b, c}, source, run};
   };
   // A triangle with two or more on-plane corners may have an edge on the plane.
   auto pushPlanar = [&](int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
-    const int index = side > 0 ? 0 : 1;
-    planeTris_[index].push_back(static_cast<uint32_t>(sideTris_[index].size()));
-    sideTris_[index].push_back({{a, b, c}, source, run});
+    out.planeTris[side > 0 ? 0 : 1].push_back(next[side > 0 ? 0 : 1]);
+    push(side, a, b, c, source);
   };
   // A part of a cut triangle: its corners may meet at one float position (dropCollapsedTriangles).
   auto pushCut = [&](bool planar, int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
-    const int index = side > 0 ? 0 : 1;
-    cutTris_[index].push_back(static_cast<uint32_t>(sideTris_[index].size()));
+    out.cutTris[side > 0 ? 0 : 1].push_back(next[side > 0 ? 0 : 1]);
     source |= kReachedBit;
     if (planar) {
       pushPlanar(side, a, b, c, source);
@@ -597,7 +648,7 @@ void Splitter::cutTriangles() {
       push(side, a, b, c, source);
     }
   };
-  for (uint32_t t = 0; t < triangleCount; ++t) {
+  for (uint32_t t = begin; t < end; ++t) {
     while (runEnd != kNone && 3 * t >= runEnd && run + 1 < mesh.submeshes.size()) {
       ++run;
       runEnd = mesh.submeshes[run].firstIndex + mesh.submeshes[run].indexCount;
@@ -650,6 +701,111 @@ void Splitter::cutTriangles() {
     } else {
       pushCut(true, otherSide, ca, a, cb, t);
       pushCut(false, otherSide, a, b, cb, t);
+    }
+  }
+  assert(next[0] == out.first[0] + out.count[0] && next[1] == out.first[1] + out.count[1]);
+}
+
+// Step 1: the signed distance and side of every position id (in chunks on threads when big).
+void Splitter::classify(double tolerance) {
+  distance_.resize(idCount_);
+  side_.resize(idCount_);
+  inChunks(chunkCount(idCount_), idCount_, [&](uint32_t, uint32_t begin, uint32_t end) {
+    for (uint32_t id = begin; id < end; ++id) {
+      const double d = glm::dot(normal_, cut_[reps_[id]]) - offset_;
+      distance_[id] = d;
+      side_[id] = d > tolerance ? 1 : (d < -tolerance ? -1 : 0);
+    }
+  });
+}
+
+// Step 2: every edge with one end above and one below, by welded id pair and by source vertex pair
+// (unsorted; split() sorts them, so the chunks' order does not matter).
+void Splitter::collectCrossingEdges() {
+  const uint32_t triangleCount = static_cast<uint32_t>(mesh_->indices.size() / 3);
+  const uint32_t chunks = chunkCount(triangleCount);
+  if (cutChunks_.size() < chunks - 1) cutChunks_.resize(chunks - 1);
+  weldedEdges_.clear();
+  pairs_.clear();
+  inChunks(chunks, triangleCount, [&](uint32_t chunk, uint32_t begin, uint32_t end) {
+    std::vector<uint64_t>& welded = chunk == 0 ? weldedEdges_ : cutChunks_[chunk - 1].crossing;
+    std::vector<uint64_t>& pairs = chunk == 0 ? pairs_ : cutChunks_[chunk - 1].crossingPairs;
+    if (chunk > 0) {
+      welded.clear();
+      pairs.clear();
+    }
+    const uint32_t* indices = mesh_->indices.data();
+    uint32_t count[2] = {0, 0};
+    for (uint32_t t = begin; t < end; ++t) {
+      const uint32_t g[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+      const uint32_t id[3] = {ids_[g[0]], ids_[g[1]], ids_[g[2]]};
+      const int s[3] = {side_[id[0]], side_[id[1]], side_[id[2]]};
+      countSideTriangles(g, s, count);
+      for (int e = 0; e < 3; ++e) {
+        const int f = e == 2 ? 0 : e + 1;
+        if (s[e] * s[f] < 0) {
+          welded.push_back(pairKey(id[e], id[f]));
+          pairs.push_back(pairKey(g[e], g[f]));
+        }
+      }
+    }
+    CutOutput& out = chunk == 0 ? cutMain_ : cutChunks_[chunk - 1];
+    out.count[0] = count[0];
+    out.count[1] = count[1];
+  });
+  for (uint32_t chunk = 1; chunk < chunks; ++chunk) {
+    const CutOutput& part = cutChunks_[chunk - 1];
+    weldedEdges_.insert(weldedEdges_.end(), part.crossing.begin(), part.crossing.end());
+    pairs_.insert(pairs_.end(), part.crossingPairs.begin(), part.crossingPairs.end());
+  }
+}
+
+// How many side triangles step 3 makes of the triangle with corners g and corner sides s, per side
+// ([0] above, [1] below): added to count. The same cases as cutRange.
+void Splitter::countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2]) const {
+  const bool anyAbove = s[0] > 0 || s[1] > 0 || s[2] > 0;
+  const bool anyBelow = s[0] < 0 || s[1] < 0 || s[2] < 0;
+  if (anyAbove != anyBelow) {
+    ++count[anyAbove ? 0 : 1];
+  } else if (!anyAbove) {  // a face in the plane goes to the side its normal points away from
+    const glm::dvec3 p0 = cut_[reps_[ids_[g[0]]]], p1 = cut_[reps_[ids_[g[1]]]], p2 = cut_[reps_[ids_[g[2]]]];
+    const double facing = glm::dot(glm::cross(p1 - p0, p2 - p0), normal_) * (mirrored_ ? -1.0 : 1.0);
+    ++count[facing > 0.0 ? 1 : 0];
+  } else if (s[0] == 0 || s[1] == 0 || s[2] == 0) {
+    ++count[0];  // through the on-plane vertex: one triangle per side
+    ++count[1];
+  } else {
+    const int lone = s[0] != s[1] && s[0] != s[2] ? 0 : (s[1] != s[0] && s[1] != s[2] ? 1 : 2);
+    count[s[lone] > 0 ? 0 : 1] += 1;  // the lone corner's triangle, the quad's two on the other side
+    count[s[lone] > 0 ? 1 : 0] += 2;
+  }
+}
+
+// Step 3 over every triangle: in one range, or in chunks on threads, each writing its triangles at
+// the place the counts of the chunks before it give (the same lists as one range gives).
+void Splitter::cutTriangles() {
+  const uint32_t triangleCount = static_cast<uint32_t>(mesh_->indices.size() / 3);
+  const uint32_t chunks = chunkCount(triangleCount);
+  uint32_t total[2] = {0, 0};
+  for (uint32_t chunk = 0; chunk < chunks; ++chunk) {
+    CutOutput& out = chunk == 0 ? cutMain_ : cutChunks_[chunk - 1];
+    for (int side = 0; side < 2; ++side) {
+      out.first[side] = total[side];
+      total[side] += out.count[side];
+      out.planeTris[side].clear();
+      out.cutTris[side].clear();
+    }
+  }
+  sideTris_[0].resize(total[0]);
+  sideTris_[1].resize(total[1]);
+  inChunks(chunks, triangleCount, [&](uint32_t chunk, uint32_t begin, uint32_t end) {
+    cutRange(begin, end, chunk == 0 ? cutMain_ : cutChunks_[chunk - 1]);
+  });
+  for (uint32_t chunk = 1; chunk < chunks; ++chunk) {
+    const CutOutput& part = cutChunks_[chunk - 1];
+    for (int side = 0; side < 2; ++side) {
+      planeTris_[side].insert(planeTris_[side].end(), part.planeTris[side].begin(), part.planeTris[side].end());
+      cutTris_[side].insert(cutTris_[side].end(), part.cutTris[side].begin(), part.cutTris[side].end());
     }
   }
 }
@@ -1185,19 +1341,19 @@ void Splitter::makeCapVertices(const SplitOptions& options) {
     if (!options.uvPerBorder) return 0u;
     return loop.twiceArea > 0.0 || loop.outer == kNone ? loopIndex : loop.outer;
   };
-  pieceCut_.clear();  // reused here as per-group bounds: [2 * group] = lo, [2 * group + 1] = hi
-  pieceCut_.resize(2 * std::max<size_t>(loops_.size(), 1), glm::dvec3(0.0));
-  for (size_t g = 0; g < pieceCut_.size(); g += 2) {
-    pieceCut_[g] = glm::dvec3(INFINITY);
-    pieceCut_[g + 1] = glm::dvec3(-INFINITY);
+  capBounds_.clear();  // per-group bounds: [2 * group] = lo, [2 * group + 1] = hi
+  capBounds_.resize(2 * std::max<size_t>(loops_.size(), 1), glm::dvec3(0.0));
+  for (size_t g = 0; g < capBounds_.size(); g += 2) {
+    capBounds_[g] = glm::dvec3(INFINITY);
+    capBounds_[g + 1] = glm::dvec3(-INFINITY);
   }
   for (uint32_t l = 0; l < loops_.size(); ++l) {
     if (!loops_[l].capped) continue;
     const uint32_t g = groupOf(l);
     for (uint32_t k = loops_[l].begin; k < loops_[l].end; ++k) {
       const glm::dvec2 p = planar(k);
-      pieceCut_[2 * g] = glm::min(pieceCut_[2 * g], glm::dvec3(p, 0.0));
-      pieceCut_[2 * g + 1] = glm::max(pieceCut_[2 * g + 1], glm::dvec3(p, 0.0));
+      capBounds_[2 * g] = glm::min(capBounds_[2 * g], glm::dvec3(p, 0.0));
+      capBounds_[2 * g + 1] = glm::max(capBounds_[2 * g + 1], glm::dvec3(p, 0.0));
     }
   }
   const glm::dvec2 atlasOrigin(options.atlasRect.x, options.atlasRect.y);
@@ -1243,7 +1399,7 @@ void Splitter::makeCapVertices(const SplitOptions& options) {
     if (options.uvMode == CapUvMode::WorldPlanar) {
       uv = p * options.uvPerMetre;
     } else {
-      const glm::dvec2 lo(pieceCut_[2 * g]), hi(pieceCut_[2 * g + 1]);
+      const glm::dvec2 lo(capBounds_[2 * g]), hi(capBounds_[2 * g + 1]);
       const glm::dvec2 size = hi - lo;
       uv = glm::dvec2(size.x > 0.0 ? (p.x - lo.x) / size.x : 0.0, size.y > 0.0 ? (p.y - lo.y) / size.y : 0.0);
     }
@@ -1289,29 +1445,29 @@ glm::dvec3 Splitter::cutOfAny(uint32_t ref) const {
 // smallest outward component that encloses it, found by the generalised winding number (the sum of
 // the solid angles of that component's triangles, Van Oosterom and Strackee 1983) at one of its
 // points. Pieces are renumbered in order of their first triangle. Returns the new piece count.
-uint32_t Splitter::mergeCavities(int side, uint32_t pieces) {
+uint32_t Splitter::mergeCavities(int side, SideWork& w, uint32_t pieces) const {
   const std::vector<SideTriangle>& tris = sideTris_[side];
-  volume_.assign(pieces, 0.0);
-  firstTriangle_.assign(pieces, kNone);
+  w.volume.assign(pieces, 0.0);
+  w.firstTriangle.assign(pieces, kNone);
   for (size_t k = 0; k < tris.size(); ++k) {
-    const uint32_t p = pieceOf_[k];
+    const uint32_t p = w.pieceOf[k];
     const glm::dvec3 a = cutOfAny(tris[k].v[0]) - origin_, b = cutOfAny(tris[k].v[1]) - origin_,
                      c = cutOfAny(tris[k].v[2]) - origin_;
-    volume_[p] += glm::dot(a, glm::cross(b, c));
-    if (firstTriangle_[p] == kNone) firstTriangle_[p] = static_cast<uint32_t>(k);
+    w.volume[p] += glm::dot(a, glm::cross(b, c));
+    if (w.firstTriangle[p] == kNone) w.firstTriangle[p] = static_cast<uint32_t>(k);
   }
   bool anyCavity = false;
-  for (uint32_t p = 0; p < pieces; ++p) anyCavity = anyCavity || volume_[p] < 0.0;
+  for (uint32_t p = 0; p < pieces; ++p) anyCavity = anyCavity || w.volume[p] < 0.0;
   if (!anyCavity) return pieces;
   for (uint32_t p = 0; p < pieces; ++p) {
-    if (!(volume_[p] < 0.0)) continue;
-    const glm::dvec3 q = cutOfAny(tris[firstTriangle_[p]].v[0]);
+    if (!(w.volume[p] < 0.0)) continue;
+    const glm::dvec3 q = cutOfAny(tris[w.firstTriangle[p]].v[0]);
     uint32_t best = kNone;
     for (uint32_t o = 0; o < pieces; ++o) {
-      if (!(volume_[o] > 0.0) || (best != kNone && volume_[o] >= volume_[best])) continue;
+      if (!(w.volume[o] > 0.0) || (best != kNone && w.volume[o] >= w.volume[best])) continue;
       double solidAngle = 0.0;
       for (size_t k = 0; k < tris.size(); ++k) {
-        if (pieceOf_[k] != o) continue;
+        if (w.pieceOf[k] != o) continue;
         const glm::dvec3 a = cutOfAny(tris[k].v[0]) - q, b = cutOfAny(tris[k].v[1]) - q,
                          c = cutOfAny(tris[k].v[2]) - q;
         const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
@@ -1321,29 +1477,29 @@ uint32_t Splitter::mergeCavities(int side, uint32_t pieces) {
       }
       if (solidAngle > 2.0 * kPi) best = o;  // winding number above 1/2
     }
-    if (best != kNone) pieceMap_[p] = best;
+    if (best != kNone) w.pieceMap[p] = best;
   }
   // Resolve chains, then renumber.
   for (uint32_t p = 0; p < pieces; ++p) {
     uint32_t target = p;
-    while (pieceMap_[target] != target) target = pieceMap_[target];
-    firstTriangle_[p] = target;  // reused: the surviving piece
+    while (w.pieceMap[target] != target) target = w.pieceMap[target];
+    w.firstTriangle[p] = target;  // reused: the surviving piece
   }
-  return regroup(firstTriangle_, pieces);
+  return regroup(w, w.firstTriangle, pieces);
 }
 
 // Gives every piece of the side being written the number of its group: root[p] is the piece that
 // stands for p's group (root[root[p]] == root[p]). Groups are numbered in order of their first
-// piece, which keeps the order of first triangle. Updates pieceOf_ and pieceMap_ (whose entries
+// piece, which keeps the order of first triangle. Updates pieceOf and pieceMap (whose entries
 // are pieces of one group each); returns the group count.
-uint32_t Splitter::regroup(std::span<const uint32_t> root, uint32_t pieces) {
-  groupNumber_.assign(pieces, kNone);
+uint32_t Splitter::regroup(SideWork& w, std::span<const uint32_t> root, uint32_t pieces) {
+  w.groupNumber.assign(pieces, kNone);
   uint32_t count = 0;
   for (uint32_t p = 0; p < pieces; ++p) {
-    if (groupNumber_[root[p]] == kNone) groupNumber_[root[p]] = count++;
+    if (w.groupNumber[root[p]] == kNone) w.groupNumber[root[p]] = count++;
   }
-  for (uint32_t& p : pieceMap_) p = groupNumber_[root[p]];
-  for (uint32_t& p : pieceOf_) p = groupNumber_[root[p]];
+  for (uint32_t& p : w.pieceMap) p = w.groupNumber[root[p]];
+  for (uint32_t& p : w.pieceOf) p = w.groupNumber[root[p]];
   return count;
 }
 
@@ -1351,19 +1507,19 @@ uint32_t Splitter::regroup(std::span<const uint32_t> root, uint32_t pieces) {
 // and a part the plane did not reach that touches nothing goes with the piece of its side the plane
 // did reach nearest to it (bounding boxes), so that only what the cut separates falls apart. Pieces
 // are renumbered in order of first triangle, as before. Returns the new piece count.
-uint32_t Splitter::joinTouching(int side, uint32_t pieces, const SplitOptions& options) {
+uint32_t Splitter::joinTouching(int side, SideWork& w, uint32_t pieces, const SplitOptions& options) const {
   const std::vector<SideTriangle>& tris = sideTris_[side];
   const double tolerance = std::max(options.touchTolerance, 0.0) * container_->boundsDiagonal();
   // Bounds and reach per piece first: pieces whose boxes meet nothing, all reached by the plane (the
   // teeth of a comb cut across), are apart without a look at their triangles.
-  std::vector<uint8_t>& reached = contactReached_;
-  std::vector<glm::dvec3>& lo = contactLo_;
-  std::vector<glm::dvec3>& hi = contactHi_;
+  std::vector<uint8_t>& reached = w.contactReached;
+  std::vector<glm::dvec3>& lo = w.contactLo;
+  std::vector<glm::dvec3>& hi = w.contactHi;
   reached.assign(pieces, 0);
   lo.assign(pieces, glm::dvec3(INFINITY));
   hi.assign(pieces, glm::dvec3(-INFINITY));
   for (size_t k = 0; k < tris.size(); ++k) {
-    const uint32_t p = pieceOf_[k];
+    const uint32_t p = w.pieceOf[k];
     reached[p] = reached[p] || (tris[k].source & kReachedBit) != 0;
     for (int c = 0; c < 3; ++c) {
       const glm::dvec3 q = cutOfAny(tris[k].v[c]);
@@ -1371,62 +1527,63 @@ uint32_t Splitter::joinTouching(int side, uint32_t pieces, const SplitOptions& o
       hi[p] = glm::max(hi[p], q);
     }
   }
-  overlappingBoxes(lo, hi, tolerance, contactScratch_.pairs, contactScratch_.byX);
+  overlappingBoxes(lo, hi, tolerance, w.contactScratch.pairs, w.contactScratch.byX);
   const bool allReached = std::find(reached.begin(), reached.end(), uint8_t(0)) == reached.end();
-  if (contactScratch_.pairs.empty() && allReached) return pieces;
-  contactCorners_.resize(3 * tris.size());
+  if (w.contactScratch.pairs.empty() && allReached) return pieces;
+  w.contactCorners.resize(3 * tris.size());
   for (size_t k = 0; k < tris.size(); ++k) {
-    for (int c = 0; c < 3; ++c) contactCorners_[3 * k + c] = cutOfAny(tris[k].v[c]);
+    for (int c = 0; c < 3; ++c) w.contactCorners[3 * k + c] = cutOfAny(tris[k].v[c]);
   }
-  joinTouchingComponents(contactCorners_, pieceOf_, pieces, tolerance, contactRoot_, contactScratch_);
+  joinTouchingComponents(w.contactCorners, w.pieceOf, pieces, tolerance, w.contactRoot, w.contactScratch);
   // Per joined group (its root): reached by the plane, and its bounds.
   for (uint32_t p = 0; p < pieces; ++p) {
-    const uint32_t g = contactRoot_[p];
+    const uint32_t g = w.contactRoot[p];
     if (g == p) continue;
     reached[g] = reached[g] || reached[p];
     lo[g] = glm::min(lo[g], lo[p]);
     hi[g] = glm::max(hi[g], hi[p]);
   }
   for (uint32_t g = 0; g < pieces; ++g) {
-    if (contactRoot_[g] != g || reached[g]) continue;
+    if (w.contactRoot[g] != g || reached[g]) continue;
     uint32_t best = kNone;
     double bestGap = INFINITY;
     for (uint32_t r = 0; r < pieces; ++r) {
-      if (contactRoot_[r] != r || !reached[r]) continue;
+      if (w.contactRoot[r] != r || !reached[r]) continue;
       const glm::dvec3 gap = glm::max(glm::max(lo[r] - hi[g], lo[g] - hi[r]), glm::dvec3(0.0));
       if (glm::dot(gap, gap) < bestGap) {
         bestGap = glm::dot(gap, gap);
         best = r;
       }
     }
-    if (best != kNone) contactRoot_[g] = best;  // roots stay roots: the reached one is never moved
+    if (best != kNone) w.contactRoot[g] = best;  // roots stay roots: the reached one is never moved
   }
   bool joined = false;
   for (uint32_t p = 0; p < pieces; ++p) {
-    contactRoot_[p] = contactRoot_[contactRoot_[p]];  // through a moved group to its reached piece
-    joined = joined || contactRoot_[p] != p;
+    w.contactRoot[p] = w.contactRoot[w.contactRoot[p]];  // through a moved group to its reached piece
+    joined = joined || w.contactRoot[p] != p;
   }
-  return joined ? regroup(contactRoot_, pieces) : pieces;
+  return joined ? regroup(w, w.contactRoot, pieces) : pieces;
 }
 
-uint32_t Splitter::find(uint32_t x) {
-  while (parent_[x] != x) {
-    parent_[x] = parent_[parent_[x]];
-    x = parent_[x];
+uint32_t Splitter::find(SideWork& w, uint32_t x) {
+  std::vector<uint32_t>& parent = w.parent;
+  while (parent[x] != x) {
+    parent[x] = parent[parent[x]];
+    x = parent[x];
   }
   return x;
 }
 
 // The vertices of a piece, one attribute array at a time, from the source arrays or extra_; and
-// their cut-space positions (pieceCut_) for the mass properties.
-void Splitter::gatherVertices(MeshData& m) {
+// their cut-space positions (pieceCut) for the mass properties.
+void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
   const MeshData& mesh = *mesh_;
-  const size_t count = vertexRefs_.size();
+  const size_t count = w.vertexRefs.size();
   auto gather = [&](auto& out, const auto& source, const auto& extra) {
     if (source.empty()) return;
     out.resize(count);
     for (size_t i = 0; i < count; ++i) {
-      const uint32_t ref = vertexRefs_[i];
+      const uint32_t ref = w.vertexRefs[i];
       out[i] = ref < sourceCount_ ? source[ref] : extra[ref - sourceCount_];
     }
   };
@@ -1438,30 +1595,30 @@ void Splitter::gatherVertices(MeshData& m) {
   gather(m.colors, mesh.colors, extra_.colors);
   gather(m.joints, mesh.joints, extra_.joints);
   gather(m.weights, mesh.weights, extra_.weights);
-  pieceCut_.resize(count);
+  w.pieceCut.resize(count);
   for (size_t i = 0; i < count; ++i) {
-    const uint32_t ref = vertexRefs_[i];
-    pieceCut_[i] = ref < sourceCount_ ? cut_[ref] : cutOfAny(ref);
+    const uint32_t ref = w.vertexRefs[i];
+    w.pieceCut[i] = ref < sourceCount_ ? cut_[ref] : cutOfAny(ref);
   }
 }
 
 // The weld of the piece being written: its vertices' welded ids (merged cut points taken to the point
 // they were merged into) numbered in order of first vertex. A capped piece of a closed mesh is closed
 // on these ids: its side triangles and its cap meet along the section's welded ids.
-void Splitter::pieceWeld(MeshWeld& weld, bool closed) {
-  const size_t count = vertexRefs_.size();
+void Splitter::pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const {
+  const size_t count = w.vertexRefs.size();
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
-  if (weldRemap_.size() < weldedCount) weldRemap_.resize(weldedCount, 0);
-  const uint64_t stamp = uint64_t(stampValue_) << 32;  // the piece's stamp, fresh for this piece
+  if (w.weldRemap.size() < weldedCount) w.weldRemap.resize(weldedCount, 0);
+  const uint64_t stamp = uint64_t(w.stampValue) << 32;  // the piece's stamp, fresh for this piece
   weld.positionIds.resize(count);
   weld.representatives.clear();
   weld.closed = closed;
   weld.inverted = closed && container_->inverted();  // pieces keep the winding of the mesh
   for (size_t i = 0; i < count; ++i) {
-    const uint32_t ref = vertexRefs_[i];
+    const uint32_t ref = w.vertexRefs[i];
     uint32_t welded = ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_];
     welded = aliasRoot(welded);
-    uint64_t& entry = weldRemap_[welded];
+    uint64_t& entry = w.weldRemap[welded];
     if ((entry & ~uint64_t(0xffffffffu)) != stamp) {
       entry = stamp | weld.representatives.size();
       weld.representatives.push_back(static_cast<uint32_t>(i));
@@ -1470,202 +1627,237 @@ void Splitter::pieceWeld(MeshWeld& weld, bool closed) {
   }
 }
 
-void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
-  const MeshData& mesh = *mesh_;
+// Islands of one side: union-find over welded ids (only roots are linked, a parent always has a
+// lower id than its child), then cavities into what encloses them and, with IslandMode::Touching,
+// touching parts joined. Fills w.pieceOf (per side triangle), w.pieceMap and this side's entries of
+// loopPiece_; returns the piece count.
+uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options) {
+  const std::vector<SideTriangle>& tris = sideTris_[side];
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
+  w.pieceOf.resize(tris.size());
+  uint32_t pieces = 0;
+  if (!options.separateIslands) {
+    std::fill(w.pieceOf.begin(), w.pieceOf.end(), 0u);
+    pieces = tris.empty() ? 0 : 1;
+  } else {
+    w.parent.resize(weldedCount);
+    std::iota(w.parent.begin(), w.parent.end(), 0u);
+    for (const SideTriangle& tri : tris) {
+      // `a` stays the root of the triangle's set as it grows.
+      uint32_t a = find(w, weldedRef(tri.v[0]));
+      for (int c = 1; c < 3; ++c) {
+        const uint32_t b = find(w, weldedRef(tri.v[c]));
+        if (a == b) continue;
+        w.parent[std::max(a, b)] = std::min(a, b);
+        a = std::min(a, b);
+      }
+    }
+    // One ascending pass points every id at its root.
+    for (uint32_t x = 0; x < weldedCount; ++x) w.parent[x] = w.parent[w.parent[x]];
+    w.label.assign(weldedCount, kNone);
+    for (size_t k = 0; k < tris.size(); ++k) {
+      const uint32_t root = w.parent[weldedRef(tris[k].v[0])];
+      if (w.label[root] == kNone) w.label[root] = pieces++;
+      w.pieceOf[k] = w.label[root];
+    }
+  }
+  w.pieceMap.resize(pieces);
+  std::iota(w.pieceMap.begin(), w.pieceMap.end(), 0u);
+  if (options.cap && options.separateIslands && pieces > 1) pieces = mergeCavities(side, w, pieces);
+  if (options.separateIslands && options.islands == IslandMode::Touching && pieces > 1) {
+    pieces = joinTouching(side, w, pieces, options);
+  }
+  // Cap loops per piece: a loop's cap belongs to the island of its first vertex.
+  for (size_t l = 0; l < loops_.size(); ++l) {
+    if (!loops_[l].capped) continue;
+    loopPiece_[2 * l + side] =
+        options.separateIslands ? w.pieceMap[w.label[find(w, loopIds_[loops_[l].begin])]] : 0;
+  }
+  return pieces;
+}
+
+// Output order of one side's triangles: by piece, then output run slot, then as generated (source
+// order, then caps). A stable counting sort on (piece, slot); the plain sort only for an extreme
+// bucket count.
+void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
+  const std::vector<SideTriangle>& tris = sideTris_[side];
+  w.order.resize(tris.size());
+  const size_t slots = size_t(std::max(slotCount_, capSlot_)) + 1;
+  const size_t buckets = size_t(pieces) * slots;
+  bool sorted = true;  // already in (piece, slot) order: one piece of one run, caps last
+  for (size_t k = 1; k < tris.size() && sorted; ++k) {
+    sorted = size_t(w.pieceOf[k - 1]) * slots + tris[k - 1].slot <= size_t(w.pieceOf[k]) * slots + tris[k].slot;
+  }
+  if (sorted) {
+    std::iota(w.order.begin(), w.order.end(), 0u);
+  } else if (buckets <= 4 * tris.size() + 4096) {
+    w.bucket.assign(buckets + 1, 0u);
+    for (size_t k = 0; k < tris.size(); ++k) ++w.bucket[size_t(w.pieceOf[k]) * slots + tris[k].slot + 1];
+    for (size_t b = 0; b < buckets; ++b) w.bucket[b + 1] += w.bucket[b];
+    for (size_t k = 0; k < tris.size(); ++k) {
+      w.order[w.bucket[size_t(w.pieceOf[k]) * slots + tris[k].slot]++] = static_cast<uint32_t>(k);
+    }
+  } else {
+    std::iota(w.order.begin(), w.order.end(), 0u);
+    const std::vector<uint32_t>& piece = w.pieceOf;
+    std::sort(w.order.begin(), w.order.end(), [&](uint32_t a, uint32_t b) {
+      if (piece[a] != piece[b]) return piece[a] < piece[b];
+      if (tris[a].slot != tris[b].slot) return tris[a].slot < tris[b].slot;
+      return a < b;
+    });
+  }
+}
+
+// The triangles w.order[k, end) of piece p: indices through a vertex remap (stamped per piece),
+// provenance, submesh runs. Returns the end.
+size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, const SplitOptions& options,
+                                SplitPiece& out) {
+  const std::vector<SideTriangle>& tris = sideTris_[side];
+  MeshData& m = out.mesh;
+  const MeshData& mesh = *mesh_;
+  size_t end = k;
+  while (end < w.order.size() && w.pieceOf[w.order[end]] == p) ++end;
+  m.indices.resize(3 * (end - k));
+  uint32_t* index = m.indices.data();
+  const uint64_t stamp = uint64_t(w.stampValue) << 32;
+  const int second = mirrored_ ? 2 : 1, third = mirrored_ ? 1 : 2;
+  // One run of triangles of the same slot at a time.
+  while (k < end) {
+    const uint32_t slot = tris[w.order[k]].slot;
+    uint32_t material = options.capMaterialId;
+    if (slot < slotCount_) material = mesh.submeshes.empty() ? 0u : mesh.submeshes[slot].materialId;
+    const uint32_t first = static_cast<uint32_t>(index - m.indices.data());
+    size_t runEnd = k;
+    while (runEnd < end && tris[w.order[runEnd]].slot == slot) ++runEnd;
+    for (; k < runEnd; ++k) {
+      const SideTriangle& tri = tris[w.order[k]];
+      out.reached = out.reached || (tri.source & kReachedBit) != 0;
+      out.sourceTriangles.push_back((tri.source & kCapBit) ? kFromCap | (tri.source & kSourceMask)
+                                                           : tri.source & kSourceMask);
+      const uint32_t corner[3] = {tri.v[0], tri.v[second], tri.v[third]};
+      for (uint32_t ref : corner) {
+        uint64_t& entry = w.stampRemap[ref];
+        if ((entry & ~uint64_t(0xffffffffu)) != stamp) {
+          entry = stamp | w.vertexRefs.size();
+          w.vertexRefs.push_back(ref);
+        }
+        *index++ = static_cast<uint32_t>(entry);
+      }
+    }
+    const uint32_t count = static_cast<uint32_t>(index - m.indices.data()) - first;
+    m.submeshes.push_back({first, count, material});
+    if (slot == capSlot_) out.capTriangles += count / 3;
+  }
+  return end;
+}
+
+// Starts piece `out` afresh (its buffers kept) and takes a new stamp for its vertex remap.
+void Splitter::beginPiece(SideWork& w, int side, SplitPiece& out) {
+  MeshData& m = out.mesh;
+  m.positions.clear();
+  m.normals.clear();
+  m.tangents.clear();
+  m.uv0.clear();
+  m.uv1.clear();
+  m.colors.clear();
+  m.joints.clear();
+  m.weights.clear();
+  m.indices.clear();
+  m.submeshes.clear();
+  out.sourceTriangles.clear();
+  w.pieceCut.clear();
+  out.side = side == 0 ? 1 : -1;
+  out.capTriangles = 0;
+  out.capLoops = 0;
+  out.reached = false;
+  out.mass = MassProperties{};
+  ++w.stampValue;
+  if (w.stampValue == 0) {  // wrapped: clear the stamps once
+    std::fill(w.stampRemap.begin(), w.stampRemap.end(), uint64_t(0));
+    std::fill(w.weldRemap.begin(), w.weldRemap.end(), uint64_t(0));
+    w.stampValue = 1;
+  }
+  w.vertexRefs.clear();
+}
+
+// Mass properties of the piece just written, on its cut-space positions; a closed piece's winding.
+void Splitter::pieceMass(SideWork& w, SplitPiece& out) const {
+  const MeshData& m = out.mesh;
+  if (piecesClosed_) {
+    out.mass = integrateClosedSurface(w.pieceCut, m.indices, mirrored_, true);
+  } else {
+    std::span<const uint32_t> indices = m.indices;
+    if (mirrored_) {
+      w.flipped.assign(m.indices.begin(), m.indices.end());
+      for (size_t t = 0; t + 2 < w.flipped.size(); t += 3) std::swap(w.flipped[t + 1], w.flipped[t + 2]);
+      indices = w.flipped;
+    }
+    out.mass = computeMassProperties(std::span<const glm::dvec3>(w.pieceCut), indices);
+  }
+  // A closed piece is wound like its source unless its volume says otherwise (a shell of a
+  // mesh whose other shells outweigh it in the other direction).
+  if (out.weld.closed) {
+    out.weld.inverted = container_->inverted() ? out.mass.volume > 0.0 : out.mass.volume < 0.0;
+  }
+}
+
+// The pieces of one side, numbered from `firstPiece` in result.pieces (sized already).
+void Splitter::writeSide(int side, SideWork& w, uint32_t pieces, uint32_t firstPiece, bool weldKnown,
+                         const SplitOptions& options, SplitResult& result) {
+  const uint32_t refCount = capBase_ + 2 * static_cast<uint32_t>(loopIds_.size());
+  if (w.stampRemap.size() < refCount) w.stampRemap.resize(refCount, 0);
+  orderSide(side, w, pieces);
+  size_t k = 0;
+  for (uint32_t p = 0; p < pieces; ++p) {
+    SplitPiece& out = result.pieces[firstPiece + p];
+    beginPiece(w, side, out);
+    k = writeTriangles(side, w, k, p, options, out);
+    gatherVertices(w, out.mesh);
+    if (weldKnown) {
+      pieceWeld(w, out.weld, piecesClosed_);
+    } else {
+      out.weld.positionIds.clear();
+      out.weld.representatives.clear();
+      out.weld.closed = out.weld.inverted = false;
+    }
+    for (size_t l = 0; l < loops_.size(); ++l) {
+      if (loops_[l].capped && loopPiece_[2 * l + side] == p) ++out.capLoops;
+    }
+    collectUsedJoints(out.mesh, out.joints);
+    if (options.computeMass) pieceMass(w, out);
+  }
+}
+
+// Both sides: islands, then the pieces. With threads > 1 on a big mesh the two sides run at once,
+// each on scratch of its own (work_[side]); nothing they write is shared but distinct entries of
+// loopPiece_ and of result.pieces, so the output is the same bytes either way.
+void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
   const uint32_t loopVertices = static_cast<uint32_t>(loopIds_.size());
   const uint32_t refCount = capBase_ + 2 * loopVertices;
-  // Welded ids by vertex reference: the container's ids for source vertices, a table for the rest.
+  // Welded ids by vertex reference past the source: a table (source vertices use the container's).
   extraWelded_.resize(refCount - sourceCount_);
   for (uint32_t ref = sourceCount_; ref < refCount; ++ref) extraWelded_[ref - sourceCount_] = weldedOfAny(ref);
-  const uint32_t* sourceWelded = ids_.data();
-  const uint32_t* extraWelded = extraWelded_.data();
-  const uint32_t sourceCount = sourceCount_;
-  auto weldedRef = [&](uint32_t ref) {
-    return ref < sourceCount ? sourceWelded[ref] : extraWelded[ref - sourceCount];
-  };
-  if (stampRemap_.size() < refCount) stampRemap_.resize(refCount, 0);
-  label_.resize(weldedCount);
   // A degenerate section loop (no area) is left uncapped: the pieces along it may then be open on
   // their ids, which the split does not work out. Their weld is left unknown (empty), so a next cut
   // welds them from nothing.
   bool weldKnown = true;
   for (const LoopInfo& loop : loops_) weldKnown = weldKnown && (!options.cap || loop.capped);
-
-  size_t totalPieces = 0;
-  uint32_t firstPiece[2] = {0, 0};
+  loopPiece_.assign(2 * loops_.size(), 0);
+  bool wanted[2];
   for (int side = 0; side < 2; ++side) {
-    if (options.keepSide != 0 && options.keepSide != (side == 0 ? 1 : -1)) {
-      if (side == 0) loopPiece_.assign(2 * loops_.size(), 0);
-      continue;  // a clip: this side's pieces are not wanted
-    }
-    std::vector<SideTriangle>& tris = sideTris_[side];
-    pieceOf_.resize(tris.size());
-    if (options.separateIslands) {
-      parent_.resize(weldedCount);
-      std::iota(parent_.begin(), parent_.end(), 0u);
-      for (const SideTriangle& tri : tris) {
-        // Only roots are linked: `a` stays the root of the triangle's set as it grows.
-        uint32_t a = find(weldedRef(tri.v[0]));
-        for (int c = 1; c < 3; ++c) {
-          const uint32_t b = find(weldedRef(tri.v[c]));
-          if (a == b) continue;
-          parent_[std::max(a, b)] = std::min(a, b);
-          a = std::min(a, b);
-        }
-      }
-      // A parent always has a lower id than its child, so one ascending pass points every id at
-      // its root.
-      for (uint32_t x = 0; x < weldedCount; ++x) parent_[x] = parent_[parent_[x]];
-      std::fill(label_.begin(), label_.end(), kNone);
-    }
-    uint32_t pieces = 0;
-    if (!options.separateIslands) {
-      std::fill(pieceOf_.begin(), pieceOf_.end(), 0u);
-      pieces = tris.empty() ? 0 : 1;
-    } else {
-      for (size_t k = 0; k < tris.size(); ++k) {
-        const uint32_t root = parent_[weldedRef(tris[k].v[0])];
-        if (label_[root] == kNone) label_[root] = pieces++;
-        pieceOf_[k] = label_[root];
-      }
-    }
-    pieceMap_.resize(pieces);
-    std::iota(pieceMap_.begin(), pieceMap_.end(), 0u);
-    if (options.cap && options.separateIslands && pieces > 1) pieces = mergeCavities(side, pieces);
-    if (options.separateIslands && options.islands == IslandMode::Touching && pieces > 1) {
-      pieces = joinTouching(side, pieces, options);
-    }
-    firstPiece[side] = static_cast<uint32_t>(totalPieces);
-    totalPieces += pieces;
-    // Cap loops per piece: a loop's cap belongs to the island of its first vertex.
-    if (side == 0) loopPiece_.assign(2 * loops_.size(), 0);
-    for (size_t l = 0; l < loops_.size(); ++l) {
-      if (!loops_[l].capped) continue;
-      loopPiece_[2 * l + side] =
-          options.separateIslands ? pieceMap_[label_[find(loopIds_[loops_[l].begin])]] : 0;
-    }
-    // Order: by piece, then output run slot, then as generated (source order, then caps).
-    // A stable counting sort on (piece, slot); the plain sort only for an extreme bucket count.
-    order_.resize(tris.size());
-    const size_t slots = size_t(std::max(slotCount_, capSlot_)) + 1;
-    const size_t buckets = size_t(pieces) * slots;
-    bool sorted = true;  // already in (piece, slot) order: one piece of one run, caps last
-    for (size_t k = 1; k < tris.size() && sorted; ++k) {
-      sorted = size_t(pieceOf_[k - 1]) * slots + tris[k - 1].slot <= size_t(pieceOf_[k]) * slots + tris[k].slot;
-    }
-    if (sorted) {
-      std::iota(order_.begin(), order_.end(), 0u);
-    } else if (buckets <= 4 * tris.size() + 4096) {
-      bucket_.assign(buckets + 1, 0u);
-      for (size_t k = 0; k < tris.size(); ++k) ++bucket_[size_t(pieceOf_[k]) * slots + tris[k].slot + 1];
-      for (size_t b = 0; b < buckets; ++b) bucket_[b + 1] += bucket_[b];
-      for (size_t k = 0; k < tris.size(); ++k) {
-        order_[bucket_[size_t(pieceOf_[k]) * slots + tris[k].slot]++] = static_cast<uint32_t>(k);
-      }
-    } else {
-      std::iota(order_.begin(), order_.end(), 0u);
-      const std::vector<uint32_t>& piece = pieceOf_;
-      std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
-        if (piece[a] != piece[b]) return piece[a] < piece[b];
-        if (tris[a].slot != tris[b].slot) return tris[a].slot < tris[b].slot;
-        return a < b;
-      });
-    }
-    preparePieces(result, totalPieces);
-    size_t k = 0;
-    for (uint32_t p = 0; p < pieces; ++p) {
-      SplitPiece& out = result.pieces[firstPiece[side] + p];
-      MeshData& m = out.mesh;
-      m.positions.clear();
-      m.normals.clear();
-      m.tangents.clear();
-      m.uv0.clear();
-      m.uv1.clear();
-      m.colors.clear();
-      m.joints.clear();
-      m.weights.clear();
-      m.indices.clear();
-      m.submeshes.clear();
-      out.sourceTriangles.clear();
-      pieceCut_.clear();
-      out.side = side == 0 ? 1 : -1;
-      out.capTriangles = 0;
-      out.capLoops = 0;
-      out.reached = false;
-      out.mass = MassProperties{};
-      ++stampValue_;
-      if (stampValue_ == 0) {  // wrapped: clear the stamps once
-        std::fill(stampRemap_.begin(), stampRemap_.end(), uint64_t(0));
-        std::fill(weldRemap_.begin(), weldRemap_.end(), uint64_t(0));
-        stampValue_ = 1;
-      }
-      vertexRefs_.clear();
-      size_t end = k;
-      while (end < order_.size() && pieceOf_[order_[end]] == p) ++end;
-      m.indices.resize(3 * (end - k));
-      uint32_t* index = m.indices.data();
-      const uint64_t stamp = uint64_t(stampValue_) << 32;
-      const int second = mirrored_ ? 2 : 1, third = mirrored_ ? 1 : 2;
-      // One run of triangles of the same slot at a time.
-      while (k < end) {
-        const uint32_t slot = tris[order_[k]].slot;
-        uint32_t material = options.capMaterialId;
-        if (slot < slotCount_) material = mesh.submeshes.empty() ? 0u : mesh.submeshes[slot].materialId;
-        const uint32_t first = static_cast<uint32_t>(index - m.indices.data());
-        size_t runEnd = k;
-        while (runEnd < end && tris[order_[runEnd]].slot == slot) ++runEnd;
-        for (; k < runEnd; ++k) {
-          const SideTriangle& tri = tris[order_[k]];
-          out.reached = out.reached || (tri.source & kReachedBit) != 0;
-          out.sourceTriangles.push_back((tri.source & kCapBit) ? kFromCap | (tri.source & kSourceMask)
-                                                               : tri.source & kSourceMask);
-          const uint32_t corner[3] = {tri.v[0], tri.v[second], tri.v[third]};
-          for (uint32_t ref : corner) {
-            uint64_t& entry = stampRemap_[ref];
-            if ((entry & ~uint64_t(0xffffffffu)) != stamp) {
-              entry = stamp | vertexRefs_.size();
-              vertexRefs_.push_back(ref);
-            }
-            *index++ = static_cast<uint32_t>(entry);
-          }
-        }
-        const uint32_t count = static_cast<uint32_t>(index - m.indices.data()) - first;
-        m.submeshes.push_back({first, count, material});
-        if (slot == capSlot_) out.capTriangles += count / 3;
-      }
-      gatherVertices(m);
-      if (weldKnown) {
-        pieceWeld(out.weld, piecesClosed_);
-      } else {
-        out.weld.positionIds.clear();
-        out.weld.representatives.clear();
-        out.weld.closed = out.weld.inverted = false;
-      }
-      for (size_t l = 0; l < loops_.size(); ++l) {
-        if (loops_[l].capped && loopPiece_[2 * l + side] == p) ++out.capLoops;
-      }
-      collectUsedJoints(m, out.joints);
-      if (options.computeMass) {
-        if (piecesClosed_) {
-          out.mass = integrateClosedSurface(pieceCut_, m.indices, mirrored_, true);
-        } else {
-          std::span<const uint32_t> indices = m.indices;
-          if (mirrored_) {
-            flipped_.assign(m.indices.begin(), m.indices.end());
-            for (size_t t = 0; t + 2 < flipped_.size(); t += 3) std::swap(flipped_[t + 1], flipped_[t + 2]);
-            indices = flipped_;
-          }
-          out.mass = computeMassProperties(std::span<const glm::dvec3>(pieceCut_), indices);
-        }
-        // A closed piece is wound like its source unless its volume says otherwise (a shell of a
-        // mesh whose other shells outweigh it in the other direction).
-        if (out.weld.closed) {
-          out.weld.inverted = container_->inverted() ? out.mass.volume > 0.0 : out.mass.volume < 0.0;
-        }
-      }
-    }
+    wanted[side] = options.keepSide == 0 || options.keepSide == (side == 0 ? 1 : -1);
   }
+  const bool parallel = threads_ > 1 && wanted[0] && wanted[1] &&
+                        sideTris_[0].size() + sideTris_[1].size() >= kParallelTriangles;
+  uint32_t pieces[2] = {0, 0};
+  bothSides(parallel, [&](int side) {
+    if (wanted[side]) pieces[side] = labelSide(side, work_[side], options);
+  });
+  preparePieces(result, size_t(pieces[0]) + pieces[1]);
+  bothSides(parallel, [&](int side) {
+    if (pieces[side] == 0) return;
+    writeSide(side, work_[side], pieces[side], side == 0 ? 0u : pieces[0], weldKnown, options, result);
+  });
 }
 
 }  // namespace

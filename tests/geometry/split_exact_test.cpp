@@ -802,6 +802,7 @@ bool sameBytes(const SplitResult& a, const SplitResult& b) {
         a.pieces[k].capTriangles != b.pieces[k].capTriangles || a.pieces[k].side != b.pieces[k].side) {
       return false;
     }
+    if (!same(a.pieces[k].sourceTriangles, b.pieces[k].sourceTriangles)) return false;
     const MeshWeld &u = a.pieces[k].weld, &v = b.pieces[k].weld;
     if (!same(u.positionIds, v.positionIds) || !same(u.representatives, v.representatives) ||
         u.closed != v.closed || u.inverted != v.inverted) {
@@ -827,6 +828,40 @@ TEST(ConcaveSplitter, SameInputGivesTheSameBytes) {
   ASSERT_EQ(container.setMesh(torus), SplitStatus::Ok);
   ASSERT_EQ(splitter->split(container, plane, {}, reused), SplitStatus::Ok);
   EXPECT_TRUE(sameBytes(first.result, reused));
+}
+
+// SplitOptions::threads: meshes past the threshold (50,000 triangles) are cut in chunks and have
+// their two sides written at once; the output is the same bytes as on one thread, including the
+// many-piece path (a comb of 3,200 teeth) and the island and cavity passes.
+TEST(ConcaveSplitter, ThreadsGiveTheSameBytesAsOneThread) {
+  struct Case {
+    const char* name;
+    MeshData mesh;
+    Plane plane;
+  };
+  const Case cases[] = {
+      {"sphere", primitives::uvSphere(1.f, 256, 128), planeOf({0.12, 0.07, 0.99}, 0.0137)},
+      {"torus", primitives::torus(1.f, 0.3f, 256, 128), planeOf({1, 0, 0.001}, 0.0)},
+      {"twoSpheres", primitives::twoDisjointSpheres(0.5f, 0.1f, 192, 96), planeOf({0.3, 0.2, 1}, 0.01)},
+      {"shells", primitives::nestedShells(3, 1.f, 160, 80), planeOf({0.05, 1, 0.1}, 0.02)},
+      {"comb", primitives::combPrism(3200), planeOf({0, 1, 0}, 0.4)},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    ASSERT_GE(c.mesh.indices.size() / 3, 50000u);
+    Split one = run(c.mesh, c.plane);
+    ASSERT_EQ(one.status, SplitStatus::Ok) << one.result.message;
+    ASSERT_GE(one.result.pieces.size(), 2u);
+    for (uint32_t threads : {2u, 3u, 8u}) {
+      SplitOptions options;
+      options.threads = threads;
+      Split many = run(c.mesh, c.plane, options);
+      ASSERT_EQ(many.status, SplitStatus::Ok) << many.result.message;
+      EXPECT_TRUE(sameBytes(one.result, many.result)) << threads << " threads";
+    }
+  }
+  // The comb: one piece per tooth above the plane, the spine below.
+  EXPECT_EQ(run(cases[4].mesh, cases[4].plane).result.pieces.size(), 3201u);
 }
 
 TEST(ConcaveSplitter, WarmSplitOfASameSizeMeshDoesNotAllocate) {
