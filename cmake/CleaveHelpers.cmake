@@ -1,9 +1,16 @@
 # SPDX-License-Identifier: MIT
-# cleave_add_library(<name> [PUBLIC_LIBS ...] [PRIVATE_LIBS ...])
-# Builds every .cpp of the calling folder into static library cleave_<name>, exported as Cleave::<name>.
-# Headers are included from the repository root: #include "engine/<layer>/<file>.h".
+# cleave_add_library(<name> [COMPONENT <package component>] [PUBLIC_LIBS ...] [PRIVATE_LIBS ...]
+#                    [INTERNAL_HEADERS <file.h> ...])
+# Builds every .cpp of the calling folder into static library cleave_<name>, exported as Cleave::<name>
+# in the package component COMPONENT (default engine; see cmake/CleavePackage.cmake).
+# Headers are included as <cleave/<name>/<file>.h>, in the build tree as when installed: the build
+# tree's include/cleave/<name> is a link to the folder. INTERNAL_HEADERS are not installed (headers
+# that name a private dependency, or helpers of the folder's own sources).
 function(cleave_add_library name)
-  cmake_parse_arguments(ARG "" "" "PUBLIC_LIBS;PRIVATE_LIBS;EXTRA_SOURCES" ${ARGN})
+  cmake_parse_arguments(ARG "" "COMPONENT" "PUBLIC_LIBS;PRIVATE_LIBS;EXTRA_SOURCES;INTERNAL_HEADERS" ${ARGN})
+  if(NOT ARG_COMPONENT)
+    set(ARG_COMPONENT engine)
+  endif()
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
   file(GLOB headers CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.h)
   if(NOT sources AND NOT ARG_EXTRA_SOURCES)
@@ -15,14 +22,32 @@ function(cleave_add_library name)
   add_library(cleave_${name} STATIC ${sources} ${headers} ${ARG_EXTRA_SOURCES})
   add_library(Cleave::${name} ALIAS cleave_${name})
   set_target_properties(cleave_${name} PROPERTIES EXPORT_NAME ${name} OUTPUT_NAME cleave_${name})
+  cleave_include_link(${name} ${CMAKE_CURRENT_SOURCE_DIR})
   target_include_directories(cleave_${name} PUBLIC
-    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
-    $<INSTALL_INTERFACE:include/cleave>)
+    $<BUILD_INTERFACE:${CLEAVE_INCLUDE_DIR}>
+    $<INSTALL_INTERFACE:include>)
   target_link_libraries(cleave_${name} PUBLIC ${ARG_PUBLIC_LIBS} PRIVATE ${ARG_PRIVATE_LIBS})
   cleave_warnings(cleave_${name})
-  file(RELATIVE_PATH rel ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
-  install(FILES ${headers} DESTINATION include/cleave/${rel})
-  set_property(GLOBAL APPEND PROPERTY CLEAVE_EXPORTED_TARGETS cleave_${name})
+  set(installed)
+  foreach(header IN LISTS headers)
+    get_filename_component(file ${header} NAME)
+    if(NOT file IN_LIST ARG_INTERNAL_HEADERS)
+      list(APPEND installed ${header})
+    endif()
+  endforeach()
+  install(FILES ${installed} DESTINATION include/cleave/${name} COMPONENT ${ARG_COMPONENT})
+  set_property(GLOBAL APPEND PROPERTY CLEAVE_TARGETS_${ARG_COMPONENT} cleave_${name})
+endfunction()
+
+# The build tree's include/cleave/<name>: a link to the source folder `dir` (made at configure time).
+set(CLEAVE_INCLUDE_DIR ${PROJECT_BINARY_DIR}/include)
+function(cleave_include_link name dir)
+  set(link ${CLEAVE_INCLUDE_DIR}/cleave/${name})
+  file(MAKE_DIRECTORY ${CLEAVE_INCLUDE_DIR}/cleave)
+  if(EXISTS ${link} AND NOT IS_SYMLINK ${link})
+    file(REMOVE_RECURSE ${link})
+  endif()
+  file(CREATE_LINK ${dir} ${link} SYMBOLIC)
 endfunction()
 
 function(cleave_warnings target)

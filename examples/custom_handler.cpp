@@ -4,7 +4,7 @@
 // renames the lower one; a handler may also drop or add pieces, or keep the original whole.
 #include <cstdio>
 
-#include "examples/crate_scene.h"
+#include "crate_scene.h"
 
 int main() {
   using namespace cleave;

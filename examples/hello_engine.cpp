@@ -4,7 +4,7 @@
 // committed at a fixed tick; the pieces become rigid bodies with exact masses.
 #include <cstdio>
 
-#include "examples/crate_scene.h"
+#include "crate_scene.h"
 
 namespace {
 

@@ -10,11 +10,11 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
-#include "components/scene_components.h"
-#include "components/skinned.h"
-#include "components/splitable.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/components/scene_components.h"
+#include "cleave/components/skinned.h"
+#include "cleave/components/splitable.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/geometry/primitives.h"
 #include "game/arena/arena_layout.h"
 #include "game/arena/arena_surroundings.h"
 
