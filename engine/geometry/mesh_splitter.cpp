@@ -192,6 +192,14 @@ class Splitter final : public IMeshSplitter {
   uint32_t pairVertex(uint32_t a, uint32_t b) const;
   glm::dvec2 project(const glm::dvec3& p) const { return {glm::dot(p - origin_, u_), glm::dot(p - origin_, v_)}; }
 
+  SplitStatus begin(const MeshContainer& container, const Plane& plane, const SplitOptions& options,
+                    SplitResult& result);
+  void cutEdges();
+  void makeCutVertices();
+  void assignSlots(const SplitOptions& options);
+  SplitStatus traceSection(const SplitOptions& options, SplitResult& result);
+  void chooseBasis();
+  SplitStatus capAll(const SplitOptions& options, SplitResult& result);
   void classify(double tolerance);
   void collectCrossingEdges();
   void cutTriangles();
@@ -233,6 +241,12 @@ class Splitter final : public IMeshSplitter {
   bool capSection(const SplitOptions& options, std::string& why);
   bool tryConvexCap();
   void makeCapVertices(const SplitOptions& options);
+  uint32_t capUvGroup(const SplitOptions& options, uint32_t loopIndex) const;
+  glm::dvec2 capPlanar(uint32_t k) const;
+  void capUvBounds(const SplitOptions& options);
+  glm::dvec2 capUv(const SplitOptions& options, uint32_t k, uint32_t g) const;
+  glm::dmat3 capLinear(bool fromExtra, uint32_t donor) const;
+  void writeCapVertex(const SplitOptions& options, uint32_t k, int s, size_t at, const glm::dvec2& uv);
   void linkWelded(uint32_t a, uint32_t b);
   glm::vec3 outputPosition(uint32_t ref) const {
     return ref < sourceCount_ ? mesh_->positions[ref] : extra_.positions[ref - sourceCount_];
@@ -267,6 +281,7 @@ class Splitter final : public IMeshSplitter {
   };
   static uint32_t find(SideWork& w, uint32_t x);
   uint32_t labelSide(int side, SideWork& w, const SplitOptions& options);
+  void islandStats(int side, SideWork& w, uint32_t pieces, bool volumes, bool bounds) const;
   uint32_t mergeCavities(int side, SideWork& w, uint32_t pieces) const;
   uint32_t joinTouching(int side, SideWork& w, uint32_t pieces, const SplitOptions& options) const;
   static uint32_t regroup(SideWork& w, std::span<const uint32_t> root, uint32_t pieces);
@@ -319,6 +334,7 @@ class Splitter final : public IMeshSplitter {
   double capTolerance_ = 0.0;
   double mergeTolerance_ = 0.0;
   double onPlaneTolerance_ = 0.0;
+  double diagonal_ = 0.0;  // the container's cut-space bounds diagonal
 
   std::vector<double> distance_;   // per position id
   std::vector<int8_t> side_;       // per position id: +1, -1, 0
@@ -428,7 +444,51 @@ uint32_t Splitter::pairVertex(uint32_t a, uint32_t b) const {
   return sourceCount_ + static_cast<uint32_t>(it - pairs_.begin());
 }
 
+// A split in stages: bind the container and check the call; classify and find the crossing edges;
+// the cut points and the new vertices; cut the triangles; trace the section; cap it; write the
+// pieces. Each stage that can refuse the split returns its status (result has the message).
 SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, const SplitOptions& options,
+                            SplitResult& result) {
+  const SplitStatus checked = begin(container, plane, options, result);
+  if (checked != SplitStatus::Ok) return checked;
+  // 1, 2. Classification per position id, then the crossing edges.
+  classify(onPlaneTolerance_);
+  collectCrossingEdges();
+  std::sort(weldedEdges_.begin(), weldedEdges_.end());
+  weldedEdges_.erase(std::unique(weldedEdges_.begin(), weldedEdges_.end()), weldedEdges_.end());
+  std::sort(pairs_.begin(), pairs_.end());
+  pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
+  cutEdges();
+  makeCutVertices();
+  assignSlots(options);
+  // 3. Cut the triangles.
+  cutTriangles();
+  if (sideTris_[0].empty() || sideTris_[1].empty()) {
+    return fail(result, SplitStatus::PlaneMissesMesh,
+                "the plane does not cross the mesh: every vertex lies on one side or within the tolerance of it");
+  }
+  // 4. Section: boundaries of both sides, compared, then chained.
+  const SplitStatus traced = traceSection(options, result);
+  if (traced != SplitStatus::Ok) return traced;
+  // 5. Caps.
+  capStart_[0] = sideTris_[0].size();
+  capStart_[1] = sideTris_[1].size();
+  const SplitStatus capped = capAll(options, result);
+  if (capped != SplitStatus::Ok) return capped;
+  // 6, 7. Islands, piece meshes, mass.
+  dropCollapsedTriangles();
+  if (sideTris_[0].empty() || sideTris_[1].empty()) {
+    return fail(result, SplitStatus::PlaneMissesMesh,
+                "the plane cuts off nothing that float positions can hold: every triangle on one side collapses "
+                "to zero area");
+  }
+  writePieces(options, result);
+  return SplitStatus::Ok;
+}
+
+// Resets the result, binds the container and checks the call: a set-up container, a finite plane
+// with a non-zero normal, finite options and cut space. Sets the unit normal, offset and tolerance.
+SplitStatus Splitter::begin(const MeshContainer& container, const Plane& plane, const SplitOptions& options,
                             SplitResult& result) {
   result.status = SplitStatus::Ok;
   result.message.clear();
@@ -447,7 +507,6 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   idCount_ = container.positionIdCount();
   sourceCount_ = static_cast<uint32_t>(mesh.positions.size());
   mirrored_ = container.mirrored();
-
   if (mesh.indices.empty() || mesh.positions.empty() || cut_.size() != mesh.positions.size() ||
       ids_.size() != mesh.positions.size()) {
     return fail(result, SplitStatus::InvalidInput, "the container holds no valid mesh (setMesh failed or was not called)");
@@ -460,22 +519,20 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
       !std::isfinite(options.uvPerMetre)) {
     return fail(result, SplitStatus::InvalidInput, "relativeTolerance must be finite and >= 0, uvPerMetre finite");
   }
-  const double diagonal = container.boundsDiagonal();
-  if (!std::isfinite(diagonal)) {
+  diagonal_ = container.boundsDiagonal();
+  if (!std::isfinite(diagonal_)) {
     return fail(result, SplitStatus::InvalidInput, "cut-space positions are not finite (check the transform or pose)");
   }
   normal_ = plane.normal / length;
   offset_ = plane.offset / length;
-  const double tolerance = options.relativeTolerance * diagonal;
-  onPlaneTolerance_ = tolerance;
+  onPlaneTolerance_ = options.relativeTolerance * diagonal_;
+  return SplitStatus::Ok;
+}
 
-  // 1, 2. Classification per position id, then the crossing edges.
-  classify(tolerance);
-  collectCrossingEdges();
-  std::sort(weldedEdges_.begin(), weldedEdges_.end());
-  weldedEdges_.erase(std::unique(weldedEdges_.begin(), weldedEdges_.end()), weldedEdges_.end());
-  std::sort(pairs_.begin(), pairs_.end());
-  pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
+// Per welded crossing edge: where the plane crosses it (t from its lower id), in cut space and in
+// the source's space.
+void Splitter::cutEdges() {
+  const MeshData& mesh = *mesh_;
   const size_t edgeCount = weldedEdges_.size();
   edgeT_.resize(edgeCount);
   edgeCut_.resize(edgeCount);
@@ -490,8 +547,11 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
     const glm::dvec3 pa(mesh.positions[a]), pb(mesh.positions[b]);
     edgeSource_[e] = glm::vec3(pa + t * (pb - pa));
   }
+}
 
-  // New vertices, one per source pair, with every attribute interpolated at the welded edge's t.
+// New vertices, one per source pair, with every attribute interpolated at the welded edge's t.
+void Splitter::makeCutVertices() {
+  const MeshData& mesh = *mesh_;
   const size_t pairCount = pairs_.size();
   pairEdge_.resize(pairCount);
   extra_.positions.clear();
@@ -535,8 +595,11 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
     }
   }
   capBase_ = sourceCount_ + static_cast<uint32_t>(pairCount);
+}
 
-  // Output run slots: the input runs in order, then the cap run unless an input run has its material.
+// Output run slots: the input runs in order, then the cap run unless an input run has its material.
+void Splitter::assignSlots(const SplitOptions& options) {
+  const MeshData& mesh = *mesh_;
   slotCount_ = mesh.submeshes.empty() ? 1u : static_cast<uint32_t>(mesh.submeshes.size());
   capSlot_ = slotCount_;
   for (uint32_t r = 0; r < slotCount_; ++r) {
@@ -546,15 +609,11 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
       break;
     }
   }
+}
 
-  // 3. Cut the triangles.
-  cutTriangles();
-  if (sideTris_[0].empty() || sideTris_[1].empty()) {
-    return fail(result, SplitStatus::PlaneMissesMesh,
-                "the plane does not cross the mesh: every vertex lies on one side or within the tolerance of it");
-  }
-
-  // 4. Section: boundaries of both sides, compared, then chained.
+// Step 4: the on-plane boundaries of both sides, compared (they differ on art that is not watertight
+// where it is cut), the projection basis, then the loops and chains of the section.
+SplitStatus Splitter::traceSection(const SplitOptions& options, SplitResult& result) {
   collectBoundary(1, boundary_[1]);
   collectBoundary(0, boundary_[0]);
   segments_.clear();
@@ -568,20 +627,9 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
                 "self-intersecting where it is cut");
   }
   result.sidesDisagree = !sidesAgree;
-  // The projection basis depends on the normal only, so world-planar cap UVs line up across cuts.
-  {
-    const glm::dvec3 an = glm::abs(normal_);
-    int axis = 0;
-    if (an.y < an[axis]) axis = 1;
-    if (an.z < an[axis]) axis = 2;
-    glm::dvec3 e(0.0);
-    e[axis] = 1.0;
-    u_ = glm::normalize(glm::cross(normal_, e));
-    v_ = glm::cross(normal_, u_);
-    origin_ = segments_.empty() ? glm::dvec3(0.0) : sectionCut(keyFrom(segments_.front()));
-  }
+  chooseBasis();
   bridge_ = options.cap && options.openSections == OpenSectionMode::Bridge;
-  bridgeGap_ = std::max(options.bridgeGap, 0.0) * diagonal;
+  bridgeGap_ = std::max(options.bridgeGap, 0.0) * diagonal_;
   buildLoops();
   result.sectionLoops = closedLoops_;
   result.openChains = options.cap ? openChains_ : 0;
@@ -593,29 +641,33 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
                 "the section has " + std::to_string(openChains_) +
                     " open chain(s): the mesh is open or non-manifold where it is cut");
   }
+  return SplitStatus::Ok;
+}
 
-  // 5. Caps.
+// The projection basis depends on the normal only, so world-planar cap UVs line up across cuts.
+void Splitter::chooseBasis() {
+  const glm::dvec3 an = glm::abs(normal_);
+  int axis = 0;
+  if (an.y < an[axis]) axis = 1;
+  if (an.z < an[axis]) axis = 2;
+  glm::dvec3 e(0.0);
+  e[axis] = 1.0;
+  u_ = glm::normalize(glm::cross(normal_, e));
+  v_ = glm::cross(normal_, u_);
+  origin_ = segments_.empty() ? glm::dvec3(0.0) : sectionCut(keyFrom(segments_.front()));
+}
+
+// Step 5: the caps of the section's loops (with options.cap), their vertices and triangles.
+SplitStatus Splitter::capAll(const SplitOptions& options, SplitResult& result) {
   capTriangles_.clear();
-  capStart_[0] = sideTris_[0].size();
-  capStart_[1] = sideTris_[1].size();
   for (LoopInfo& loop : loops_) loop.capped = false;
-  if (options.cap) {
-    std::string why;
-    if (!capSection(options, why)) return fail(result, SplitStatus::TriangulationFailed, why);
-    result.uncappedLoops = uncappedLoops_;
-    makeCapVertices(options);
-    flipFlatCapTriangles();
-    pushCapTriangles();
-  }
-
-  // 6, 7. Islands, piece meshes, mass.
-  dropCollapsedTriangles();
-  if (sideTris_[0].empty() || sideTris_[1].empty()) {
-    return fail(result, SplitStatus::PlaneMissesMesh,
-                "the plane cuts off nothing that float positions can hold: every triangle on one side collapses "
-                "to zero area");
-  }
-  writePieces(options, result);
+  if (!options.cap) return SplitStatus::Ok;
+  std::string why;
+  if (!capSection(options, why)) return fail(result, SplitStatus::TriangulationFailed, why);
+  result.uncappedLoops = uncappedLoops_;
+  makeCapVertices(options);
+  flipFlatCapTriangles();
+  pushCapTriangles();
   return SplitStatus::Ok;
 }
 
@@ -1327,38 +1379,7 @@ bool Splitter::capSection(const SplitOptions& options, std::string& why) {
 void Splitter::makeCapVertices(const SplitOptions& options) {
   const MeshData& mesh = *mesh_;
   const uint32_t count = static_cast<uint32_t>(loopIds_.size());
-  const bool skinned = !container_->jointMatrices().empty() && !mesh.joints.empty();
-  const glm::dmat3 model3(container_->model());
-
-  // Cap coordinates: world-planar (absolute plane coordinates) or normalised over bounds.
-  auto planar = [&](uint32_t k) {
-    const glm::dvec3 p = sectionCut(loopIds_[k]);
-    return glm::dvec2(glm::dot(p, u_), glm::dot(p, v_));
-  };
-  // Bounds per border (an outer loop with its holes) or per cap (all capped loops).
-  auto groupOf = [&](uint32_t loopIndex) {
-    const LoopInfo& loop = loops_[loopIndex];
-    if (!options.uvPerBorder) return 0u;
-    return loop.twiceArea > 0.0 || loop.outer == kNone ? loopIndex : loop.outer;
-  };
-  capBounds_.clear();  // per-group bounds: [2 * group] = lo, [2 * group + 1] = hi
-  capBounds_.resize(2 * std::max<size_t>(loops_.size(), 1), glm::dvec3(0.0));
-  for (size_t g = 0; g < capBounds_.size(); g += 2) {
-    capBounds_[g] = glm::dvec3(INFINITY);
-    capBounds_[g + 1] = glm::dvec3(-INFINITY);
-  }
-  for (uint32_t l = 0; l < loops_.size(); ++l) {
-    if (!loops_[l].capped) continue;
-    const uint32_t g = groupOf(l);
-    for (uint32_t k = loops_[l].begin; k < loops_[l].end; ++k) {
-      const glm::dvec2 p = planar(k);
-      capBounds_[2 * g] = glm::min(capBounds_[2 * g], glm::dvec3(p, 0.0));
-      capBounds_[2 * g + 1] = glm::max(capBounds_[2 * g + 1], glm::dvec3(p, 0.0));
-    }
-  }
-  const glm::dvec2 atlasOrigin(options.atlasRect.x, options.atlasRect.y);
-  const glm::dvec2 atlasSize(options.atlasRect.z, options.atlasRect.w);
-
+  capUvBounds(options);
   const size_t base = extra_.positions.size();
   const size_t total = base + 2 * size_t(count);
   extra_.positions.resize(total);
@@ -1374,59 +1395,103 @@ void Splitter::makeCapVertices(const SplitOptions& options) {
   uint32_t loopIndex = 0;
   for (uint32_t k = 0; k < count; ++k) {
     while (k >= loops_[loopIndex].end) ++loopIndex;
-    const uint32_t welded = loopIds_[k];
-    // The vertex whose colour and skin the cap vertex takes.
-    bool fromExtra = welded >= idCount_;
-    const uint32_t donor = fromExtra ? edgeFirstPair_[welded - idCount_] : reps_[welded];
-    const glm::vec3 position = fromExtra ? edgeSource_[welded - idCount_] : mesh.positions[donor];
-    glm::dmat3 linear = model3;
-    if (skinned) {
-      const glm::u16vec4 j = fromExtra ? extra_.joints[donor] : mesh.joints[donor];
-      const glm::vec4 w = fromExtra ? extra_.weights[donor] : mesh.weights[donor];
-      glm::dmat4 blend(0.0);
-      double sum = 0.0;
-      for (int c = 0; c < 4; ++c) {
-        if (w[c] == 0.f || j[c] >= container_->jointMatrices().size()) continue;
-        blend += double(w[c]) * container_->jointMatrices()[j[c]];
-        sum += w[c];
-      }
-      linear = model3 * (sum > 0.0 ? glm::dmat3(blend / sum) : glm::dmat3(1.0));
+    const glm::dvec2 uv = capUv(options, k, capUvGroup(options, loopIndex));
+    for (int s = 0; s < 2; ++s) writeCapVertex(options, k, s, base + size_t(s) * count + k, uv);
+  }
+}
+
+// The cap UV bounds group of a loop: per border (an outer loop with its holes) or one for the cap.
+uint32_t Splitter::capUvGroup(const SplitOptions& options, uint32_t loopIndex) const {
+  const LoopInfo& loop = loops_[loopIndex];
+  if (!options.uvPerBorder) return 0u;
+  return loop.twiceArea > 0.0 || loop.outer == kNone ? loopIndex : loop.outer;
+}
+
+// Plane coordinates of loop point k: absolute, so world-planar UVs line up across cuts.
+glm::dvec2 Splitter::capPlanar(uint32_t k) const {
+  const glm::dvec3 p = sectionCut(loopIds_[k]);
+  return glm::dvec2(glm::dot(p, u_), glm::dot(p, v_));
+}
+
+// capBounds_: per UV group, [2 g] = lo and [2 g + 1] = hi of its capped loops' plane coordinates.
+void Splitter::capUvBounds(const SplitOptions& options) {
+  capBounds_.clear();
+  capBounds_.resize(2 * std::max<size_t>(loops_.size(), 1), glm::dvec3(0.0));
+  for (size_t g = 0; g < capBounds_.size(); g += 2) {
+    capBounds_[g] = glm::dvec3(INFINITY);
+    capBounds_[g + 1] = glm::dvec3(-INFINITY);
+  }
+  for (uint32_t l = 0; l < loops_.size(); ++l) {
+    if (!loops_[l].capped) continue;
+    const uint32_t g = capUvGroup(options, l);
+    for (uint32_t k = loops_[l].begin; k < loops_[l].end; ++k) {
+      const glm::dvec2 p = capPlanar(k);
+      capBounds_[2 * g] = glm::min(capBounds_[2 * g], glm::dvec3(p, 0.0));
+      capBounds_[2 * g + 1] = glm::max(capBounds_[2 * g + 1], glm::dvec3(p, 0.0));
     }
-    const glm::dmat3 inverse = glm::inverse(linear);
-    const glm::dvec2 p = planar(k);
-    const uint32_t g = groupOf(loopIndex);
-    glm::dvec2 uv;
-    if (options.uvMode == CapUvMode::WorldPlanar) {
-      uv = p * options.uvPerMetre;
-    } else {
-      const glm::dvec2 lo(capBounds_[2 * g]), hi(capBounds_[2 * g + 1]);
-      const glm::dvec2 size = hi - lo;
-      uv = glm::dvec2(size.x > 0.0 ? (p.x - lo.x) / size.x : 0.0, size.y > 0.0 ? (p.y - lo.y) / size.y : 0.0);
-    }
-    for (int s = 0; s < 2; ++s) {  // s = 0: below cap (normal +n), s = 1: above cap (normal -n, U mirrored)
-      const size_t at = base + size_t(s) * count + k;
-      const glm::dvec3 outward = s == 0 ? normal_ : -normal_;
-      const glm::dvec3 tangentCut = s == 0 ? u_ : -u_;
-      glm::dvec2 capUv = uv;
-      if (s == 1) capUv.x = options.uvMode == CapUvMode::WorldPlanar ? -uv.x : 1.0 - uv.x;
-      const glm::vec2 mapped(atlasOrigin + capUv * atlasSize);
-      extra_.positions[at] = position;
-      const glm::dvec3 n = glm::normalize(glm::transpose(linear) * outward);
-      const glm::dvec3 t = glm::normalize(inverse * tangentCut);
-      const glm::dvec3 b = inverse * v_;  // the bitangent: cross(outward, tangentCut) = v on both sides
-      if (!mesh.normals.empty()) extra_.normals[at] = glm::vec3(n);
-      if (!mesh.tangents.empty()) {
-        const float w = glm::dot(glm::cross(n, t), b) < 0.0 ? -1.f : 1.f;
-        extra_.tangents[at] = glm::vec4(glm::vec3(t), w);
-      }
-      if (!mesh.uv0.empty()) extra_.uv0[at] = mapped;
-      if (!mesh.uv1.empty()) extra_.uv1[at] = mapped;
-      if (!mesh.colors.empty()) extra_.colors[at] = fromExtra ? extra_.colors[donor] : mesh.colors[donor];
-      if (!mesh.joints.empty()) {
-        extra_.joints[at] = fromExtra ? extra_.joints[donor] : mesh.joints[donor];
-        extra_.weights[at] = fromExtra ? extra_.weights[donor] : mesh.weights[donor];
-      }
-    }
+  }
+}
+
+// The cap UV of loop point k in UV group g (before the atlas and the above side's mirroring).
+glm::dvec2 Splitter::capUv(const SplitOptions& options, uint32_t k, uint32_t g) const {
+  const glm::dvec2 p = capPlanar(k);
+  if (options.uvMode == CapUvMode::WorldPlanar) return p * options.uvPerMetre;
+  const glm::dvec2 lo(capBounds_[2 * g]), hi(capBounds_[2 * g + 1]);
+  const glm::dvec2 size = hi - lo;
+  return glm::dvec2(size.x > 0.0 ? (p.x - lo.x) / size.x : 0.0, size.y > 0.0 ? (p.y - lo.y) / size.y : 0.0);
+}
+
+// The linear part of the map from source to cut space at the donor vertex of a cap vertex: the
+// model matrix, times the donor's skinning blend when the container is posed.
+glm::dmat3 Splitter::capLinear(bool fromExtra, uint32_t donor) const {
+  const MeshData& mesh = *mesh_;
+  const glm::dmat3 model3(container_->model());
+  const bool skinned = !container_->jointMatrices().empty() && !mesh.joints.empty();
+  if (!skinned) return model3;
+  const glm::u16vec4 j = fromExtra ? extra_.joints[donor] : mesh.joints[donor];
+  const glm::vec4 w = fromExtra ? extra_.weights[donor] : mesh.weights[donor];
+  glm::dmat4 blend(0.0);
+  double sum = 0.0;
+  for (int c = 0; c < 4; ++c) {
+    if (w[c] == 0.f || j[c] >= container_->jointMatrices().size()) continue;
+    blend += double(w[c]) * container_->jointMatrices()[j[c]];
+    sum += w[c];
+  }
+  return model3 * (sum > 0.0 ? glm::dmat3(blend / sum) : glm::dmat3(1.0));
+}
+
+// Cap vertex `at` of loop point k on cap side s (0: the below cap, normal +n; 1: the above cap,
+// normal -n, U mirrored): the donor's position, colour and skin, the cap's normal and tangent
+// taken back to the source's space, the UV in the atlas.
+void Splitter::writeCapVertex(const SplitOptions& options, uint32_t k, int s, size_t at, const glm::dvec2& uv) {
+  const MeshData& mesh = *mesh_;
+  const uint32_t welded = loopIds_[k];
+  const bool fromExtra = welded >= idCount_;
+  const uint32_t donor = fromExtra ? edgeFirstPair_[welded - idCount_] : reps_[welded];
+  const glm::dmat3 linear = capLinear(fromExtra, donor);
+  const glm::dmat3 inverse = glm::inverse(linear);
+  const glm::dvec3 outward = s == 0 ? normal_ : -normal_;
+  const glm::dvec3 tangentCut = s == 0 ? u_ : -u_;
+  glm::dvec2 capUv = uv;
+  if (s == 1) capUv.x = options.uvMode == CapUvMode::WorldPlanar ? -uv.x : 1.0 - uv.x;
+  const glm::dvec2 atlasOrigin(options.atlasRect.x, options.atlasRect.y);
+  const glm::dvec2 atlasSize(options.atlasRect.z, options.atlasRect.w);
+  const glm::vec2 mapped(atlasOrigin + capUv * atlasSize);
+  extra_.positions[at] = fromExtra ? edgeSource_[welded - idCount_] : mesh.positions[donor];
+  const glm::dvec3 n = glm::normalize(glm::transpose(linear) * outward);
+  const glm::dvec3 t = glm::normalize(inverse * tangentCut);
+  const glm::dvec3 b = inverse * v_;  // the bitangent: cross(outward, tangentCut) = v on both sides
+  if (!mesh.normals.empty()) extra_.normals[at] = glm::vec3(n);
+  if (!mesh.tangents.empty()) {
+    const float w = glm::dot(glm::cross(n, t), b) < 0.0 ? -1.f : 1.f;
+    extra_.tangents[at] = glm::vec4(glm::vec3(t), w);
+  }
+  if (!mesh.uv0.empty()) extra_.uv0[at] = mapped;
+  if (!mesh.uv1.empty()) extra_.uv1[at] = mapped;
+  if (!mesh.colors.empty()) extra_.colors[at] = fromExtra ? extra_.colors[donor] : mesh.colors[donor];
+  if (!mesh.joints.empty()) {
+    extra_.joints[at] = fromExtra ? extra_.joints[donor] : mesh.joints[donor];
+    extra_.weights[at] = fromExtra ? extra_.weights[donor] : mesh.weights[donor];
   }
 }
 
@@ -1447,15 +1512,6 @@ glm::dvec3 Splitter::cutOfAny(uint32_t ref) const {
 // points. Pieces are renumbered in order of their first triangle. Returns the new piece count.
 uint32_t Splitter::mergeCavities(int side, SideWork& w, uint32_t pieces) const {
   const std::vector<SideTriangle>& tris = sideTris_[side];
-  w.volume.assign(pieces, 0.0);
-  w.firstTriangle.assign(pieces, kNone);
-  for (size_t k = 0; k < tris.size(); ++k) {
-    const uint32_t p = w.pieceOf[k];
-    const glm::dvec3 a = cutOfAny(tris[k].v[0]) - origin_, b = cutOfAny(tris[k].v[1]) - origin_,
-                     c = cutOfAny(tris[k].v[2]) - origin_;
-    w.volume[p] += glm::dot(a, glm::cross(b, c));
-    if (w.firstTriangle[p] == kNone) w.firstTriangle[p] = static_cast<uint32_t>(k);
-  }
   bool anyCavity = false;
   for (uint32_t p = 0; p < pieces; ++p) anyCavity = anyCavity || w.volume[p] < 0.0;
   if (!anyCavity) return pieces;
@@ -1479,13 +1535,56 @@ uint32_t Splitter::mergeCavities(int side, SideWork& w, uint32_t pieces) const {
     }
     if (best != kNone) w.pieceMap[p] = best;
   }
-  // Resolve chains, then renumber.
+  // Resolve chains, then renumber; the reach and bounds of islandStats go with their new groups.
   for (uint32_t p = 0; p < pieces; ++p) {
     uint32_t target = p;
     while (w.pieceMap[target] != target) target = w.pieceMap[target];
     w.firstTriangle[p] = target;  // reused: the surviving piece
   }
-  return regroup(w, w.firstTriangle, pieces);
+  const uint32_t groups = regroup(w, w.firstTriangle, pieces);
+  if (w.contactLo.size() == pieces) {
+    for (uint32_t p = 0; p < pieces; ++p) {
+      const uint32_t root = w.firstTriangle[p];
+      if (root == p) continue;
+      w.contactReached[root] = w.contactReached[root] || w.contactReached[p];
+      w.contactLo[root] = glm::min(w.contactLo[root], w.contactLo[p]);
+      w.contactHi[root] = glm::max(w.contactHi[root], w.contactHi[p]);
+    }
+    // Groups are numbered in order of their root piece: move each root's entry to its number.
+    for (uint32_t p = 0; p < pieces; ++p) {
+      if (w.firstTriangle[p] != p) continue;
+      const uint32_t g = w.groupNumber[p];
+      w.contactReached[g] = w.contactReached[p];
+      w.contactLo[g] = w.contactLo[p];
+      w.contactHi[g] = w.contactHi[p];
+    }
+    w.contactReached.resize(groups);
+    w.contactLo.resize(groups);
+    w.contactHi.resize(groups);
+  }
+  return groups;
+}
+
+// One pass over a side's triangles for the passes after labelling: per piece, its signed volume
+// (six times, about origin_) and first triangle for mergeCavities (`volumes`), and whether the plane
+// reached it and its cut-space bounds for joinTouching (`bounds`; otherwise contactLo is left empty).
+void Splitter::islandStats(int side, SideWork& w, uint32_t pieces, bool volumes, bool bounds) const {
+  const std::vector<SideTriangle>& tris = sideTris_[side];
+  w.volume.assign(pieces, 0.0);
+  w.firstTriangle.assign(pieces, kNone);
+  w.contactReached.assign(bounds ? pieces : 0, 0);
+  w.contactLo.assign(bounds ? pieces : 0, glm::dvec3(INFINITY));
+  w.contactHi.assign(bounds ? pieces : 0, glm::dvec3(-INFINITY));
+  for (size_t k = 0; k < tris.size(); ++k) {
+    const uint32_t p = w.pieceOf[k];
+    const glm::dvec3 a = cutOfAny(tris[k].v[0]), b = cutOfAny(tris[k].v[1]), c = cutOfAny(tris[k].v[2]);
+    if (volumes) w.volume[p] += glm::dot(a - origin_, glm::cross(b - origin_, c - origin_));
+    if (w.firstTriangle[p] == kNone) w.firstTriangle[p] = static_cast<uint32_t>(k);
+    if (!bounds) continue;
+    w.contactReached[p] = w.contactReached[p] || (tris[k].source & kReachedBit) != 0;
+    w.contactLo[p] = glm::min(w.contactLo[p], glm::min(a, glm::min(b, c)));
+    w.contactHi[p] = glm::max(w.contactHi[p], glm::max(a, glm::max(b, c)));
+  }
 }
 
 // Gives every piece of the side being written the number of its group: root[p] is the piece that
@@ -1512,21 +1611,10 @@ uint32_t Splitter::joinTouching(int side, SideWork& w, uint32_t pieces, const Sp
   const double tolerance = std::max(options.touchTolerance, 0.0) * container_->boundsDiagonal();
   // Bounds and reach per piece first: pieces whose boxes meet nothing, all reached by the plane (the
   // teeth of a comb cut across), are apart without a look at their triangles.
+  // (islandStats and mergeCavities worked them out, per piece as numbered now.)
   std::vector<uint8_t>& reached = w.contactReached;
   std::vector<glm::dvec3>& lo = w.contactLo;
   std::vector<glm::dvec3>& hi = w.contactHi;
-  reached.assign(pieces, 0);
-  lo.assign(pieces, glm::dvec3(INFINITY));
-  hi.assign(pieces, glm::dvec3(-INFINITY));
-  for (size_t k = 0; k < tris.size(); ++k) {
-    const uint32_t p = w.pieceOf[k];
-    reached[p] = reached[p] || (tris[k].source & kReachedBit) != 0;
-    for (int c = 0; c < 3; ++c) {
-      const glm::dvec3 q = cutOfAny(tris[k].v[c]);
-      lo[p] = glm::min(lo[p], q);
-      hi[p] = glm::max(hi[p], q);
-    }
-  }
   overlappingBoxes(lo, hi, tolerance, w.contactScratch.pairs, w.contactScratch.byX);
   const bool allReached = std::find(reached.begin(), reached.end(), uint8_t(0)) == reached.end();
   if (w.contactScratch.pairs.empty() && allReached) return pieces;
@@ -1663,10 +1751,11 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options)
   }
   w.pieceMap.resize(pieces);
   std::iota(w.pieceMap.begin(), w.pieceMap.end(), 0u);
-  if (options.cap && options.separateIslands && pieces > 1) pieces = mergeCavities(side, w, pieces);
-  if (options.separateIslands && options.islands == IslandMode::Touching && pieces > 1) {
-    pieces = joinTouching(side, w, pieces, options);
-  }
+  const bool cavities = options.cap && options.separateIslands && pieces > 1;
+  const bool touching = options.separateIslands && options.islands == IslandMode::Touching && pieces > 1;
+  if (cavities || touching) islandStats(side, w, pieces, cavities, touching);
+  if (cavities) pieces = mergeCavities(side, w, pieces);
+  if (touching && pieces > 1) pieces = joinTouching(side, w, pieces, options);
   // Cap loops per piece: a loop's cap belongs to the island of its first vertex.
   for (size_t l = 0; l < loops_.size(); ++l) {
     if (!loops_[l].capped) continue;
