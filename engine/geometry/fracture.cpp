@@ -7,6 +7,7 @@
 #include <memory>
 #include <numeric>
 
+#include "cleave/geometry/cap_simplify.h"
 #include "cleave/geometry/convex_polytope.h"
 #include "cleave/geometry/mesh_splitter.h"
 
@@ -22,6 +23,7 @@ struct Part {
   MeshWeld weld;
   std::vector<uint32_t> source;  // per triangle: see FracturePiece::sourceTriangles
   MassProperties mass;
+  bool massStale = false;  // its caps were made again (CapSimplifier): pieceOf integrates it anew
   uint32_t capTriangles = 0;
   // The part set up for cutting (cut-space positions, weld), made once when a plane first meets it
   // and kept while later planes leave the part whole.
@@ -43,14 +45,18 @@ Against classify(std::span<const glm::dvec3> points, const Plane& plane, double 
   return Against::Crossing;
 }
 
-// The below pieces of one cut of `part`, with their provenance taken back to the container's mesh
-// (`planeIndex` names the cap). Returns the split status.
-SplitStatus cutPart(IMeshSplitter& splitter, const MeshContainer& container, const Part& part, const Plane& plane,
-                    uint32_t planeIndex, const SplitOptions& options, std::vector<Part>& below, uint32_t& openChains) {
+// The below pieces of one cut of `part` by plane `planeIndex` of `cell`, with their provenance taken
+// back to the container's mesh (kFromCap | the plane for its caps) and their caps made again
+// without the points only caps use (cap_simplify.h). Their mass is worked out once, for the pieces
+// that come out of the cell (pieceOf). Returns the split status.
+SplitStatus cutPart(IMeshSplitter& splitter, CapSimplifier& simplifier, const MeshContainer& container, const Part& part,
+                    const ConvexCell& cell, uint32_t planeIndex, const SplitOptions& options, std::vector<Part>& below,
+                    uint32_t& openChains) {
   SplitResult result;
   SplitOptions inside = options;
   inside.keepSide = -1;
-  splitter.split(container, plane, inside, result);
+  inside.computeMass = false;
+  splitter.split(container, cell.planes[planeIndex], inside, result);
   if (result.status != SplitStatus::Ok) return result.status;
   openChains += result.openChains;
   for (SplitPiece& piece : result.pieces) {
@@ -63,8 +69,11 @@ SplitStatus cutPart(IMeshSplitter& splitter, const MeshContainer& container, con
     }
     next.mesh = std::move(piece.mesh);
     next.weld = std::move(piece.weld);
-    next.mass = piece.mass;
+    next.massStale = true;
     next.capTriangles = piece.capTriangles;
+    const CapSimplifyStats simplified =
+        simplifier.simplify(next.mesh, next.weld, next.source, cell.planes, container.model());
+    next.capTriangles = next.capTriangles + simplified.trianglesAfter - simplified.trianglesBefore;
     below.push_back(std::move(next));
   }
   return SplitStatus::Ok;
@@ -72,6 +81,9 @@ SplitStatus cutPart(IMeshSplitter& splitter, const MeshContainer& container, con
 
 // Mass properties of a part no plane cut (it lay wholly inside its cell): integrated in cut space.
 MassProperties massOfWhole(const MeshContainer& container) {
+  if (container.closed()) {
+    return integrateClosedSurface(container.cutPositions(), container.mesh().indices, container.mirrored(), false);
+  }
   std::vector<uint32_t> indices = container.mesh().indices;
   if (container.mirrored()) {
     for (size_t t = 0; t + 2 < indices.size(); t += 3) std::swap(indices[t + 1], indices[t + 2]);
@@ -81,6 +93,7 @@ MassProperties massOfWhole(const MeshContainer& container) {
 
 struct CellRun {
   IMeshSplitter& splitter;
+  CapSimplifier& simplifier;
   const MeshContainer& source;
   const SplitOptions& options;
   double tolerance;
@@ -113,6 +126,10 @@ FracturePiece pieceOf(CellRun& run, Part& part, uint32_t cellIndex) {
     run.source.copyWeld(piece.weld);
     piece.mass = massOfWhole(run.source);
   } else {
+    if (part.massStale) {
+      const MeshContainer* c = containerOf(run, part);
+      part.mass = c ? massOfWhole(*c) : MassProperties{};
+    }
     piece.mesh = std::move(part.mesh);
     piece.weld = std::move(part.weld);
     piece.mass = part.mass;
@@ -141,7 +158,7 @@ bool carveCell(CellRun& run, const ConvexCell& cell, uint32_t cellIndex) {
         continue;
       }
       ++run.result.cuts;
-      const SplitStatus status = cutPart(run.splitter, *c, part, cell.planes[k], k, run.options, kept, run.result.openChains);
+      const SplitStatus status = cutPart(run.splitter, run.simplifier, *c, part, cell, k, run.options, kept, run.result.openChains);
       if (status == SplitStatus::PlaneMissesMesh) continue;  // the part below collapsed to nothing
       if (status != SplitStatus::Ok) {
         run.result.status = status;
@@ -165,7 +182,8 @@ FractureResult fracture(const MeshContainer& container, std::span<const ConvexCe
     return result;
   }
   std::unique_ptr<IMeshSplitter> splitter = makeConcaveSplitter();
-  CellRun run{*splitter, container, options, options.relativeTolerance * container.boundsDiagonal(), result};
+  CapSimplifier simplifier;
+  CellRun run{*splitter, simplifier, container, options, options.relativeTolerance * container.boundsDiagonal(), result};
   for (uint32_t i = 0; i < cells.size(); ++i) {
     if (cells[i].empty) continue;
     if (!carveCell(run, cells[i], i)) {
