@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The readers report every failure as one line; the binding tells a file system failure (OSError,
-// with errno so Python picks the subclass) from a refused file (ValueError) by opening the file first.
+// with errno so Python picks the subclass) from a refused file (ValueError) by opening the file
+// first.
 #include "python/mesh_io_binding.h"
 
 #include <cerrno>
@@ -44,7 +45,8 @@ void checkReadable(const std::string& path) {
 py::tuple readMesh(const std::filesystem::path& file) {
   const std::string path = file.string();
   if (assets::formatFromPath(path) == assets::MeshFormat::Unknown) {
-    throw py::value_error(path + ": unknown mesh format (read_mesh reads .obj .off .stl .ply .gltf .glb)");
+    throw py::value_error(path +
+                          ": unknown mesh format (read_mesh reads .obj .off .stl .ply .gltf .glb)");
   }
   checkReadable(path);
   assets::MeshReadResult loaded;
@@ -58,8 +60,8 @@ py::tuple readMesh(const std::filesystem::path& file) {
                         fromVec3Rows(mesh.normals, true), fromVec2Rows(mesh.uv0, true));
 }
 
-void writeMesh(const std::filesystem::path& file, py::handle vertices, py::handle faces, py::handle normals,
-               py::handle uvs) {
+void writeMesh(const std::filesystem::path& file, py::handle vertices, py::handle faces,
+               py::handle normals, py::handle uvs) {
   const std::string path = file.string();
   const assets::MeshFormat format = assets::formatFromPath(path);
   if (format != assets::MeshFormat::Obj && format != assets::MeshFormat::Glb) {
@@ -72,7 +74,8 @@ void writeMesh(const std::filesystem::path& file, py::handle vertices, py::handl
   if (!uvs.is_none()) mesh.uv0 = toVec2Rows(uvs, "uvs", mesh.positions.size());
   const std::filesystem::path parent = file.parent_path();
   std::error_code ec;
-  if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) raiseOsError(ENOENT, parent.string());
+  if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
+    raiseOsError(ENOENT, parent.string());
   if (std::filesystem::is_directory(file, ec)) raiseOsError(EISDIR, path);
   assets::MeshWriteResult written;
   {
@@ -96,7 +99,8 @@ Returns vertices (N x 3 float32), faces (M x 3 int64), normals (N x 3 float32 or
 Raises OSError (FileNotFoundError, IsADirectoryError, PermissionError) when the file cannot be
 opened, ValueError for an unknown extension or a file the reader refuses, with its reason.)doc";
 
-constexpr const char* kWriteDoc = R"doc(write_mesh(path, vertices, faces, normals=None, uvs=None) -> None
+constexpr const char* kWriteDoc =
+    R"doc(write_mesh(path, vertices, faces, normals=None, uvs=None) -> None
 
 Write a mesh as Wavefront OBJ (.obj) or binary glTF (.glb), chosen by the extension, with the
 engine's writers (the ones cleave-split --out uses). The arrays are checked as in cleave.split.
@@ -107,8 +111,8 @@ Raises ValueError for another extension or bad arrays, OSError when the file can
 
 void bindMeshIo(py::module_& module) {
   module.def("read_mesh", &readMesh, kReadDoc, py::arg("path"));
-  module.def("write_mesh", &writeMesh, kWriteDoc, py::arg("path"), py::arg("vertices"), py::arg("faces"),
-             py::arg("normals") = py::none(), py::arg("uvs") = py::none());
+  module.def("write_mesh", &writeMesh, kWriteDoc, py::arg("path"), py::arg("vertices"),
+             py::arg("faces"), py::arg("normals") = py::none(), py::arg("uvs") = py::none());
 }
 
 }  // namespace cleave::python

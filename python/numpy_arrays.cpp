@@ -35,20 +35,22 @@ py::object asArray(py::handle object, const std::string& name) {
 
 std::vector<py::ssize_t> shapeOf(const py::object& array) {
   std::vector<py::ssize_t> shape;
-  for (py::handle extent : py::tuple(array.attr("shape"))) shape.push_back(extent.cast<py::ssize_t>());
+  for (py::handle extent : py::tuple(array.attr("shape")))
+    shape.push_back(extent.cast<py::ssize_t>());
   return shape;
 }
 
-// The array as an N x columns array of a real-number dtype (integers when `integersOnly`), converted
-// to a C-contiguous array of `target` dtype; or ValueError.
-py::buffer_info checkedRows(py::handle object, const std::string& name, py::ssize_t columns, size_t rows,
-                            bool integersOnly, const char* target) {
+// The array as an N x columns array of a real-number dtype (integers when `integersOnly`),
+// converted to a C-contiguous array of `target` dtype; or ValueError.
+py::buffer_info checkedRows(py::handle object, const std::string& name, py::ssize_t columns,
+                            size_t rows, bool integersOnly, const char* target) {
   const py::object array = asArray(object, name);
   const std::string kind = array.attr("dtype").attr("kind").cast<std::string>();
   const bool integer = kind == "i" || kind == "u";
   if (integersOnly ? !integer : !(integer || kind == "f")) {
-    throw py::value_error(name + " must be an array of " + (integersOnly ? "integers" : "real numbers") +
-                          ", not of dtype " + text(array.attr("dtype")));
+    throw py::value_error(name + " must be an array of " +
+                          (integersOnly ? "integers" : "real numbers") + ", not of dtype " +
+                          text(array.attr("dtype")));
   }
   const std::vector<py::ssize_t> shape = shapeOf(array);
   if (shape.size() != 2 || shape[1] != columns) {
@@ -57,8 +59,8 @@ py::buffer_info checkedRows(py::handle object, const std::string& name, py::ssiz
   }
   if (shape[0] == 0) throw py::value_error(name + " is empty");
   if (rows != 0 && static_cast<size_t>(shape[0]) != rows) {
-    throw py::value_error(name + " has " + std::to_string(shape[0]) + " rows but there are " + std::to_string(rows) +
-                          " vertices");
+    throw py::value_error(name + " has " + std::to_string(shape[0]) + " rows but there are " +
+                          std::to_string(rows) + " vertices");
   }
   py::buffer converted = numpy().attr("ascontiguousarray")(array, target);
   return converted.request();
@@ -73,8 +75,10 @@ std::vector<glm::vec<Columns, float>> realRows(py::handle object, const char* na
   for (size_t r = 0; r < out.size(); ++r) {
     for (int c = 0; c < Columns; ++c) {
       const double value = values[r * Columns + static_cast<size_t>(c)];
-      if (!(std::fabs(value) <= FLT_MAX)) {  // NaN, infinite or beyond float32: the message says which
-        const std::string where = std::string(name) + "[" + std::to_string(r) + ", " + std::to_string(c) + "]";
+      if (!(std::fabs(value) <=
+            FLT_MAX)) {  // NaN, infinite or beyond float32: the message says which
+        const std::string where =
+            std::string(name) + "[" + std::to_string(r) + ", " + std::to_string(c) + "]";
         if (std::isnan(value)) throw py::value_error(where + " is NaN");
         if (std::isinf(value)) throw py::value_error(where + " is infinite");
         throw py::value_error(where + " = " + numberText(value) + " does not fit a float32");
@@ -94,9 +98,9 @@ std::vector<uint32_t> indexRows(const py::buffer_info& info, size_t vertexCount)
   for (size_t k = 0; k < count; ++k) {
     const Integer value = values[k];
     if (value < 0 || static_cast<uint64_t>(value) >= vertexCount) {
-      throw py::value_error("faces[" + std::to_string(k / 3) + ", " + std::to_string(k % 3) + "] = " +
-                            std::to_string(value) + " is out of range (" + std::to_string(vertexCount) +
-                            " vertices, indices from 0)");
+      throw py::value_error("faces[" + std::to_string(k / 3) + ", " + std::to_string(k % 3) +
+                            "] = " + std::to_string(value) + " is out of range (" +
+                            std::to_string(vertexCount) + " vertices, indices from 0)");
     }
     out[k] = static_cast<uint32_t>(value);
   }
@@ -135,12 +139,15 @@ std::vector<glm::vec2> toVec2Rows(py::handle object, const char* name, size_t ro
 std::vector<uint32_t> toTriangleList(py::handle object, size_t vertexCount) {
   const py::object array = asArray(object, "faces");
   // Unsigned faces are read as uint64 so that a huge value is reported as it is, not as negative.
-  const bool isUnsigned = py::hasattr(array, "dtype") && array.attr("dtype").attr("kind").cast<std::string>() == "u";
-  const py::buffer_info info = checkedRows(array, "faces", 3, 0, true, isUnsigned ? "uint64" : "int64");
+  const bool isUnsigned =
+      py::hasattr(array, "dtype") && array.attr("dtype").attr("kind").cast<std::string>() == "u";
+  const py::buffer_info info =
+      checkedRows(array, "faces", 3, 0, true, isUnsigned ? "uint64" : "int64");
   if (static_cast<size_t>(info.shape[0]) > std::numeric_limits<uint32_t>::max() / 3) {
     throw py::value_error("faces: too many triangles for 32-bit indices");
   }
-  return isUnsigned ? indexRows<uint64_t>(info, vertexCount) : indexRows<int64_t>(info, vertexCount);
+  return isUnsigned ? indexRows<uint64_t>(info, vertexCount)
+                    : indexRows<int64_t>(info, vertexCount);
 }
 
 glm::dvec3 toNormal(py::handle object) {
@@ -148,8 +155,8 @@ glm::dvec3 toNormal(py::handle object) {
   const std::string kind = array.attr("dtype").attr("kind").cast<std::string>();
   const std::vector<py::ssize_t> shape = shapeOf(array);
   if (!(kind == "i" || kind == "u" || kind == "f") || shape.size() != 1 || shape[0] != 3) {
-    throw py::value_error("normal must be three real numbers, not an array of dtype " + text(array.attr("dtype")) +
-                          " and shape " + text(array.attr("shape")));
+    throw py::value_error("normal must be three real numbers, not an array of dtype " +
+                          text(array.attr("dtype")) + " and shape " + text(array.attr("shape")));
   }
   py::buffer converted = numpy().attr("ascontiguousarray")(array, "float64");
   const py::buffer_info info = converted.request();
@@ -163,9 +170,13 @@ glm::dvec3 toNormal(py::handle object) {
   return normal;
 }
 
-py::object fromVec3Rows(std::span<const glm::vec3> rows, bool noneIfEmpty) { return fromRows<3>(rows, noneIfEmpty); }
+py::object fromVec3Rows(std::span<const glm::vec3> rows, bool noneIfEmpty) {
+  return fromRows<3>(rows, noneIfEmpty);
+}
 
-py::object fromVec2Rows(std::span<const glm::vec2> rows, bool noneIfEmpty) { return fromRows<2>(rows, noneIfEmpty); }
+py::object fromVec2Rows(std::span<const glm::vec2> rows, bool noneIfEmpty) {
+  return fromRows<2>(rows, noneIfEmpty);
+}
 
 py::object fromTriangleList(std::span<const uint32_t> indices) {
   py::buffer_info info;
@@ -187,7 +198,8 @@ py::object fromMatrix(const glm::dmat3& m) {
   py::object array = emptyArray(py::make_tuple(3, 3), "float64", info);
   double* data = static_cast<double*>(info.ptr);
   for (int row = 0; row < 3; ++row) {
-    for (int column = 0; column < 3; ++column) data[row * 3 + column] = m[column][row];  // glm: m[column][row]
+    for (int column = 0; column < 3; ++column)
+      data[row * 3 + column] = m[column][row];  // glm: m[column][row]
   }
   return array;
 }

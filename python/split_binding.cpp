@@ -21,9 +21,11 @@ PyObject* splitErrorType = nullptr;  // cleave.SplitError; created once with the
 
 // The value of a word argument among `choices`, or ValueError listing them.
 template <class Enum>
-Enum chooseWord(py::handle value, const char* name, std::initializer_list<std::pair<const char*, Enum>> choices) {
+Enum chooseWord(py::handle value, const char* name,
+                std::initializer_list<std::pair<const char*, Enum>> choices) {
   std::string words;
-  for (const auto& [word, choice] : choices) words += (words.empty() ? "" : ", ") + std::string(word);
+  for (const auto& [word, choice] : choices)
+    words += (words.empty() ? "" : ", ") + std::string(word);
   if (!py::isinstance<py::str>(value)) {
     throw py::value_error(std::string(name) + " must be one of " + words + ", not " +
                           py::repr(value).cast<std::string>());
@@ -43,19 +45,24 @@ void setIslands(py::handle value, geometry::SplitOptions& options) {
     return;
   }
   options.separateIslands = true;
-  options.islands = chooseWord<geometry::IslandMode>(
-      value, "islands", {{"touching", geometry::IslandMode::Touching}, {"connected", geometry::IslandMode::Connected}});
+  options.islands =
+      chooseWord<geometry::IslandMode>(value, "islands",
+                                       {{"touching", geometry::IslandMode::Touching},
+                                        {"connected", geometry::IslandMode::Connected}});
 }
 
 geometry::SplitOptions splitOptions(bool cap, py::handle open, py::handle islands, py::handle uv) {
   geometry::SplitOptions options;
   options.cap = cap;
-  options.openSections = chooseWord<geometry::OpenSectionMode>(open, "open",
-                                                               {{"refuse", geometry::OpenSectionMode::Refuse},
-                                                                {"cap-closed", geometry::OpenSectionMode::CapClosedLoops},
-                                                                {"bridge", geometry::OpenSectionMode::Bridge}});
-  options.uvMode = chooseWord<geometry::CapUvMode>(
-      uv, "uv", {{"world", geometry::CapUvMode::WorldPlanar}, {"bounds", geometry::CapUvMode::NormalizedBounds}});
+  options.openSections = chooseWord<geometry::OpenSectionMode>(
+      open, "open",
+      {{"refuse", geometry::OpenSectionMode::Refuse},
+       {"cap-closed", geometry::OpenSectionMode::CapClosedLoops},
+       {"bridge", geometry::OpenSectionMode::Bridge}});
+  options.uvMode =
+      chooseWord<geometry::CapUvMode>(uv, "uv",
+                                      {{"world", geometry::CapUvMode::WorldPlanar},
+                                       {"bounds", geometry::CapUvMode::NormalizedBounds}});
   setIslands(islands, options);
   options.computeMass = true;
   return options;
@@ -86,15 +93,17 @@ Piece makePiece(const geometry::SplitPiece& piece) {
 
 [[noreturn]] void raiseSplitError(const geometry::SplitResult& result) {
   const std::string status = geometry::toString(result.status);
-  const std::string message = "split failed: " + status + (result.message.empty() ? "" : ": " + result.message);
+  const std::string message =
+      "split failed: " + status + (result.message.empty() ? "" : ": " + result.message);
   py::object error = py::reinterpret_borrow<py::object>(splitErrorType)(message);
   error.attr("status") = status;
   PyErr_SetObject(splitErrorType, error.ptr());
   throw py::error_already_set();
 }
 
-py::list split(py::handle vertices, py::handle faces, py::handle normal, double offset, bool cap, py::handle open,
-               py::handle islands, py::handle uv, py::handle normals, py::handle uvs) {
+py::list split(py::handle vertices, py::handle faces, py::handle normal, double offset, bool cap,
+               py::handle open, py::handle islands, py::handle uv, py::handle normals,
+               py::handle uvs) {
   geometry::MeshData mesh;
   mesh.positions = toVec3Rows(vertices, "vertices");
   mesh.indices = toTriangleList(faces, mesh.positions.size());
@@ -118,12 +127,15 @@ py::list split(py::handle vertices, py::handle faces, py::handle normal, double 
 }
 
 std::string pieceRepr(const Piece& piece) {
-  return "<cleave.Piece side=" + std::to_string(piece.side) + " vertices=" + std::to_string(py::len(piece.vertices)) +
-         " faces=" + std::to_string(py::len(piece.faces)) + " volume=" + py::repr(py::float_(piece.volume)).cast<std::string>() +
+  return "<cleave.Piece side=" + std::to_string(piece.side) +
+         " vertices=" + std::to_string(py::len(piece.vertices)) +
+         " faces=" + std::to_string(py::len(piece.faces)) +
+         " volume=" + py::repr(py::float_(piece.volume)).cast<std::string>() +
          (piece.closed ? " closed" : " open") + ">";
 }
 
-constexpr const char* kSplitDoc = R"doc(split(vertices, faces, normal=(0, 1, 0), offset=0.0, cap=True, open="cap-closed",
+constexpr const char* kSplitDoc =
+    R"doc(split(vertices, faces, normal=(0, 1, 0), offset=0.0, cap=True, open="cap-closed",
       islands=True, uv="world", normals=None, uvs=None) -> list[Piece]
 
 Cut a triangle mesh by the plane {x : dot(normal, x) = offset}, cap the holes, separate the pieces
@@ -152,22 +164,31 @@ word) and cleave.SplitError (a ValueError with .status) when the core refuses th
 "PlaneMissesMesh" when every vertex lies on one side.)doc";
 
 void bindPiece(py::module_& module) {
-  py::class_<Piece>(module, "Piece", "One piece of a split (see cleave.split); every attribute is read-only.")
+  py::class_<Piece>(module, "Piece",
+                    "One piece of a split (see cleave.split); every attribute is read-only.")
       .def_readonly("vertices", &Piece::vertices, "N x 3 float32 positions, in the input's space.")
-      .def_readonly("faces", &Piece::faces, "M x 3 int64 vertex indices, counter-clockwise seen from outside.")
-      .def_readonly("normals", &Piece::normals, "N x 3 float32 normals, or None when the input had none.")
-      .def_readonly("uvs", &Piece::uvs, "N x 2 float32 texture coordinates, or None when the input had none.")
+      .def_readonly("faces", &Piece::faces,
+                    "M x 3 int64 vertex indices, counter-clockwise seen from outside.")
+      .def_readonly("normals", &Piece::normals,
+                    "N x 3 float32 normals, or None when the input had none.")
+      .def_readonly("uvs", &Piece::uvs,
+                    "N x 2 float32 texture coordinates, or None when the input had none.")
       .def_readonly("source_triangles", &Piece::sourceTriangles,
-                    "M int64: per face, the input face it comes from (kept or cut), -1 for a cap face of this cut.")
+                    "M int64: per face, the input face it comes from (kept or cut), -1 for a cap "
+                    "face of this cut.")
       .def_readonly("side", &Piece::side, "+1 above the plane, -1 below.")
       .def_readonly("closed", &Piece::closed,
-                    "True when the piece is a closed, consistently wound surface (else its mass is its convex hull's).")
+                    "True when the piece is a closed, consistently wound surface (else its mass is "
+                    "its convex hull's).")
       .def_readonly("reached", &Piece::reached, "True when the plane cut or touched this piece.")
       .def_readonly("volume", &Piece::volume, "Volume (units cubed).")
       .def_readonly("center_of_mass", &Piece::centerOfMass, "Centre of mass, 3 float64.")
-      .def_readonly("inertia", &Piece::inertia, "3 x 3 float64 inertia tensor about the centre of mass, density 1.")
-      .def_readonly("cap_triangles", &Piece::capTriangles, "Faces in the cap material (0 for a hollow cut).")
-      .def_readonly("cap_loops", &Piece::capLoops, "Boundary loops capped on this piece (outer borders and holes).")
+      .def_readonly("inertia", &Piece::inertia,
+                    "3 x 3 float64 inertia tensor about the centre of mass, density 1.")
+      .def_readonly("cap_triangles", &Piece::capTriangles,
+                    "Faces in the cap material (0 for a hollow cut).")
+      .def_readonly("cap_loops", &Piece::capLoops,
+                    "Boundary loops capped on this piece (outer borders and holes).")
       .def("__repr__", &pieceRepr, "A one-line summary: side, sizes, volume, closed or open.");
 }
 
@@ -183,9 +204,9 @@ void bindSplit(py::module_& module) {
   module.add_object("SplitError", py::reinterpret_borrow<py::object>(splitErrorType));
   bindPiece(module);
   module.def("split", &split, kSplitDoc, py::arg("vertices"), py::arg("faces"),
-             py::arg("normal") = py::make_tuple(0.0, 1.0, 0.0), py::arg("offset") = 0.0, py::arg("cap") = true,
-             py::arg("open") = "cap-closed", py::arg("islands") = true, py::arg("uv") = "world",
-             py::arg("normals") = py::none(), py::arg("uvs") = py::none());
+             py::arg("normal") = py::make_tuple(0.0, 1.0, 0.0), py::arg("offset") = 0.0,
+             py::arg("cap") = true, py::arg("open") = "cap-closed", py::arg("islands") = true,
+             py::arg("uv") = "world", py::arg("normals") = py::none(), py::arg("uvs") = py::none());
 }
 
 }  // namespace cleave::python

@@ -126,6 +126,7 @@ class Progress:
     """A progress bar on stderr: tqdm when it is installed, else one plain line redrawn."""
 
     def __init__(self, total):
+        """A bar for `total` models, drawn at 0."""
         self.total, self.done, self.bar = total, 0, None
         try:
             from tqdm import tqdm
@@ -144,12 +145,14 @@ class Progress:
             self.draw(label)
 
     def draw(self, label=""):
+        """Redraw the plain bar with the last model's name."""
         width = 30
         filled = width * self.done // max(self.total, 1)
         sys.stderr.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {self.done}/{self.total} {label[-40:]:<40}")
         sys.stderr.flush()
 
     def close(self):
+        """End the bar's line."""
         if self.bar is not None:
             self.bar.close()
         else:
@@ -157,6 +160,7 @@ class Progress:
 
 
 def parse_arguments(argv):
+    """The command line as an argparse namespace; exits 2 with a message on bad arguments."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("input_dir", help="folder of models, searched recursively")
     parser.add_argument("--out", required=True, help="folder for the pieces and the report")
@@ -209,6 +213,7 @@ def run(args):
 
 
 def main(argv=None):
+    """Run the tool; returns the exit status (0 all sliced, 1 some failed)."""
     args = parse_arguments(sys.argv[1:] if argv is None else argv)
     os.makedirs(args.out, exist_ok=True)
     report = run(args)
