@@ -134,6 +134,31 @@ std::string pieceRepr(const Piece& piece) {
          (piece.closed ? " closed" : " open") + ">";
 }
 
+// Pickling (pieces returned from worker processes, Dask or Ray tasks): every attribute in order.
+py::tuple pieceState(const Piece& p) {
+  return py::make_tuple(p.vertices, p.faces, p.normals, p.uvs, p.sourceTriangles, p.side, p.closed,
+                        p.reached, p.volume, p.centerOfMass, p.inertia, p.capTriangles, p.capLoops);
+}
+
+Piece pieceFromState(const py::tuple& state) {
+  if (state.size() != 13) throw py::value_error("cleave.Piece: a pickled state has 13 fields");
+  Piece p;
+  p.vertices = state[0];
+  p.faces = state[1];
+  p.normals = state[2];
+  p.uvs = state[3];
+  p.sourceTriangles = state[4];
+  p.side = state[5].cast<int>();
+  p.closed = state[6].cast<bool>();
+  p.reached = state[7].cast<bool>();
+  p.volume = state[8].cast<double>();
+  p.centerOfMass = state[9];
+  p.inertia = state[10];
+  p.capTriangles = state[11].cast<uint32_t>();
+  p.capLoops = state[12].cast<uint32_t>();
+  return p;
+}
+
 constexpr const char* kSplitDoc =
     R"doc(split(vertices, faces, normal=(0, 1, 0), offset=0.0, cap=True, open="cap-closed",
       islands=True, uv="world", normals=None, uvs=None) -> list[Piece]
@@ -189,7 +214,8 @@ void bindPiece(py::module_& module) {
                     "Faces in the cap material (0 for a hollow cut).")
       .def_readonly("cap_loops", &Piece::capLoops,
                     "Boundary loops capped on this piece (outer borders and holes).")
-      .def("__repr__", &pieceRepr, "A one-line summary: side, sizes, volume, closed or open.");
+      .def("__repr__", &pieceRepr, "A one-line summary: side, sizes, volume, closed or open.")
+      .def(py::pickle(&pieceState, &pieceFromState));
 }
 
 }  // namespace

@@ -168,3 +168,48 @@ def test_every_function_and_class_has_a_docstring():
                  "cap_triangles"):
         assert getattr(cleave.Piece, name).__doc__, name
     assert cleave.__doc__
+
+
+def test_threads_cut_at_once_and_agree_with_one_thread(sphere):
+    from concurrent.futures import ThreadPoolExecutor
+
+    planes = [((np.sin(k), np.cos(k), 0.3), 0.1 * (k % 5) - 0.2) for k in range(16)]
+    serial = [[p.volume for p in cleave.split(sphere.vertices, sphere.faces, normal=n, offset=d)] for n, d in planes]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        threaded = list(pool.map(lambda plane: [p.volume for p in cleave.split(
+            sphere.vertices, sphere.faces, normal=plane[0], offset=plane[1])], planes))
+    assert threaded == serial
+
+
+def test_random_triangle_soups_give_pieces_or_split_error():
+    rng = np.random.default_rng(7)
+    outcomes = {"pieces": 0, "refused": 0}
+    for _ in range(300):
+        count = int(rng.integers(3, 30))
+        vertices = rng.normal(size=(count, 3)) * rng.choice([1e-6, 1.0, 1e6])
+        faces = rng.integers(0, count, size=(int(rng.integers(1, 40)), 3))
+        try:
+            pieces = cleave.split(vertices, faces, normal=rng.normal(size=3), offset=float(rng.normal()),
+                                  open=str(rng.choice(["refuse", "cap-closed", "bridge"])),
+                                  islands=bool(rng.integers(0, 2)), cap=bool(rng.integers(0, 2)))
+        except cleave.SplitError as error:
+            assert error.status in ("PlaneMissesMesh", "OpenSection", "TriangulationFailed", "InvalidInput")
+            outcomes["refused"] += 1
+            continue
+        outcomes["pieces"] += 1
+        for piece in pieces:
+            assert piece.side in (1, -1)
+            assert np.isfinite(piece.vertices).all() and np.isfinite(piece.volume)
+            assert len(piece.faces) == 0 or piece.faces.max() < len(piece.vertices)
+    assert outcomes["pieces"] > 50 and outcomes["refused"] > 0
+
+
+def test_pieces_pickle_for_worker_processes(torus):
+    import pickle
+
+    for piece in cleave.split(torus.vertices, torus.faces, normal=(1, 0, 0), offset=0.0):
+        copy = pickle.loads(pickle.dumps(piece))
+        np.testing.assert_array_equal(copy.vertices, piece.vertices)
+        np.testing.assert_array_equal(copy.faces, piece.faces)
+        np.testing.assert_array_equal(copy.inertia, piece.inertia)
+        assert (copy.side, copy.volume, copy.closed, copy.cap_loops) == (piece.side, piece.volume, piece.closed, 2)
