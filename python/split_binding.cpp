@@ -37,12 +37,18 @@ Enum chooseWord(py::handle value, const char* name,
   throw py::value_error(std::string(name) + " must be one of " + words + ", not '" + given + "'");
 }
 
-// islands: True (touching), False (each side one piece), "touching" or "connected".
+// islands: True (touching), False (each side one piece), "touching" or "connected". NumPy's bool
+// counts as a bool.
 void setIslands(py::handle value, geometry::SplitOptions& options) {
-  if (py::isinstance<py::bool_>(value)) {
-    options.separateIslands = value.cast<bool>();
+  const std::string type = py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
+  if (py::isinstance<py::bool_>(value) || type == "bool_" || type == "bool") {
+    options.separateIslands = py::bool_(py::reinterpret_borrow<py::object>(value));
     options.islands = geometry::IslandMode::Touching;
     return;
+  }
+  if (!py::isinstance<py::str>(value)) {
+    throw py::value_error("islands must be True, False, 'touching' or 'connected', not " +
+                          py::repr(value).cast<std::string>());
   }
   options.separateIslands = true;
   options.islands =
@@ -109,7 +115,7 @@ py::list split(py::handle vertices, py::handle faces, py::handle normal, double 
   mesh.indices = toTriangleList(faces, mesh.positions.size());
   if (!normals.is_none()) mesh.normals = toVec3Rows(normals, "normals", mesh.positions.size());
   if (!uvs.is_none()) mesh.uv0 = toVec2Rows(uvs, "uvs", mesh.positions.size());
-  glm::dvec3 planeNormal = toNormal(normal);
+  const glm::dvec3 planeNormal = toNormal(normal);
   if (!std::isfinite(offset)) throw py::value_error("offset must be finite");
   const double length = glm::length(planeNormal);
   // {x : dot(n, x) = d} is the plane {x : dot(n/|n|, x) = d/|n|}, as cleave-split normalises it.

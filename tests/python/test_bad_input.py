@@ -50,6 +50,7 @@ BAD_SPLITS = [
     ("open not a word", dict(open=3), r"open must be one of"),
     ("unknown uv word", dict(uv="planar"), r"uv must be one of world, bounds, not 'planar'"),
     ("unknown islands word", dict(islands="all"), r"islands must be one of touching, connected"),
+    ("islands a number", dict(islands=2), r"islands must be True, False, 'touching' or 'connected', not 2"),
     ("zero normal", dict(normal=(0, 0, 0)), r"normal must not be zero"),
     ("nan normal", dict(normal=(0, np.nan, 1)), r"normal must be finite"),
     ("two-number normal", dict(normal=(0, 1)), r"normal must be three real numbers"),

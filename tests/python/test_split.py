@@ -96,7 +96,8 @@ def two_boxes():
     return both.vertices, both.faces
 
 
-@pytest.mark.parametrize("islands, count", [(True, 4), ("touching", 4), ("connected", 4), (False, 2)])
+@pytest.mark.parametrize("islands, count", [(True, 4), ("touching", 4), ("connected", 4), (False, 2),
+                                            (np.bool_(False), 2)])
 def test_islands_words(islands, count):
     vertices, faces = two_boxes()
     pieces = cleave.split(vertices, faces, normal=(0, 1, 0), offset=0.1, islands=islands)
@@ -191,7 +192,7 @@ def test_random_triangle_soups_give_pieces_or_split_error():
         try:
             pieces = cleave.split(vertices, faces, normal=rng.normal(size=3), offset=float(rng.normal()),
                                   open=str(rng.choice(["refuse", "cap-closed", "bridge"])),
-                                  islands=bool(rng.integers(0, 2)), cap=bool(rng.integers(0, 2)))
+                                  islands=rng.integers(0, 2) == 1, cap=bool(rng.integers(0, 2)))
         except cleave.SplitError as error:
             assert error.status in ("PlaneMissesMesh", "OpenSection", "TriangulationFailed", "InvalidInput")
             outcomes["refused"] += 1
