@@ -11,7 +11,7 @@
 
 #include <pybind11/stl/filesystem.h>
 
-#include "engine/assets/mesh_io.h"
+#include "cleave/assets/mesh_io.h"
 #include "python/numpy_arrays.h"
 
 namespace cleave::python {

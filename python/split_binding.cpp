@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/geometry/mesh_splitter.h"
 #include "python/numpy_arrays.h"
 
 namespace cleave::python {
