@@ -4,6 +4,9 @@
 # `tools/install-deps.sh DIR...` also installs the npm packages some tests use into each DIR (the
 # build folder's npm/, see below); that part only warns when npm or the registry is not there, and
 # the tests that need the packages then skip with the reason.
+# The Python tests' packages (pytest, numpy, trimesh; tests/python/requirements.txt) are not
+# installed here but by the build, into <build>/pyenv, with the interpreter the module `cleave` is
+# built for (python3-dev, python3-venv and pybind11-dev below; see docs/python.md).
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 SUDO=""
