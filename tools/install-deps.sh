@@ -4,13 +4,16 @@
 # `tools/install-deps.sh DIR...` also installs the npm packages some tests use into each DIR (the
 # build folder's npm/, see below); that part only warns when npm or the registry is not there, and
 # the tests that need the packages then skip with the reason.
+# The Python tests' packages (pytest, numpy, trimesh; tests/python/requirements.txt) are not
+# installed here but by the build, into <build>/pyenv, with the interpreter the module `cleave` is
+# built for (python3-dev, python3-venv and pybind11-dev below; see docs/python.md).
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config ccache git python3
+  build-essential cmake ninja-build pkg-config ccache git python3 python3-dev python3-venv pybind11-dev
   libglfw3-dev libglm-dev libbullet-dev libtinygltf-dev libstb-dev
   nlohmann-json3-dev
   libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0 libgbm1 libglapi-mesa

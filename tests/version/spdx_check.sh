@@ -11,9 +11,9 @@ while IFS= read -r -d '' f; do
     echo "no SPDX line: $f"
     missing=$((missing + 1))
   fi
-done < <(find engine components game tools tests examples cmake -type f \
+done < <(find engine components game tools tests examples cmake python -type f \
            \( -name '*.h' -o -name '*.cpp' -o -name '*.cmake' -o -name '*.py' -o -name '*.sh' -o -name 'CMakeLists.txt' \) \
            -not -path '*/data/*' -print0)
-count=$(find engine components game tools tests examples cmake -type f \( -name '*.h' -o -name '*.cpp' \) | wc -l)
+count=$(find engine components game tools tests examples cmake python -type f \( -name '*.h' -o -name '*.cpp' \) | wc -l)
 echo "checked $count C++ files and the CMake files and scripts: $missing without an SPDX line"
 [ "$missing" -eq 0 ]
