@@ -403,7 +403,21 @@ geometry::SplitStatus shatterInto(const SplitJob& job, SplitComputeScratch& s, s
   const std::vector<glm::dvec3> seeds =
       geometry::fractureSeeds(std::max<uint32_t>(spec.cells, 1), spec.seed, lo, hi, spec.impactPoint, spec.impactRadius);
   cells = geometry::voronoiCells(seeds, lo - margin, hi + margin);
-  geometry::FractureResult fractured = geometry::fracture(s.container, cells, job.options);
+  // A posed skinned mesh is broken in its pose: the cells of a shatter are rigid (baked) pieces, so
+  // the mesh is baked first and every plane of a cell cuts the same posed surface (a part cut by
+  // one plane and posed again would move its cut points: skinning is not linear along an edge).
+  geometry::MeshContainer baked;
+  const geometry::MeshContainer* source = &s.container;
+  if (job.skinned()) {
+    geometry::MeshData posed;
+    bakeSkin(s.container.mesh(), job.jointMatrices, posed);
+    geometry::MeshWeld weld;
+    s.container.copyWeld(weld);
+    if (baked.setMesh(posed, weld, &message) != geometry::SplitStatus::Ok) return geometry::SplitStatus::InvalidInput;
+    baked.setTransform(glm::mat4(job.model));
+    source = &baked;
+  }
+  geometry::FractureResult fractured = geometry::fracture(*source, cells, job.options);
   message = fractured.message;
   s.result.pieces.clear();
   s.result.openChains = fractured.openChains;

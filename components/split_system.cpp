@@ -974,7 +974,10 @@ void SplitSystem::commitPiece(CommitContext& c, PieceSpec& spec) {
   addPieceComponents(c, spec, e, transform, std::move(renderer), velocity);
   if (spec.kind != PieceKind::Debris) {
     c.commands.add<RigidBody>(e, rb);
-    if (c.job.depth < c.job.settings.maxDepth) {
+    // The cells of a shattered posed skinned mesh are final: the pose may pass through itself at the
+    // joints, and a cell cut from such a surface does not keep its mass exactly when cut again.
+    const bool finalCell = c.job.skinned() && c.job.request.shatter;
+    if (c.job.depth < c.job.settings.maxDepth && !finalCell) {
       c.commands.add<Splitable>(e, c.job.settings);
       if (spec.parts) c.commands.add<ColliderParts>(e, ColliderParts{spec.parts});
       if (spec.weld || spec.parts) {  // known when the piece is cut: no weld, no decomposition

@@ -71,9 +71,13 @@ SplitStatus cutPart(IMeshSplitter& splitter, CapSimplifier& simplifier, const Me
     next.weld = std::move(piece.weld);
     next.massStale = true;
     next.capTriangles = piece.capTriangles;
-    const CapSimplifyStats simplified =
-        simplifier.simplify(next.mesh, next.weld, next.source, cell.planes, container.model());
-    next.capTriangles = next.capTriangles + simplified.trianglesAfter - simplified.trianglesBefore;
+    // (A posed part's caps are planar in the pose only, not in the source space it is kept in: they
+    // stay as cut.)
+    if (container.jointMatrices().empty()) {
+      const CapSimplifyStats simplified =
+          simplifier.simplify(next.mesh, next.weld, next.source, cell.planes, container.model());
+      next.capTriangles = next.capTriangles + simplified.trianglesAfter - simplified.trianglesBefore;
+    }
     below.push_back(std::move(next));
   }
   return SplitStatus::Ok;
@@ -113,7 +117,19 @@ const MeshContainer* containerOf(CellRun& run, Part& part) {
     run.result.message = "a fracture part cannot be cut again: " + why;
     return nullptr;
   }
-  container->setTransform(glm::mat4(run.source.model()));
+  // The part's cut space is the source's: its model matrix, and its skinning pose when it is posed
+  // (the parts of a posed skinned mesh keep their skin, in source space).
+  const std::span<const glm::dmat4> joints = run.source.jointMatrices();
+  if (joints.empty() || part.mesh.joints.empty()) {
+    container->setTransform(glm::mat4(run.source.model()));
+  } else {
+    std::vector<glm::mat4> pose(joints.begin(), joints.end());
+    if (container->setSkinningPose(pose, glm::mat4(run.source.model()), &why) != SplitStatus::Ok) {
+      run.result.status = SplitStatus::InvalidInput;
+      run.result.message = "a fracture part cannot be posed: " + why;
+      return nullptr;
+    }
+  }
   part.container = std::move(container);
   return part.container.get();
 }

@@ -82,6 +82,7 @@ nlohmann::json ArenaGame::dumpMatch() {
                           {"disc_throws", match_.discThrows},
                           {"sword_swings", match_.swordSwings},
                           {"spin_attacks", match_.spinAttacks},
+                          {"hammer_blows", match_.hammerBlows},
                           {"max_enemies_hit_in_one_tick", match_.maxEnemiesHitInOneTick},
                           {"max_kills_in_one_tick", match_.maxKillsInOneTick},
                           {"pieces_spawned", piecesSpawned_},

@@ -33,6 +33,9 @@ constexpr float kDiscFlightSeconds = 2.6f;  // it turns back after this even wit
 constexpr int kSwordTicks = 10;
 constexpr int kSpinTicks = 18;
 constexpr float kSpinRadius = 2.7f;       // m
+constexpr int kHammerTicks = 14;          // from raising the hammer to its landing
+constexpr float kHammerReach = 1.7f;      // m from the player to where it lands
+constexpr glm::vec3 kHammerHalfExtents(0.95f, 1.0f, 0.95f);  // what it shatters, from the floor up
 constexpr uint64_t kPieceLifeTicks = 420;   // 7 s before a piece starts to shrink
 constexpr uint64_t kPieceShrinkTicks = 45;
 constexpr size_t kMaxPieces = 260;          // more than this: the oldest go early
@@ -302,6 +305,7 @@ void ArenaGame::createPlayer() {
   animator_.play(&character_.idle);
   bladeMesh_ = app_->renderer().uploadMesh(prim::box(glm::vec3(0.03f, 0.012f, 0.5f)));
   discMesh_ = app_->renderer().uploadMesh(prim::torus(0.36f, 0.05f, 32, 8));
+  hammerMesh_ = app_->renderer().uploadMesh(prim::box(glm::vec3(0.32f, 0.2f, 0.2f)));
 
   ecs::World& world = app_->world();
   player_ = world.create();
@@ -543,6 +547,35 @@ void ArenaGame::updateWeapons(app::TickContext& c) {
     swingSword(true);
     spinReadyTick_ = c.tick + ticksOf(tuning_.player.spinCooldownSeconds);
   }
+  if (in.pressed(input::Key::E) && c.tick >= hammerReadyTick_ && hammer_.ticksLeft == 0 && swing_.ticksLeft == 0) {
+    hammer_.ticksLeft = kHammerTicks;
+    hammer_.yaw = playerYaw_;
+    hammer_.at = playerPosition_ + forwardOf(playerYaw_) * kHammerReach;
+    hammerReadyTick_ = c.tick + ticksOf(tuning_.player.hammerCooldownSeconds);
+  }
+}
+
+// The hammer comes down; as it lands, a one-tick shatter splitter breaks what stands where it
+// lands into cells thrown out from the point of impact (crates, urns and gladiators alike).
+void ArenaGame::updateHammer(app::TickContext& c) {
+  if (hammer_.ticksLeft == 0 || --hammer_.ticksLeft > 0) return;
+  components::Splitter blow;
+  blow.kind = components::SplitterKind::Shatter;
+  blow.lifetime = components::SplitterLifetime::OneTick;
+  blow.playerCaused = true;
+  blow.halfExtents = kHammerHalfExtents;
+  blow.shatter.cells = tuning_.player.hammerCells;
+  blow.shatter.seed = c.tick;
+  blow.shatter.impactPoint = glm::dvec3(hammer_.at.x, 0.3, hammer_.at.y);
+  blow.shatter.impactGiven = true;
+  blow.shatter.impactRadius = 0.6;
+  blow.shatter.outwardImpulse = tuning_.player.hammerOutwardImpulse;
+  components::SplitWorld sw = splitWorld();
+  const ecs::Entity e = components::createSplitter(
+      sw, kWeaponSplitterNames[4], physics::ShapeDef::box(kHammerHalfExtents),
+      glm::vec3(hammer_.at.x, kHammerHalfExtents.y, hammer_.at.y), glm::angleAxis(hammer_.yaw, glm::vec3(0, 1, 0)), blow);
+  if (c.world.alive(e)) c.world.add<ArenaTag>(e, ArenaTag{ArenaTag::Weapon});
+  ++match_.hammerBlows;
 }
 
 void ArenaGame::updateDisc(app::TickContext& c) {
@@ -825,6 +858,19 @@ void ArenaGame::drawWeapons(render::Renderer& r) {
     model[2] = glm::vec4(d, 0.f);
     model[3] = glm::vec4(grip + d * 0.5f, 1.f);
     r.submit(bladeMesh_, model, blade);
+  }
+  if (hammer_.ticksLeft > 0) {
+    // Raised over the shoulder for the first third of the blow, then brought down where it lands.
+    const float p = 1.f - float(hammer_.ticksLeft) / float(kHammerTicks);
+    const float down = std::clamp((p - 0.35f) / 0.65f, 0.f, 1.f);
+    const glm::vec3 shoulder(playerPosition_.x, 1.45f, playerPosition_.y);
+    const glm::vec3 raised = shoulder + glm::vec3(0.f, 1.1f, 0.f) - glm::vec3(forwardOf(hammer_.yaw).x, 0.f, forwardOf(hammer_.yaw).y) * 0.3f;
+    const glm::vec3 landed(hammer_.at.x, 0.22f, hammer_.at.y);
+    const glm::vec3 head = p < 0.35f ? glm::mix(shoulder, raised, p / 0.35f) : glm::mix(raised, landed, down * down);
+    const glm::mat4 model = glm::translate(glm::mat4(1.f), head) * glm::mat4_cast(glm::angleAxis(hammer_.yaw, glm::vec3(0, 1, 0)));
+    const render::Material stone[] = {materials_.disc};
+    r.submit(hammerMesh_, model, stone);
+    r.submitLines(std::vector<glm::vec3>{shoulder, head}, glm::vec4(1.f, 0.8f, 0.4f, 1.f));
   }
   if (disc_.active) {
     const glm::mat4 model = glm::translate(glm::mat4(1.f), glm::vec3(disc_.position.x, kDiscHeight, disc_.position.y)) *

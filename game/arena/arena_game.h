@@ -88,17 +88,25 @@ class ArenaGame {
     float yaw = 0.f;
     float tilt = 0.f;
   };
+  // The hammer: raised, then brought down on the floor in front of the player, where it shatters
+  // what stands within its reach into cells (a one-tick shatter splitter as it lands).
+  struct Hammer {
+    int ticksLeft = 0;     // of the blow; the shatter fires as it reaches 0
+    glm::vec2 at{0.f};     // where it lands
+    float yaw = 0.f;
+  };
   struct PendingSpawn {
     uint64_t tick = 0;
     EnemyKind kind = EnemyKind::Gladiator;
     glm::vec2 position{0.f};
     float yaw = 0.f;
   };
-  // Kills per enemy kind: [kind][0] in total, [kind][w] by weapon w (disc, sword, spin).
+  // Kills per enemy kind: [kind][0] in total, [kind][w] by weapon w (disc, sword, spin, hammer).
   static constexpr size_t kKindCount = size_t(EnemyKind::Count);
-  static constexpr size_t kWeaponCount = 4;
-  static constexpr const char* kWeaponNames[kWeaponCount] = {"", "disc", "sword", "spin"};
-  static constexpr const char* kWeaponSplitterNames[kWeaponCount] = {"", "energy disc", "sword swing", "spin attack"};
+  static constexpr size_t kWeaponCount = 5;
+  static constexpr const char* kWeaponNames[kWeaponCount] = {"", "disc", "sword", "spin", "hammer"};
+  static constexpr const char* kWeaponSplitterNames[kWeaponCount] = {"", "energy disc", "sword swing", "spin attack",
+                                                                     "hammer blow"};
   static uint8_t weaponIndex(const std::string& splitterName);
   // The figures of the match being played (HUD and state dump): a new match starts from zero.
   struct MatchStats {
@@ -109,6 +117,7 @@ class ArenaGame {
     uint32_t discThrows = 0;
     uint32_t swordSwings = 0;
     uint32_t spinAttacks = 0;
+    uint32_t hammerBlows = 0;
     uint32_t maxEnemiesHitInOneTick = 0;
     uint32_t maxKillsInOneTick = 0;
   };
@@ -140,6 +149,7 @@ class ArenaGame {
   void updateMenu(app::TickContext& c);
   void updatePlayer(app::TickContext& c);
   void updateWeapons(app::TickContext& c);
+  void updateHammer(app::TickContext& c);
   void updateDisc(app::TickContext& c);
   void updateWaves(app::TickContext& c);
   void startWave(uint64_t tick);
@@ -218,11 +228,13 @@ class ArenaGame {
   std::vector<glm::mat4> jointMatrices_;
   std::vector<glm::mat4> jointGlobals_;
   anim::Pose pose_;
-  render::MeshHandle bladeMesh_, discMesh_;
+  render::MeshHandle bladeMesh_, discMesh_, hammerMesh_;
 
   // Weapons.
   Disc disc_;
   Swing swing_;
+  Hammer hammer_;
+  uint64_t hammerReadyTick_ = 0;
   uint64_t swordReadyTick_ = 0;
   uint64_t spinReadyTick_ = 0;
 

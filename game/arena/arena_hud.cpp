@@ -100,7 +100,7 @@ void ArenaGame::drawBanners(app::TickContext& c, float u) {
     centredText(r, "your foes cheer   press Enter for the menu", W, y + 62 * u, 2.f * u, kWhite);
   }
   if (state_ != MatchState::Playing && state_ != MatchState::Intermission) return;
-  r.submitText("WASD move   mouse aim   left: sword   right: disc   space: spin", {20 * u, H - 30 * u}, 1.8f * u,
+  r.submitText("WASD move   mouse aim   left: sword   right: disc   space: spin   E: hammer", {20 * u, H - 30 * u}, 1.8f * u,
                glm::vec4(1.f, 1.f, 1.f, 0.85f));
   const glm::vec2 m = cursorInFrame(c.input, c.frameSize);
   const float k = 9.f * u;

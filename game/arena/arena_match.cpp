@@ -58,6 +58,7 @@ void ArenaGame::gameplay(app::TickContext& c) {
       break;
   }
   updateDisc(c);
+  updateHammer(c);
   // The player's body follows the player (it shoves pieces aside but is never cut).
   if (const auto* rb = c.world.tryGet<components::RigidBody>(player_)) {
     physics_->setBodyTransform(rb->body, physics::BodyTransform{glm::vec3(playerPosition_.x, 0.87f, playerPosition_.y),
@@ -152,6 +153,7 @@ void ArenaGame::enterDefeat(uint64_t tick) {
   if (disc_.active) removeEntity(disc_.splitter);
   disc_ = Disc{};
   swing_ = Swing{};
+  hammer_ = Hammer{};
 }
 
 void ArenaGame::updateDefeat(app::TickContext& c) {
@@ -173,6 +175,7 @@ void ArenaGame::clearArena() {
   if (disc_.active) removeEntity(disc_.splitter);
   disc_ = Disc{};
   swing_ = Swing{};
+  hammer_ = Hammer{};
   ecs::World& world = app_->world();
   std::vector<ecs::Entity> doomed, pieces;
   for (auto [e, tag] : world.view<ArenaTag>()) {

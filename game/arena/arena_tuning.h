@@ -23,6 +23,9 @@ struct PlayerTuning {
   float speed = 5.f;                   // m/s
   float swordCooldownSeconds = 20.f / 60.f;
   float spinCooldownSeconds = 4.f;
+  float hammerCooldownSeconds = 2.5f;
+  uint32_t hammerCells = 12;           // cells of what the hammer shatters
+  float hammerOutwardImpulse = 3.f;    // m/s, the cells thrown out from where it lands
 };
 
 // One enemy kind's pace and blows.

@@ -225,6 +225,46 @@ TEST(ArenaReplay, BurstOfKillsIsSpreadByTheBudget) {
   EXPECT_LT(countKind(dump, "piece"), size_t(arena.at("pieces_spawned").get<int>()));
 }
 
+// The hammer (E) shatters what it lands on into cells, as split jobs: gladiators (their parts), the
+// skinned warriors (rigid cells of the pose) and a crate the wave pushed along; every shatter keeps
+// the mass of what it broke and none fails.
+TEST(ArenaReplay, HammerShattersGladiatorsWarriorsAndProps) {
+  const fs::path dir = scratchDir("hammer");
+  const RunResult r = run("--headless --replay " + replay("arena_hammer.replay") + " --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\"");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("kept whole"), std::string::npos) << r.output;
+  const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
+  ASSERT_TRUE(dump.is_object());
+  const auto& arena = dump.at("arena");
+  EXPECT_EQ(arena.at("hammer_blows"), 6);
+  const auto& kills = arena.at("kills_by_kind");
+  EXPECT_GE(kills.at("gladiator").at("hammer").get<int>(), 3) << kills.dump();
+  EXPECT_GE(kills.at("skinned").at("hammer").get<int>(), 2) << kills.dump();
+  EXPECT_GE(arena.at("props_broken").get<int>(), 1) << arena.dump();
+  size_t gladiators = 0, warriors = 0, props = 0;
+  for (const auto& s : dump.at("splits")) {
+    EXPECT_EQ(s.at("status"), "Ok") << s.dump();
+    const std::string original = s.at("original");
+    const int pieces = s.at("pieces").get<int>();
+    if (original == "gladiator" && pieces >= 12) ++gladiators;          // cells of its parts
+    if (original == "skinned warrior" && pieces >= 8) ++warriors;      // a cut gives two
+    if (original == "crate" && pieces >= 6) ++props;
+  }
+  EXPECT_GE(gladiators, 3u);
+  EXPECT_GE(warriors, 2u);
+  EXPECT_GE(props, 1u);
+  EXPECT_EQ(arena.at("ragdoll_bodies_leaked"), 0) << arena.dump();
+  // The cells of a shattered skinned warrior are final (never shattered again): every shatter keeps
+  // the mass of what it broke to rounding.
+  for (const auto& s : dump.at("splits")) {
+    EXPECT_NE(s.at("original").get<std::string>().rfind("skinned warrior/", 0), 0u) << s.dump();
+  }
+  expectEveryCutKeepsMass(dump);
+  expectNothingBelowTheFloor(dump);
+  EXPECT_EQ(dump.at("budget").at("queue"), 0) << "split requests left over";
+}
+
 TEST(ArenaReplay, QuitCubeEndsTheGame) {
   const fs::path dir = scratchDir("quit");
   const RunResult r = run("--headless --replay " + replay("arena_quit.replay") + " --dump-state \"" +
@@ -249,7 +289,7 @@ TEST(ArenaReplay, SameReplayGivesTheSameState) {
 
 TEST(ArenaReplay, EveryReplayGivesTheSameStateOnZeroOneAndThreeSplitThreads) {
   for (const char* name : {"arena_match.replay", "arena_burst.replay", "arena_quit.replay", "arena_newcomer.replay",
-                           "arena_rematch.replay", "arena_east_wall.replay"})
+                           "arena_rematch.replay", "arena_east_wall.replay", "arena_hammer.replay"})
     cleave::testing::expectSameStateOnZeroOneAndThreeSplitThreads(run, "--headless --replay " + replay(name), name);
 }
 
