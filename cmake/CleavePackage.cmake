@@ -2,6 +2,9 @@
 include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 get_property(cleave_targets GLOBAL PROPERTY CLEAVE_EXPORTED_TARGETS)
+if(CLEAVE_HAVE_IMGUI)
+  list(APPEND cleave_targets cleave_imgui)  # the ImGui backends the app and render layers link
+endif()
 install(TARGETS ${cleave_targets} cleave_engine cleave_glad EXPORT CleaveTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

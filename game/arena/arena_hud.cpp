@@ -35,6 +35,9 @@ void ArenaGame::drawHud(app::TickContext& c) {
   }
   drawBudgetPanel(c, u);
   drawBanners(c, u);
+  // F1 could not open the inspector: why, for two seconds.
+  if (c.tick < inspectorNoticeUntil_)
+    centredText(r, inspectorNotice_, W, float(c.frameSize.y) * 0.85f, 1.8f * u, kGold);
 }
 
 void ArenaGame::drawMatchPanel(render::Renderer& r, float u) {
