@@ -209,7 +209,7 @@ void Inspector::drawLog(const InspectorFeed& feed) {
     ImGui::TableNextColumn();
     ImGui::Text("%.2f", e.parentMass);
     ImGui::TableNextColumn();
-    ImGui::Text("%6.2f", e.milliseconds);
+    ImGui::Text("%7.2f", e.milliseconds);  // one width up to 999.99 ms: the same columns on slow builds
     markClock();
   }
   ImGui::EndTable();
