@@ -37,8 +37,17 @@ void Inspector::close(app::App& app) {
 void Inspector::writeJson(nlohmann::json& out) const {
   nlohmann::json clock = nlohmann::json::array();
   for (const glm::vec4& r : clockRects_) clock.push_back({r.x, r.y, r.z, r.w});
+  nlohmann::json settings;  // null without a target
+  if (open_ && targetTuning_) {
+    const components::SplitableTuning& t = *targetTuning_;
+    settings = {{"cap_uv_mode", int(t.capUvMode)}, {"cap_uv_per_metre", t.capUvPerMetre},
+                {"collider", int(t.collider)},     {"density", t.density},
+                {"split_impulse", t.splitImpulse}, {"islands", t.separateIslands ? int(t.islands) + 1 : 0},
+                {"hollow", t.hollow}};
+  }
   out = {{"open", open_},
          {"target", open_ ? targetName_ : std::string()},
+         {"settings", std::move(settings)},
          {"window", {window_.x, window_.y, window_.z, window_.w}},
          {"clock", std::move(clock)}};
 }
@@ -97,6 +106,7 @@ void Inspector::draw(app::TickContext& c, const InspectorFeed& feed) {
 }
 
 void Inspector::drawTarget(const InspectorFeed& feed) {
+  targetTuning_.reset();
   if (!ImGui::CollapsingHeader("Object under the crosshair", ImGuiTreeNodeFlags_DefaultOpen)) return;
   const components::Splitable* sp =
       feed.world.alive(feed.target) ? feed.world.tryGet<components::Splitable>(feed.target) : nullptr;
@@ -126,6 +136,7 @@ void Inspector::drawTarget(const InspectorFeed& feed) {
     const components::TuningResult r = components::applySplitableTuning(feed.world, feed.target, t);
     lastError_ = r.ok ? std::string() : r.error;
   }
+  targetTuning_ = components::tuningOf(*sp);
   ImGui::TextColored(kDim, "changes apply to the next split of this object");
   if (!lastError_.empty()) ImGui::TextColored(kWarn, "%s", lastError_.c_str());
 }

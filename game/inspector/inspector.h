@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,9 @@ class Inspector {
   // Pixel rectangles (x, y, w, h) of what follows the wall clock as of the last draw: the frame and
   // tick times, the split-time graph and the milliseconds column of the log. Golden tests blank them.
   const std::vector<glm::vec4>& clockRects() const { return clockRects_; }
-  // {"open", "target" (name of the object shown, "" for none), "window" rect, "clock" rects}.
+  // {"open", "target" (name of the object shown, "" for none), "settings" of it (cap_uv_mode,
+  // cap_uv_per_metre, collider, density, split_impulse, islands, hollow; null for none), "window"
+  // rect, "clock" rects}.
   void writeJson(nlohmann::json& out) const;
 
  private:
@@ -63,6 +66,7 @@ class Inspector {
 
   bool open_ = false;
   std::string targetName_;
+  std::optional<components::SplitableTuning> targetTuning_;  // as the last draw left it
   std::string lastError_;  // of the last edit that was refused
   std::vector<glm::vec4> clockRects_;
   glm::vec4 window_{0.f};
