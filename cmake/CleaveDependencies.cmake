@@ -58,4 +58,6 @@ if(CLEAVE_INSPECTOR)
     message(STATUS "Cleave: libimgui-dev (Dear ImGui and its backend sources) not found: the inspector "
                    "is not built (F1 says so; tools/install-deps.sh installs it)")
   endif()
+else()
+  message(STATUS "Cleave: CLEAVE_INSPECTOR=OFF: the inspector is not built (F1 says so)")
 endif()

@@ -51,7 +51,7 @@ void UiRenderer::draw(Renderer& renderer) {
 UiRenderer::~UiRenderer() = default;
 
 bool UiRenderer::init(std::string* error) {
-  if (error) *error = "the inspector is not built (Dear ImGui, libimgui-dev, was missing at configure time)";
+  if (error) *error = "the inspector is not built (it needs Dear ImGui, libimgui-dev, at configure time)";
   return false;
 }
 

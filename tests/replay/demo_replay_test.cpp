@@ -372,7 +372,7 @@ void maskWallClock(std::vector<uint8_t>& rgba, int width, int height, const nloh
 // the marble cylinder's Splitable (under the crosshair), the budget, the times and the split log
 // of the cuts the replay makes. Goldens are refreshed with CLEAVE_UPDATE_GOLDENS=1.
 TEST(DemoReplay, InspectorFrameMatchesGoldenImage) {
-  if (!CLEAVE_HAVE_IMGUI) GTEST_SKIP() << "built without Dear ImGui (libimgui-dev was missing): no inspector";
+  if (!CLEAVE_HAVE_IMGUI) GTEST_SKIP() << "built without Dear ImGui (libimgui-dev missing, or CLEAVE_INSPECTOR=OFF): no inspector";
   const fs::path dir = scratchDir("inspector");
   const RunResult r = run("--headless --inspector --replay \"" + kReplays + "/demo_inspector.replay\" --width 1280 "
                           "--height 720 --screenshot-dir \"" + dir.string() + "\" --screenshot-every 100000 "

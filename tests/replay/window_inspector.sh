@@ -10,7 +10,7 @@ set -euo pipefail
 demo="$1"
 out="$2"
 if [ "${3:-}" = "no-inspector" ]; then
-  echo "window inspector test: skipped, the inspector is not built (libimgui-dev was missing)"
+  echo "window inspector test: skipped, the inspector is not built (libimgui-dev missing, or CLEAVE_INSPECTOR=OFF)"
   exit 77
 fi
 mkdir -p "$out"
