@@ -35,7 +35,8 @@ TuningResult applySplitableTuning(ecs::World& world, ecs::Entity entity, const S
     return fail("splitable tuning: density must be from 1 to 50000 kg/m^3");
   if (!inRange(t.splitImpulse, 0.0, kMaxSplitImpulse))
     return fail("splitable tuning: split impulse must be from 0 to 50 m/s");
-  if (int(t.collider) > int(ColliderMode::ConcaveMesh) || int(t.capUvMode) > int(geometry::CapUvMode::NormalizedBounds) ||
+  if (int(t.collider) > int(ColliderMode::ConcaveMesh) ||
+      int(t.capUvMode) > int(geometry::CapUvMode::NormalizedBounds) ||
       int(t.islands) > int(geometry::IslandMode::Connected))
     return fail("splitable tuning: unknown collider, cap UV or island mode");
   s->capUvMode = t.capUvMode;

@@ -126,7 +126,8 @@ void Inspector::drawTarget(const InspectorFeed& feed) {
   if (ImGui::Combo("cap UV mode", &uv, uvModes, 2)) t.capUvMode = geometry::CapUvMode(uv), changed = true;
   changed |= slider("cap UV per metre", ImGuiDataType_Double, t.capUvPerMetre, 0.05, components::kMaxCapUvPerMetre,
                     "%.2f", true);
-  if (ImGui::Combo("collider", &collider, colliders, 4)) t.collider = components::ColliderMode(collider), changed = true;
+  if (ImGui::Combo("collider", &collider, colliders, 4))
+    t.collider = components::ColliderMode(collider), changed = true;
   changed |= slider("density kg/m^3", ImGuiDataType_Double, t.density, components::kMinDensity,
                     components::kMaxDensity, "%.0f", true);
   changed |= slider("split impulse m/s", ImGuiDataType_Double, t.splitImpulse, 0.0, 10.0, "%.2f");

@@ -39,7 +39,8 @@ std::vector<glm::vec2> capUvs(const ecs::World& world, ecs::Entity piece, uint32
   const geometry::MeshData& mesh = *world.get<MeshRenderer>(piece).source;
   for (const geometry::SubMesh& run : mesh.submeshes) {
     if (run.materialId != capMaterialId) continue;
-    for (uint32_t i = run.firstIndex; i < run.firstIndex + run.indexCount; ++i) uvs.push_back(mesh.uv0[mesh.indices[i]]);
+    for (uint32_t i = run.firstIndex; i < run.firstIndex + run.indexCount; ++i)
+      uvs.push_back(mesh.uv0[mesh.indices[i]]);
   }
   return uvs;
 }

@@ -372,7 +372,8 @@ void maskWallClock(std::vector<uint8_t>& rgba, int width, int height, const nloh
 // the marble cylinder's Splitable (under the crosshair), the budget, the times and the split log
 // of the cuts the replay makes. Goldens are refreshed with CLEAVE_UPDATE_GOLDENS=1.
 TEST(DemoReplay, InspectorFrameMatchesGoldenImage) {
-  if (!CLEAVE_HAVE_IMGUI) GTEST_SKIP() << "built without Dear ImGui (libimgui-dev missing, or CLEAVE_INSPECTOR=OFF): no inspector";
+  if (!CLEAVE_HAVE_IMGUI)
+    GTEST_SKIP() << "built without Dear ImGui (libimgui-dev missing, or CLEAVE_INSPECTOR=OFF): no inspector";
   const fs::path dir = scratchDir("inspector");
   const RunResult r = run("--headless --inspector --replay \"" + kReplays + "/demo_inspector.replay\" --width 1280 "
                           "--height 720 --screenshot-dir \"" + dir.string() + "\" --screenshot-every 100000 "
@@ -394,7 +395,8 @@ TEST(DemoReplay, InspectorFrameMatchesGoldenImage) {
   ASSERT_EQ(height, 720);
   maskWallClock(rgba, width, height, inspector);
   const std::string golden = std::string(CLEAVE_SOURCE_DIR) + "/tests/replay/goldens/inspector_frame_000149.png";
-  const auto comparison = cleave::testing::compareWithGolden(golden, width, height, rgba, cleave::testing::kGoldenTolerance);
+  const auto comparison =
+      cleave::testing::compareWithGolden(golden, width, height, rgba, cleave::testing::kGoldenTolerance);
   EXPECT_TRUE(comparison.ok) << comparison.message;
 }
 
@@ -406,7 +408,8 @@ TEST(DemoReplay, F1OpensAndClosesTheInspector) {
   auto runTo = [&](const char* events) {
     std::ofstream(replayFile) << "cleave-replay 1\nscene demo\nseed 1\nticks 40\n" << events;
     const RunResult r = run("--headless --replay \"" + replayFile.string() + "\" --dump-state \"" +
-                            (dir / "state.jsonl").string() + "\" --screenshot-every 1000 --screenshot-dir \"" + dir.string() + "\"");
+                            (dir / "state.jsonl").string() + "\" --screenshot-every 1000 --screenshot-dir \"" +
+                            dir.string() + "\"");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     return lastDumpLine(dir / "state.jsonl");
   };
