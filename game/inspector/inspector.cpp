@@ -92,7 +92,8 @@ void Inspector::draw(app::TickContext& c, const InspectorFeed& feed) {
   ImGui::SetNextWindowBgAlpha(0.82f);
   bool keepOpen = true;
   if (ImGui::Begin("Inspector (F1)", &keepOpen, ImGuiWindowFlags_NoCollapse)) {
-    ImGui::PushItemWidth(-15.f * ImGui::GetFontSize());
+    // Widgets on the left, their labels on the right: 15 characters, or half a narrow window.
+    ImGui::PushItemWidth(-std::min(15.f * ImGui::GetFontSize(), 0.5f * ImGui::GetContentRegionAvail().x));
     drawTarget(feed);
     drawBudget(feed);
     drawTiming(c, feed);

@@ -22,7 +22,7 @@ done
 export CLEAVE_DEMO="$demo" CLEAVE_OUT="$out"
 xvfb-run -a -s "-screen 0 1280x720x24" bash -c '
   set -u
-  "$CLEAVE_DEMO" --inspector --ticks 600 --width 1280 --height 720 --dump-state "$CLEAVE_OUT/state.jsonl" \
+  "$CLEAVE_DEMO" --inspector --ticks 900 --width 1280 --height 720 --dump-state "$CLEAVE_OUT/state.jsonl" \
       >"$CLEAVE_OUT/demo.log" 2>&1 &
   pid=$!
   if ! window=$(timeout 30 xdotool search --sync --name "Cleave tech demo" | head -n 1); then
