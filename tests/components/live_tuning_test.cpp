@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // Live tuning (components/live_tuning.h), the path every inspector edit takes: a Splitable changed
-// through it is honoured by the object's next split (caps, cap UVs, density, split impulse) and
-// inherited by the pieces; bad values are refused and change nothing; budget edits apply from the
-// next tick and keep what the inspector does not edit.
+// through it is honoured by the object's next split (caps, cap UVs, collider, density, split
+// impulse, islands) and inherited by the pieces; bad values are refused and change nothing; budget
+// edits apply from the next tick and keep what the inspector does not edit.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "components/live_tuning.h"
 #include "engine/geometry/primitives.h"
@@ -50,6 +51,10 @@ double speedAlongX(Sim& sim, ecs::Entity piece) {
   return state ? double(state->linearVelocity.x) : std::nan("");
 }
 
+std::optional<physics::ShapeType> shapeOf(Sim& sim, ecs::Entity piece) {
+  return sim.physics.shapeType(sim.world.get<RigidBody>(piece).shape);
+}
+
 TEST(LiveTuning, ASplitableEditedThroughTheInspectorPathIsHonouredByTheNextSplit) {
   Sim sim;
   const geometry::MeshData cube = geometry::primitives::box(glm::vec3(0.5f));
@@ -66,6 +71,7 @@ TEST(LiveTuning, ASplitableEditedThroughTheInspectorPathIsHonouredByTheNextSplit
   ASSERT_TRUE(applySplitableTuning(sim.world, hollow, h).ok);
   SplitableTuning n = tuningOf(sim.world.get<Splitable>(normalised));
   n.capUvMode = geometry::CapUvMode::NormalizedBounds;
+  n.collider = ColliderMode::ConcaveMesh;
   ASSERT_TRUE(applySplitableTuning(sim.world, normalised, n).ok);
   EXPECT_EQ(tuningOf(sim.world.get<Splitable>(hollow)), h);
 
@@ -80,6 +86,7 @@ TEST(LiveTuning, ASplitableEditedThroughTheInspectorPathIsHonouredByTheNextSplit
     for (const glm::vec2& uv : uvs) lowest = std::min({lowest, uv.x, uv.y});
     EXPECT_LT(lowest, -0.4f);
     EXPECT_NEAR(sim.world.get<MassInfo>(piece).density, 500.0, 1e-9);
+    EXPECT_NE(shapeOf(sim, piece), physics::ShapeType::ConcaveMesh);
   }
   EXPECT_NEAR(speedAlongX(sim, events[0].pieces[0]) - speedAlongX(sim, events[0].pieces[1]), 0.0, 0.5);
   // Hollow: no cap triangles, 2000 kg/m^3, the halves pushed apart at 4 m/s each, settings inherited.
@@ -90,8 +97,9 @@ TEST(LiveTuning, ASplitableEditedThroughTheInspectorPathIsHonouredByTheNextSplit
     EXPECT_EQ(tuningOf(sim.world.get<Splitable>(piece)), h);
   }
   EXPECT_GT(std::abs(speedAlongX(sim, events[1].pieces[0]) - speedAlongX(sim, events[1].pieces[1])), 7.0);
-  // Normalised: cap UVs within the unit square over each cap.
+  // Normalised: cap UVs within the unit square over each cap; a GImpact mesh collider.
   for (ecs::Entity piece : events[2].pieces) {
+    EXPECT_EQ(shapeOf(sim, piece), physics::ShapeType::ConcaveMesh);
     const std::vector<glm::vec2> uvs = capUvs(sim.world, piece, capId);
     ASSERT_FALSE(uvs.empty());
     for (const glm::vec2& uv : uvs) {
@@ -99,6 +107,29 @@ TEST(LiveTuning, ASplitableEditedThroughTheInspectorPathIsHonouredByTheNextSplit
       EXPECT_LE(std::max(uv.x, uv.y), 1.f + 1e-5f);
     }
   }
+}
+
+// Islands through the same path: two spheres apart, cut across both. One piece per side gives two
+// pieces; every connected part its own piece gives four.
+TEST(LiveTuning, IslandChoiceEditedLiveSetsThePieceCountOfTheNextSplit) {
+  Sim sim;
+  const geometry::MeshData spheres = geometry::primitives::twoDisjointSpheres(0.4f, 0.3f, 16, 8);
+  const ecs::Entity whole = addSplitableBody(sim, "whole sides", spheres, Splitable{}, 500.0, {-4.f, 5.f, 0.f});
+  const ecs::Entity parts = addSplitableBody(sim, "every part", spheres, Splitable{}, 500.0, {4.f, 5.f, 0.f});
+  SplitableTuning t = tuningOf(sim.world.get<Splitable>(whole));
+  t.separateIslands = false;
+  ASSERT_TRUE(applySplitableTuning(sim.world, whole, t).ok);
+  t.separateIslands = true;
+  t.islands = geometry::IslandMode::Connected;
+  ASSERT_TRUE(applySplitableTuning(sim.world, parts, t).ok);
+  for (ecs::Entity e : {whole, parts}) sim.requestCut(e, glm::dvec3(0.0, 1.0, 0.0), 5.0 - 0.1);
+  size_t wholePieces = 0, partPieces = 0;
+  for (const SplitEvent& ev : sim.runUntil(sim.tick + 4)) {
+    if (ev.original == whole) wholePieces = ev.pieces.size();
+    if (ev.original == parts) partPieces = ev.pieces.size();
+  }
+  EXPECT_EQ(wholePieces, 2u);
+  EXPECT_EQ(partPieces, 4u);
 }
 
 TEST(LiveTuning, OutOfRangeValuesAreRefusedWithTheSettingAndChangeNothing) {
