@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "components/live_tuning.h"
+#include "cleave/components/live_tuning.h"
 
 #include <cmath>
 

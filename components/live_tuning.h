@@ -10,9 +10,9 @@
 
 #include <string>
 
-#include "components/split_budget.h"
-#include "components/splitable.h"
-#include "engine/ecs/world.h"
+#include "cleave/components/split_budget.h"
+#include "cleave/components/splitable.h"
+#include "cleave/ecs/world.h"
 
 namespace cleave::components {
 

@@ -9,11 +9,11 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/ecs/entity.h"
-#include "engine/geometry/collider_parts.h"
-#include "engine/geometry/mesh_data.h"
-#include "engine/physics/physics_ids.h"
-#include "engine/render/renderer.h"
+#include "cleave/ecs/entity.h"
+#include "cleave/geometry/collider_parts.h"
+#include "cleave/geometry/mesh_data.h"
+#include "cleave/physics/physics_ids.h"
+#include "cleave/render/renderer.h"
 
 namespace cleave::components {
 

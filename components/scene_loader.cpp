@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "components/scene_loader.h"
+#include "cleave/components/scene_loader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,11 +10,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "components/scene_components.h"
-#include "engine/assets/mesh_io.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/components/scene_components.h"
+#include "cleave/assets/mesh_io.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/primitives.h"
 
 namespace cleave::components {
 

@@ -35,13 +35,13 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "components/split_budget.h"
-#include "components/split_system.h"
-#include "components/splitable.h"
-#include "engine/ecs/entity.h"
-#include "engine/ecs/world.h"
-#include "engine/physics/physics_world.h"
-#include "engine/render/renderer.h"
+#include "cleave/components/split_budget.h"
+#include "cleave/components/split_system.h"
+#include "cleave/components/splitable.h"
+#include "cleave/ecs/entity.h"
+#include "cleave/ecs/world.h"
+#include "cleave/physics/physics_world.h"
+#include "cleave/render/renderer.h"
 
 namespace cleave::components {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "components/simulation.h"
+#include "cleave/components/simulation.h"
 
-#include "components/skinned.h"
+#include "cleave/components/skinned.h"
 
 namespace cleave::components {
 

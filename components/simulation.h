@@ -16,11 +16,11 @@
 
 #include <glm/glm.hpp>
 
-#include "components/split_system.h"
-#include "engine/app/app.h"
-#include "engine/ecs/world.h"
-#include "engine/physics/physics_world.h"
-#include "engine/render/renderer.h"
+#include "cleave/components/split_system.h"
+#include "cleave/app/app.h"
+#include "cleave/ecs/world.h"
+#include "cleave/physics/physics_world.h"
+#include "cleave/render/renderer.h"
 
 namespace cleave::components {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "components/skinned.h"
+#include "cleave/components/skinned.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "components/scene_components.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/ecs/world.h"
-#include "engine/geometry/mass_properties.h"
+#include "cleave/components/scene_components.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/ecs/world.h"
+#include "cleave/geometry/mass_properties.h"
 
 namespace cleave::components {
 

@@ -19,15 +19,15 @@
 
 #include <glm/glm.hpp>
 
-#include "components/split_job.h"
-#include "components/split_system.h"
-#include "engine/anim/animation_clip.h"
-#include "engine/anim/skeleton.h"
-#include "engine/ecs/entity.h"
-#include "engine/geometry/mesh_data.h"
-#include "engine/physics/joint_def.h"
-#include "engine/physics/physics_ids.h"
-#include "engine/physics/physics_world.h"
+#include "cleave/components/split_job.h"
+#include "cleave/components/split_system.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/anim/skeleton.h"
+#include "cleave/ecs/entity.h"
+#include "cleave/geometry/mesh_data.h"
+#include "cleave/physics/joint_def.h"
+#include "cleave/physics/physics_ids.h"
+#include "cleave/physics/physics_world.h"
 
 namespace cleave::components {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "components/split_budget.h"
+#include "cleave/components/split_budget.h"
 
 #include <algorithm>
 #include <thread>

@@ -15,8 +15,8 @@
 
 #include <glm/glm.hpp>
 
-#include "components/shatter.h"
-#include "engine/ecs/entity.h"
+#include "cleave/components/shatter.h"
+#include "cleave/ecs/entity.h"
 
 namespace cleave::components {
 

@@ -2,8 +2,8 @@
 // The compute stage: container set-up, the cut, and a PieceSpec per piece with its collider planned
 // (carried parts clipped by the plane, hulls shrunk by their margin) and, for skinned ragdoll pieces,
 // its bones and joints planned. Nothing here touches the world, physics or the renderer.
-#include "components/split_compute.h"
-#include "components/split_clock.h"
+#include "cleave/components/split_compute.h"
+#include "cleave/components/split_clock.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,12 +13,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "components/skinned.h"
-#include "engine/geometry/convex_polytope.h"
-#include "engine/geometry/fracture.h"
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/primitives.h"
-#include "engine/physics/shape_def.h"
+#include "cleave/components/skinned.h"
+#include "cleave/geometry/convex_polytope.h"
+#include "cleave/geometry/fracture.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/primitives.h"
+#include "cleave/physics/shape_def.h"
 
 namespace cleave::components {
 namespace {

@@ -9,9 +9,9 @@
 
 #include <glm/glm.hpp>
 
-#include "components/split_job.h"
-#include "engine/geometry/collider_parts.h"
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/components/split_job.h"
+#include "cleave/geometry/collider_parts.h"
+#include "cleave/geometry/mesh_splitter.h"
 
 namespace cleave::components {
 

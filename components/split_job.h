@@ -21,14 +21,14 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "components/split_budget.h"
-#include "components/splitable.h"
-#include "engine/ecs/entity.h"
-#include "engine/geometry/collider_parts.h"
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/physics/joint_def.h"
-#include "engine/render/packed_mesh.h"
-#include "engine/render/renderer.h"
+#include "cleave/components/split_budget.h"
+#include "cleave/components/splitable.h"
+#include "cleave/ecs/entity.h"
+#include "cleave/geometry/collider_parts.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/physics/joint_def.h"
+#include "cleave/render/packed_mesh.h"
+#include "cleave/render/renderer.h"
 
 namespace cleave::components {
 

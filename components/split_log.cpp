@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "components/split_log.h"
+#include "cleave/components/split_log.h"
 
 #include <nlohmann/json.hpp>
 

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "components/split_system.h"
+#include "cleave/components/split_system.h"
 
 namespace cleave::components {
 

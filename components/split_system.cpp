@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "components/split_system.h"
-#include "components/split_clock.h"
-#include "components/skinned.h"
+#include "cleave/components/split_system.h"
+#include "cleave/components/split_clock.h"
+#include "cleave/components/skinned.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,11 +15,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "components/split_compute.h"
-#include "engine/ecs/command_buffer.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/geometry/mass_properties.h"
-#include "engine/log/log.h"
+#include "cleave/components/split_compute.h"
+#include "cleave/ecs/command_buffer.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/log/log.h"
 
 namespace cleave::components {
 

@@ -29,16 +29,16 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "components/scene_components.h"
-#include "components/split_budget.h"
-#include "components/split_job.h"
-#include "components/split_workers.h"
-#include "components/splitable.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/ecs/world.h"
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/physics/physics_world.h"
-#include "engine/render/renderer.h"
+#include "cleave/components/scene_components.h"
+#include "cleave/components/split_budget.h"
+#include "cleave/components/split_job.h"
+#include "cleave/components/split_workers.h"
+#include "cleave/components/splitable.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/ecs/world.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/physics/physics_world.h"
+#include "cleave/render/renderer.h"
 
 namespace cleave::components {
 

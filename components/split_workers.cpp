@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-#include "components/split_workers.h"
-#include "components/split_clock.h"
+#include "cleave/components/split_workers.h"
+#include "cleave/components/split_clock.h"
 
 #include <algorithm>
 #include <exception>

@@ -18,8 +18,8 @@
 #include <thread>
 #include <vector>
 
-#include "components/split_compute.h"
-#include "components/split_job.h"
+#include "cleave/components/split_compute.h"
+#include "cleave/components/split_job.h"
 
 namespace cleave::components {
 

@@ -12,10 +12,10 @@
 
 #include <glm/glm.hpp>
 
-#include "components/shatter.h"
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/physics/physics_ids.h"
-#include "engine/render/renderer.h"
+#include "cleave/components/shatter.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/physics/physics_ids.h"
+#include "cleave/render/renderer.h"
 
 namespace cleave::components {
 

@@ -9,12 +9,12 @@
 #include <memory>
 #include <string>
 
-#include "components/scene_components.h"
-#include "components/simulation.h"
-#include "components/split_system.h"
-#include "engine/app/app.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/components/scene_components.h"
+#include "cleave/components/simulation.h"
+#include "cleave/components/split_system.h"
+#include "cleave/app/app.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/geometry/primitives.h"
 
 namespace examples {
 

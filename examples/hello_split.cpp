@@ -3,8 +3,8 @@
 // cut by the plane y = 0.25; the pieces come back capped, closed, with exact mass properties.
 #include <cstdio>
 
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/primitives.h"
 
 int main() {
   using namespace cleave::geometry;

@@ -5,7 +5,7 @@
 // O(channels * log keys). Cubic splines follow the glTF 2.0 specification, appendix C:
 // p(s) = (2s^3 - 3s^2 + 1) v0 + (s^3 - 2s^2 + s) d b0 + (-2s^3 + 3s^2) v1 + (s^3 - s^2) d a1,
 // with d the key interval, b0 the out-tangent of the first key and a1 the in-tangent of the second.
-#include "engine/anim/animation_clip.h"
+#include "cleave/anim/animation_clip.h"
 
 #include <algorithm>
 #include <cmath>

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/anim/skeleton.h"
+#include "cleave/anim/skeleton.h"
 
 namespace cleave::anim {
 

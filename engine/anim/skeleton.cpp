@@ -2,7 +2,7 @@
 // Skeleton poses. Joints may be stored in any order, so localToGlobal resolves parents first: the
 // common case (every parent before its child) is one forward pass; otherwise joints are resolved in
 // repeated passes, each finishing at least one more level of the tree.
-#include "engine/anim/skeleton.h"
+#include "cleave/anim/skeleton.h"
 
 #include <cassert>
 #include <glm/gtc/matrix_transform.hpp>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/app/app.h"
+#include "cleave/app/app.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,8 +12,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
-#include "engine/ecs/hierarchy.h"
-#include "engine/log/log.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/log/log.h"
 
 namespace cleave::app {
 

@@ -20,16 +20,16 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
 
-#include "engine/app/app_options.h"
-#include "engine/app/phase.h"
-#include "engine/app/platform.h"
-#include "engine/app/ui_layer.h"
-#include "engine/ecs/world.h"
-#include "engine/input/input_state.h"
-#include "engine/input/input_source.h"
-#include "engine/input/replay.h"
-#include "engine/render/dynamic_scale.h"
-#include "engine/render/renderer.h"
+#include "cleave/app/app_options.h"
+#include "cleave/app/phase.h"
+#include "cleave/app/platform.h"
+#include "cleave/app/ui_layer.h"
+#include "cleave/ecs/world.h"
+#include "cleave/input/input_state.h"
+#include "cleave/input/input_source.h"
+#include "cleave/input/replay.h"
+#include "cleave/render/dynamic_scale.h"
+#include "cleave/render/renderer.h"
 
 namespace cleave::app {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/app/app_options.h"
+#include "cleave/app/app_options.h"
 
 #include <charconv>
 #include <cstdlib>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include <chrono>
 
-#include "engine/app/platform.h"
-#include "engine/render/gl_context.h"
+#include "cleave/app/platform.h"
+#include "cleave/render/gl_context.h"
 
 namespace cleave::app {
 

@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/input/input_event.h"
+#include "cleave/input/input_event.h"
 
 namespace cleave::app {
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-#include "engine/app/ui_layer.h"
+#include "cleave/app/ui_layer.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "engine/render/renderer.h"
+#include "cleave/render/renderer.h"
 
 #if CLEAVE_HAVE_IMGUI
 #include <imgui.h>

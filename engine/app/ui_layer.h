@@ -17,8 +17,8 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/app/platform.h"
-#include "engine/render/ui_renderer.h"
+#include "cleave/app/platform.h"
+#include "cleave/render/ui_renderer.h"
 
 struct ImGuiContext;
 

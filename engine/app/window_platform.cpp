@@ -8,10 +8,10 @@
 #include <cstdio>
 #include <optional>
 
-#include "engine/app/platform.h"
-#include "engine/input/key.h"
-#include "engine/log/log.h"
-#include "engine/render/gl_context.h"
+#include "cleave/app/platform.h"
+#include "cleave/input/key.h"
+#include "cleave/log/log.h"
+#include "cleave/render/gl_context.h"
 
 #if CLEAVE_HAVE_IMGUI
 #include <imgui_impl_glfw.h>

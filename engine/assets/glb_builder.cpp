@@ -2,13 +2,13 @@
 // The GLB writing core of glb_builder.h: the buffer, views and accessors, the mesh with its
 // materials and primitives, the scene and the serialisation that both GLB writers share (the
 // copy of source materials is in glb_materials.cpp).
-#include "engine/assets/glb_builder.h"
+#include "cleave/assets/glb_builder.h"
 
 #include <cstring>
 #include <sstream>
 #include <utility>
 
-#include "engine/assets/mesh_reader.h"
+#include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
 

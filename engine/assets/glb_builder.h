@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/assets/mesh_io.h"
-#include "engine/geometry/mesh_data.h"
+#include "cleave/assets/mesh_io.h"
+#include "cleave/geometry/mesh_data.h"
 
 namespace cleave::assets::detail {
 

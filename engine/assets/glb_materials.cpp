@@ -9,7 +9,7 @@
 #include <cmath>
 #include <system_error>
 
-#include "engine/assets/glb_builder.h"
+#include "cleave/assets/glb_builder.h"
 
 namespace cleave::assets::detail {
 

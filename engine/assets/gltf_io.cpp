@@ -15,9 +15,9 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <tiny_gltf.h>
 
-#include "engine/assets/glb_builder.h"
-#include "engine/assets/gltf_access.h"
-#include "engine/assets/mesh_reader.h"
+#include "cleave/assets/glb_builder.h"
+#include "cleave/assets/gltf_access.h"
+#include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
 

@@ -18,8 +18,8 @@
 #include <optional>
 #include <string_view>
 
-#include "engine/assets/gltf_access.h"
-#include "engine/assets/model.h"
+#include "cleave/assets/gltf_access.h"
+#include "cleave/assets/model.h"
 
 namespace cleave::assets {
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Dispatch by extension, file access, the helpers shared by the readers, and the OBJ writer.
-#include "engine/assets/mesh_io.h"
+#include "cleave/assets/mesh_io.h"
 
 #include <algorithm>
 #include <cctype>
@@ -10,7 +10,7 @@
 #include <fstream>
 #include <system_error>
 
-#include "engine/assets/mesh_reader.h"
+#include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets {
 

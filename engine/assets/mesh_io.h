@@ -25,8 +25,8 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/assets/material.h"
-#include "engine/geometry/mesh_data.h"
+#include "cleave/assets/material.h"
+#include "cleave/geometry/mesh_data.h"
 
 namespace cleave::assets {
 

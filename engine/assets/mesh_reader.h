@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/assets/mesh_io.h"
-#include "engine/geometry/cap_triangulator.h"
+#include "cleave/assets/mesh_io.h"
+#include "cleave/geometry/cap_triangulator.h"
 
 namespace cleave::assets::detail {
 

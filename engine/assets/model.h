@@ -34,11 +34,11 @@
 #include <string>
 #include <vector>
 
-#include "engine/anim/animation_clip.h"
-#include "engine/anim/skeleton.h"
-#include "engine/assets/material.h"
-#include "engine/assets/mesh_io.h"
-#include "engine/geometry/mesh_data.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/anim/skeleton.h"
+#include "cleave/assets/material.h"
+#include "cleave/assets/mesh_io.h"
+#include "cleave/geometry/mesh_data.h"
 
 namespace cleave::assets {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "engine/assets/mesh_reader.h"
+#include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
 

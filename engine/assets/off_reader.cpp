@@ -4,7 +4,7 @@
 // ("n i0 ... i(n-1)" with 0-based indices, an optional colour after it is ignored).
 #include <cmath>
 
-#include "engine/assets/mesh_reader.h"
+#include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
 

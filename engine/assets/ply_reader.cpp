@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "engine/assets/mesh_reader.h"
+#include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
 

@@ -12,9 +12,9 @@
 // (d + 0.01)^-6 with d its distance to the nearest of the joint's segments, so the nearest bone
 // dominates and two bones blend evenly only where they meet. The four largest are kept, weights
 // under 1 % dropped, and the rest renormalised.
-#include "engine/assets/procedural_character.h"
+#include "cleave/assets/procedural_character.h"
 
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/primitives.h"
 
 #include <algorithm>
 #include <array>

@@ -21,9 +21,9 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "engine/anim/animation_clip.h"
-#include "engine/anim/skeleton.h"
-#include "engine/geometry/mesh_data.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/anim/skeleton.h"
+#include "cleave/geometry/mesh_data.h"
 
 namespace cleave::assets {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/assets/procedural_textures.h"
+#include "cleave/assets/procedural_textures.h"
 
 #include <algorithm>
 #include <cmath>

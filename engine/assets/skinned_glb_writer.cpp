@@ -20,9 +20,9 @@
 
 #include <tiny_gltf.h>
 
-#include "engine/assets/glb_builder.h"
-#include "engine/assets/mesh_reader.h"
-#include "engine/assets/model.h"
+#include "cleave/assets/glb_builder.h"
+#include "cleave/assets/mesh_reader.h"
+#include "cleave/assets/model.h"
 
 namespace cleave::assets {
 

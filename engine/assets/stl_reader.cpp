@@ -10,7 +10,7 @@
 #include <cstring>
 #include <unordered_map>
 
-#include "engine/assets/mesh_reader.h"
+#include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
 

@@ -24,8 +24,8 @@
 #include <utility>
 #include <vector>
 
-#include "engine/ecs/entity.h"
-#include "engine/ecs/world.h"
+#include "cleave/ecs/entity.h"
+#include "cleave/ecs/world.h"
 
 namespace cleave::ecs {
 

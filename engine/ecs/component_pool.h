@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/ecs/entity.h"
+#include "cleave/ecs/entity.h"
 
 namespace cleave::ecs::detail {
 

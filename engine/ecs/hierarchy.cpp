@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/ecs/hierarchy.h"
+#include "cleave/ecs/hierarchy.h"
 
 #include <algorithm>
 

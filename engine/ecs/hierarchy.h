@@ -19,8 +19,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "engine/ecs/entity.h"
-#include "engine/ecs/world.h"
+#include "cleave/ecs/entity.h"
+#include "cleave/ecs/world.h"
 
 namespace cleave::ecs {
 

@@ -21,8 +21,8 @@
 #include <tuple>
 #include <utility>
 
-#include "engine/ecs/component_pool.h"
-#include "engine/ecs/entity.h"
+#include "cleave/ecs/component_pool.h"
+#include "cleave/ecs/entity.h"
 
 namespace cleave::ecs {
 

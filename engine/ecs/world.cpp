@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-#include "engine/ecs/world.h"
+#include "cleave/ecs/world.h"
 
 
-#include "engine/ecs/command_buffer.h"
-#include "engine/ecs/hierarchy.h"
+#include "cleave/ecs/command_buffer.h"
+#include "cleave/ecs/hierarchy.h"
 
 namespace cleave::ecs {
 

@@ -23,9 +23,9 @@
 #include <utility>
 #include <vector>
 
-#include "engine/ecs/component_pool.h"
-#include "engine/ecs/entity.h"
-#include "engine/ecs/view.h"
+#include "cleave/ecs/component_pool.h"
+#include "cleave/ecs/entity.h"
+#include "cleave/ecs/view.h"
 
 namespace cleave::ecs {
 

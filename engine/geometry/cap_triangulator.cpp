@@ -14,7 +14,7 @@
 // than removed, so every ring edge stays in the output and the cap meets the side triangles edge to
 // edge. A final area check (the unsigned triangle areas must add up to the polygon area) turns any
 // overlap or gap into a failure instead of a wrong cap.
-#include "engine/geometry/cap_triangulator.h"
+#include "cleave/geometry/cap_triangulator.h"
 
 #include <algorithm>
 #include <cmath>

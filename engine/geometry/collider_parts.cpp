@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: MIT
 // Collider parts: decomposition by recursive mid-plane cuts (each part then hulled), and the
 // clipping of carried parts by a cut plane into the pieces of the split.
-#include "engine/geometry/collider_parts.h"
+#include "cleave/geometry/collider_parts.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <span>
 
-#include "engine/geometry/convex_hull.h"
-#include "engine/geometry/mass_properties.h"
+#include "cleave/geometry/convex_hull.h"
+#include "cleave/geometry/mass_properties.h"
 
 namespace cleave::geometry {
 namespace {

@@ -19,9 +19,9 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/geometry/convex_polytope.h"
-#include "engine/geometry/mesh_data.h"
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/geometry/convex_polytope.h"
+#include "cleave/geometry/mesh_data.h"
+#include "cleave/geometry/mesh_splitter.h"
 
 namespace cleave::geometry {
 

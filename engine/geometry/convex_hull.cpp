@@ -9,7 +9,7 @@
 // the tolerance of a face is "on" it and never creates a face, which is what makes duplicate and
 // coplanar points harmless. Adjacency is a directed-edge map used for look-ups only, so no hash
 // order leaks into the output.
-#include "engine/geometry/convex_hull.h"
+#include "cleave/geometry/convex_hull.h"
 
 #include <algorithm>
 #include <array>

@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/geometry/mesh_data.h"
+#include "cleave/geometry/mesh_data.h"
 
 namespace cleave::geometry {
 

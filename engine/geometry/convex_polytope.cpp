@@ -4,7 +4,7 @@
 // points of one edge are shared by its two faces (keyed by the edge), and the new face is the ring of
 // section points (and of the vertices on the plane) ordered by angle about their mean. The order of
 // everything follows the input order, so the output is deterministic.
-#include "engine/geometry/convex_polytope.h"
+#include "cleave/geometry/convex_polytope.h"
 
 #include <algorithm>
 #include <cmath>

@@ -20,7 +20,7 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/geometry/convex_hull.h"
+#include "cleave/geometry/convex_hull.h"
 
 namespace cleave::geometry {
 

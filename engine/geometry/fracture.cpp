@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/geometry/fracture.h"
+#include "cleave/geometry/fracture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <memory>
 #include <numeric>
 
-#include "engine/geometry/convex_polytope.h"
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/geometry/convex_polytope.h"
+#include "cleave/geometry/mesh_splitter.h"
 
 namespace cleave::geometry {
 

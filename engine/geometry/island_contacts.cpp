@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/geometry/island_contacts.h"
+#include "cleave/geometry/island_contacts.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 // which is the canonical-tetrahedron covariance mapped by the matrix [a b c]. Summed over a closed,
 // consistently wound surface the contributions outside the solid cancel. Using the bounding-box
 // centre as r keeps every product small, so the sums lose little precision in double.
-#include "engine/geometry/mass_properties.h"
+#include "cleave/geometry/mass_properties.h"
 
 #include <algorithm>
 #include <numeric>
@@ -21,7 +21,7 @@
 #include <emmintrin.h>
 #endif
 
-#include "engine/geometry/convex_hull.h"
+#include "cleave/geometry/convex_hull.h"
 
 namespace cleave::geometry {
 namespace {

@@ -14,7 +14,7 @@
 #include <cstring>
 #include <numeric>
 
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/geometry/mesh_splitter.h"
 
 namespace cleave::geometry {
 

@@ -13,8 +13,8 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/geometry/mesh_data.h"
-#include "engine/geometry/split_types.h"
+#include "cleave/geometry/mesh_data.h"
+#include "cleave/geometry/split_types.h"
 
 namespace cleave::geometry {
 

@@ -39,7 +39,7 @@
 //  7. Mass properties per piece on the cut-space positions.
 // Every scratch array lives in the splitter and every output array in the reused SplitResult, so a
 // warmed-up split of a same-size mesh performs no heap allocation.
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/geometry/mesh_splitter.h"
 
 #include <algorithm>
 #include <cassert>
@@ -49,8 +49,8 @@
 #include <system_error>
 #include <thread>
 
-#include "engine/geometry/cap_triangulator.h"
-#include "engine/geometry/island_contacts.h"
+#include "cleave/geometry/cap_triangulator.h"
+#include "cleave/geometry/island_contacts.h"
 
 namespace cleave::geometry {
 

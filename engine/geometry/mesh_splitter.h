@@ -27,10 +27,10 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/mesh_container.h"
-#include "engine/geometry/mesh_data.h"
-#include "engine/geometry/split_types.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/mesh_container.h"
+#include "cleave/geometry/mesh_data.h"
+#include "cleave/geometry/split_types.h"
 
 namespace cleave::geometry {
 

@@ -4,7 +4,7 @@
 // exact points. Triangles with two equal positions (at poles and disc centres) are skipped, and
 // each triangle is wound so that its geometric normal agrees with the analytic vertex normals,
 // which gives counter-clockwise-from-outside winding without per-shape bookkeeping.
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/primitives.h"
 
 #include <algorithm>
 #include <array>

@@ -11,8 +11,8 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/mesh_data.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/mesh_data.h"
 
 namespace cleave::geometry {
 

@@ -10,7 +10,7 @@
 #include <variant>
 #include <vector>
 
-#include "engine/input/key.h"
+#include "cleave/input/key.h"
 
 namespace cleave::input {
 

@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "engine/input/input_event.h"
-#include "engine/input/replay.h"
+#include "cleave/input/input_event.h"
+#include "cleave/input/replay.h"
 
 namespace cleave::input {
 

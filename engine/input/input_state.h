@@ -19,8 +19,8 @@
 
 #include <glm/vec2.hpp>
 
-#include "engine/input/input_event.h"
-#include "engine/input/key.h"
+#include "cleave/input/input_event.h"
+#include "cleave/input/key.h"
 
 namespace cleave::input {
 

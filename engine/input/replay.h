@@ -22,7 +22,7 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/input/input_event.h"
+#include "cleave/input/input_event.h"
 
 namespace cleave::input {
 

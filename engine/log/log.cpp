@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/log/log.h"
+#include "cleave/log/log.h"
 
 #include <cstdarg>
 #include <cstdio>

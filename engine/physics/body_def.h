@@ -13,7 +13,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "engine/physics/physics_ids.h"
+#include "cleave/physics/physics_ids.h"
 
 namespace cleave::physics {
 

@@ -22,8 +22,8 @@
 
 #include <cstdint>
 
-#include "engine/physics/physics_events.h"
-#include "engine/physics/physics_ids.h"
+#include "cleave/physics/physics_events.h"
+#include "cleave/physics/physics_ids.h"
 
 namespace cleave::physics {
 

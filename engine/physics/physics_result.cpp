@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "engine/physics/physics_result.h"
-#include "engine/physics/joint_def.h"
+#include "cleave/physics/physics_result.h"
+#include "cleave/physics/joint_def.h"
 
-#include "engine/physics/physics_events.h"
+#include "cleave/physics/physics_events.h"
 
 namespace cleave::physics {
 

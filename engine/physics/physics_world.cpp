@@ -10,7 +10,7 @@
 //
 // Back-references: every Bullet collision object carries its slot index in userIndex and its kind
 // (body or trigger) in userIndex2; the generation is read from the slot table.
-#include "engine/physics/physics_world.h"
+#include "cleave/physics/physics_world.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,9 +22,9 @@
 #include <BulletCollision/CollisionDispatch/btGhostObject.h>
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
 
-#include "engine/physics/detail/bullet_convert.h"
-#include "engine/physics/detail/shape_builder.h"
-#include "engine/physics/detail/slot_pool.h"
+#include "cleave/physics/detail/bullet_convert.h"
+#include "cleave/physics/detail/shape_builder.h"
+#include "cleave/physics/detail/slot_pool.h"
 
 namespace cleave::physics {
 namespace {

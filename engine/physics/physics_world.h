@@ -27,12 +27,12 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "engine/physics/body_def.h"
-#include "engine/physics/joint_def.h"
-#include "engine/physics/physics_events.h"
-#include "engine/physics/physics_ids.h"
-#include "engine/physics/physics_result.h"
-#include "engine/physics/shape_def.h"
+#include "cleave/physics/body_def.h"
+#include "cleave/physics/joint_def.h"
+#include "cleave/physics/physics_events.h"
+#include "cleave/physics/physics_ids.h"
+#include "cleave/physics/physics_result.h"
+#include "cleave/physics/shape_def.h"
 
 namespace cleave::physics {
 

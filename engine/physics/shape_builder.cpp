@@ -6,7 +6,7 @@
 // every face inwards along its normal; we shrink by exactly the collision margin, so that Bullet's
 // rounded support mapping (shrunken hull + sphere of radius margin) puts every face back where the
 // input had it. See shape_def.h for why this matters for small split pieces.
-#include "engine/physics/detail/shape_builder.h"
+#include "cleave/physics/detail/shape_builder.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,8 +15,8 @@
 #include <BulletCollision/Gimpact/btGImpactShape.h>
 #include <LinearMath/btConvexHullComputer.h>
 
-#include "engine/geometry/convex_hull.h"
-#include "engine/physics/detail/bullet_convert.h"
+#include "cleave/geometry/convex_hull.h"
+#include "cleave/physics/detail/bullet_convert.h"
 
 namespace cleave::physics::detail {
 namespace {

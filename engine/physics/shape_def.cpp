@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/physics/shape_def.h"
+#include "cleave/physics/shape_def.h"
 
 #include <utility>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/render/dynamic_scale.h"
+#include "cleave/render/dynamic_scale.h"
 
 #include <algorithm>
 #include <cmath>

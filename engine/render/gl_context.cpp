@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/render/gl_context.h"
+#include "cleave/render/gl_context.h"
 
 #include <glad/gl.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/render/packed_mesh.h"
+#include "cleave/render/packed_mesh.h"
 
 #include <cstring>
 

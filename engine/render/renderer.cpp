@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/render/renderer.h"
+#include "cleave/render/renderer.h"
 
 #include <glad/gl.h>
 
@@ -11,7 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "engine/render/shaders.h"
+#include "cleave/render/shaders.h"
 
 #include <stb_easy_font.h>
 #include <stb_image.h>

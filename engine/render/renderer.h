@@ -18,8 +18,8 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/geometry/mesh_data.h"
-#include "engine/render/packed_mesh.h"
+#include "cleave/geometry/mesh_data.h"
+#include "cleave/render/packed_mesh.h"
 
 namespace cleave::render {
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "engine/render/shaders.h"
+#include "cleave/render/shaders.h"
 
-#include "engine/render/renderer.h"
+#include "cleave/render/renderer.h"
 
 // The joint array size of the skinning shaders, spelled out for the GLSL source.
 #define CLEAVE_MAX_SKIN_JOINTS_STRING "128"

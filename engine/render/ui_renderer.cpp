@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "engine/render/ui_renderer.h"
+#include "cleave/render/ui_renderer.h"
 
-#include "engine/render/renderer.h"
+#include "cleave/render/renderer.h"
 
 #if CLEAVE_HAVE_IMGUI
 #include <imgui.h>

@@ -13,9 +13,9 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/assets/procedural_textures.h"
-#include "engine/geometry/mesh_data.h"
-#include "engine/render/renderer.h"
+#include "cleave/assets/procedural_textures.h"
+#include "cleave/geometry/mesh_data.h"
+#include "cleave/render/renderer.h"
 
 namespace cleave::arena {
 

@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "components/skinned.h"
-#include "components/split_system.h"
+#include "cleave/components/skinned.h"
+#include "cleave/components/split_system.h"
 #include "game/arena/arena_game.h"
 
 namespace cleave::arena {

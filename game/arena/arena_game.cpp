@@ -10,12 +10,12 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
-#include "components/scene_components.h"
-#include "components/skinned.h"
-#include "components/splitable.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/log/log.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/components/scene_components.h"
+#include "cleave/components/skinned.h"
+#include "cleave/components/splitable.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/log/log.h"
+#include "cleave/geometry/primitives.h"
 #include "game/arena/arena_layout.h"
 #include "game/arena/arena_surroundings.h"
 

@@ -22,13 +22,13 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json_fwd.hpp>
 
-#include "components/split_log.h"
-#include "components/simulation.h"
-#include "components/split_system.h"
-#include "engine/anim/animation_clip.h"
-#include "engine/app/app.h"
-#include "engine/assets/procedural_character.h"
-#include "engine/physics/physics_world.h"
+#include "cleave/components/split_log.h"
+#include "cleave/components/simulation.h"
+#include "cleave/components/split_system.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/app/app.h"
+#include "cleave/assets/procedural_character.h"
+#include "cleave/physics/physics_world.h"
 #include "game/arena/arena_art.h"
 #include "game/arena/arena_tuning.h"
 #include "game/arena/enemies.h"

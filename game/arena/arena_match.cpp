@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "components/split_system.h"
+#include "cleave/components/split_system.h"
 #include "game/arena/arena_game.h"
 #include "game/arena/arena_layout.h"
 

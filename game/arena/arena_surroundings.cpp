@@ -7,7 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/primitives.h"
 
 namespace cleave::arena {
 

@@ -13,8 +13,8 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/assets/procedural_textures.h"
-#include "engine/geometry/mesh_data.h"
+#include "cleave/assets/procedural_textures.h"
+#include "cleave/geometry/mesh_data.h"
 
 namespace cleave::arena {
 

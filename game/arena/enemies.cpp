@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "components/scene_components.h"
-#include "components/split_system.h"
-#include "components/splitable.h"
-#include "engine/ecs/hierarchy.h"
+#include "cleave/components/scene_components.h"
+#include "cleave/components/split_system.h"
+#include "cleave/components/splitable.h"
+#include "cleave/ecs/hierarchy.h"
 #include "game/arena/arena_layout.h"
 
 namespace cleave::arena {

@@ -19,14 +19,14 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "components/skinned.h"
-#include "engine/anim/animation_clip.h"
-#include "engine/assets/procedural_character.h"
-#include "engine/ecs/entity.h"
-#include "engine/ecs/world.h"
-#include "engine/geometry/mesh_data.h"
-#include "engine/physics/physics_world.h"
-#include "engine/render/renderer.h"
+#include "cleave/components/skinned.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/assets/procedural_character.h"
+#include "cleave/ecs/entity.h"
+#include "cleave/ecs/world.h"
+#include "cleave/geometry/mesh_data.h"
+#include "cleave/physics/physics_world.h"
+#include "cleave/render/renderer.h"
 #include "game/arena/arena_art.h"
 #include "game/arena/arena_tuning.h"
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "cleave_version.h"
-#include "engine/app/app.h"
+#include "cleave/app/app.h"
 #include "game/arena/arena_game.h"
 
 int main(int argc, char** argv) {

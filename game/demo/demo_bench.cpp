@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/ecs/hierarchy.h"
-#include "components/split_clock.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/components/split_clock.h"
 #include "game/demo/demo_game.h"
 
 namespace cleave::demo {

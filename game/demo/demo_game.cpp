@@ -10,15 +10,15 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
-#include "components/scene_components.h"
-#include "components/scene_loader.h"
-#include "components/split_log.h"
-#include "components/splitable.h"
-#include "engine/assets/procedural_character.h"
-#include "engine/assets/procedural_textures.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/geometry/primitives.h"
-#include "engine/log/log.h"
+#include "cleave/components/scene_components.h"
+#include "cleave/components/scene_loader.h"
+#include "cleave/components/split_log.h"
+#include "cleave/components/splitable.h"
+#include "cleave/assets/procedural_character.h"
+#include "cleave/assets/procedural_textures.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/geometry/primitives.h"
+#include "cleave/log/log.h"
 #include "game/demo/spawn_spots.h"
 
 namespace cleave::demo {

@@ -12,13 +12,13 @@
 
 #include <glm/glm.hpp>
 
-#include "components/scene_loader.h"
-#include "components/skinned.h"
-#include "components/split_log.h"
-#include "components/simulation.h"
-#include "components/split_system.h"
-#include "engine/app/app.h"
-#include "engine/physics/physics_world.h"
+#include "cleave/components/scene_loader.h"
+#include "cleave/components/skinned.h"
+#include "cleave/components/split_log.h"
+#include "cleave/components/simulation.h"
+#include "cleave/components/split_system.h"
+#include "cleave/app/app.h"
+#include "cleave/physics/physics_world.h"
 #include "game/inspector/inspector.h"
 
 namespace cleave::demo {

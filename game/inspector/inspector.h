@@ -18,10 +18,10 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
 
-#include "components/live_tuning.h"
-#include "components/split_log.h"
-#include "components/split_system.h"
-#include "engine/app/app.h"
+#include "cleave/components/live_tuning.h"
+#include "cleave/components/split_log.h"
+#include "cleave/components/split_system.h"
+#include "cleave/app/app.h"
 
 namespace cleave::inspector {
 

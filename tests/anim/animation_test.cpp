@@ -6,8 +6,8 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/anim/animation_clip.h"
-#include "engine/anim/skeleton.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/anim/skeleton.h"
 
 namespace cleave::anim {
 namespace {

@@ -21,7 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/render/renderer.h"
+#include "cleave/render/renderer.h"
 #include "tests/render/image_compare.h"
 #include "tests/support/executable_run.h"
 

@@ -21,8 +21,8 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/assets/mesh_io.h"
-#include "engine/geometry/mass_properties.h"
+#include "cleave/assets/mesh_io.h"
+#include "cleave/geometry/mass_properties.h"
 
 namespace cleave::assets::test {
 

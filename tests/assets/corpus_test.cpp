@@ -41,10 +41,10 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/assets/mesh_io.h"
-#include "engine/geometry/fracture.h"
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/assets/mesh_io.h"
+#include "cleave/geometry/fracture.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/mesh_splitter.h"
 #include "tests/assets/asset_test_files.h"
 #include "tests/geometry/cap_fixtures.h"
 #include "tests/geometry/test_meshes.h"

@@ -2,7 +2,7 @@
 // Bad input of every kind gives a one-line error that names the file, an empty mesh, and no crash.
 #include <gtest/gtest.h>
 
-#include "engine/assets/mesh_io.h"
+#include "cleave/assets/mesh_io.h"
 #include "tests/assets/asset_test_files.h"
 
 namespace cleave::assets {

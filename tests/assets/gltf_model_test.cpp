@@ -11,9 +11,9 @@
 #include <limits>
 #include <map>
 
-#include "engine/assets/model.h"
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/assets/model.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/assets/asset_test_files.h"
 
 namespace cleave::assets {

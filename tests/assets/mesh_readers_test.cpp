@@ -3,7 +3,7 @@
 // plus the format details each reader promises (welding, negative indices, materials, attributes).
 #include <gtest/gtest.h>
 
-#include "engine/assets/mesh_io.h"
+#include "cleave/assets/mesh_io.h"
 #include "tests/assets/asset_test_files.h"
 
 namespace cleave::assets {

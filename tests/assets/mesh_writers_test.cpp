@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
-#include "engine/assets/mesh_io.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/assets/mesh_io.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/assets/asset_test_files.h"
 
 namespace cleave::assets {

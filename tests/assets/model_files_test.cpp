@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "engine/assets/mesh_io.h"
-#include "engine/geometry/mass_properties.h"
+#include "cleave/assets/mesh_io.h"
+#include "cleave/geometry/mass_properties.h"
 #include "tests/assets/asset_test_files.h"
 #include "tests/assets/tool_runner.h"
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The generated humanoid: closed, about 4,000 triangles, weights summing to 1, a valid skeleton and
 // clips, and cuttable with caps in a walking pose.
-#include "engine/assets/procedural_character.h"
+#include "cleave/assets/procedural_character.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/anim/animation_clip.h"
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/geometry/mesh_splitter.h"
 
 namespace cleave::assets {
 namespace {

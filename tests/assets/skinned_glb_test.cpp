@@ -17,11 +17,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/anim/animation_clip.h"
-#include "engine/anim/skeleton.h"
-#include "engine/assets/model.h"
-#include "engine/assets/procedural_character.h"
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/anim/skeleton.h"
+#include "cleave/assets/model.h"
+#include "cleave/assets/procedural_character.h"
+#include "cleave/geometry/mesh_splitter.h"
 #include "tests/assets/asset_test_files.h"
 #include "tests/assets/tool_runner.h"
 

@@ -5,12 +5,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "components/scene_components.h"
-#include "components/splitable.h"
-#include "components/split_system.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/components/scene_components.h"
+#include "cleave/components/splitable.h"
+#include "cleave/components/split_system.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/components/sim_harness.h"
 
 namespace cleave::components::testing {

@@ -9,8 +9,8 @@
 #include <limits>
 #include <optional>
 
-#include "components/live_tuning.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/components/live_tuning.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/components/sim_harness.h"
 
 namespace {

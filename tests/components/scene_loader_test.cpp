@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "components/scene_loader.h"
+#include "cleave/components/scene_loader.h"
 
 #include <cmath>
 #include <filesystem>
@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/assets/mesh_io.h"
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/assets/mesh_io.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/components/sim_harness.h"
 
 namespace cleave::components {

@@ -9,8 +9,8 @@
 #include <cstring>
 #include <vector>
 
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/components/sim_harness.h"
 
 namespace cleave::components {

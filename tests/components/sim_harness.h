@@ -14,14 +14,14 @@
 #include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
-#include "components/scene_components.h"
-#include "components/scene_loader.h"
-#include "components/simulation.h"
-#include "components/skinned.h"
-#include "components/split_system.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/ecs/world.h"
-#include "engine/physics/physics_world.h"
+#include "cleave/components/scene_components.h"
+#include "cleave/components/scene_loader.h"
+#include "cleave/components/simulation.h"
+#include "cleave/components/skinned.h"
+#include "cleave/components/split_system.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/ecs/world.h"
+#include "cleave/physics/physics_world.h"
 
 namespace cleave::components::testing {
 

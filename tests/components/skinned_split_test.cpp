@@ -11,10 +11,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "components/skinned.h"
-#include "components/splitable.h"
-#include "engine/assets/procedural_character.h"
-#include "engine/geometry/mass_properties.h"
+#include "cleave/components/skinned.h"
+#include "cleave/components/splitable.h"
+#include "cleave/assets/procedural_character.h"
+#include "cleave/geometry/mass_properties.h"
 #include "tests/components/sim_harness.h"
 
 namespace cleave::components {

@@ -8,9 +8,9 @@
 
 #include <cstdio>
 
-#include "components/split_compute.h"
-#include "engine/geometry/collider_parts.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/components/split_compute.h"
+#include "cleave/geometry/collider_parts.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/support/counting_allocator.h"
 
 namespace cleave::components {

@@ -3,7 +3,7 @@
 // world, physics or renderer; the same job gives the same bytes on every thread and through a
 // host's task callback; pieces share the parent's mass and carry its velocity at their centre;
 // carried parts clip into the pieces; ragdoll plans share the mass by influence.
-#include "components/split_compute.h"
+#include "cleave/components/split_compute.h"
 
 #include <gtest/gtest.h>
 
@@ -15,11 +15,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "components/skinned.h"
-#include "components/split_workers.h"
-#include "engine/assets/procedural_character.h"
-#include "engine/geometry/collider_parts.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/components/skinned.h"
+#include "cleave/components/split_workers.h"
+#include "cleave/assets/procedural_character.h"
+#include "cleave/geometry/collider_parts.h"
+#include "cleave/geometry/primitives.h"
 
 namespace cleave::components {
 namespace {

@@ -11,9 +11,9 @@
 
 #include <gtest/gtest.h>
 
-#include "components/scene_loader.h"
-#include "engine/geometry/primitives.h"
-#include "engine/log/log.h"
+#include "cleave/components/scene_loader.h"
+#include "cleave/geometry/primitives.h"
+#include "cleave/log/log.h"
 #include "tests/components/sim_harness.h"
 
 namespace cleave::components {

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-#include "engine/ecs/command_buffer.h"
+#include "cleave/ecs/command_buffer.h"
 
 #include <gtest/gtest.h>
 
-#include "engine/ecs/hierarchy.h"
-#include "engine/ecs/world.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/ecs/world.h"
 
 namespace cleave::ecs {
 namespace {

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-#include "engine/ecs/hierarchy.h"
+#include "cleave/ecs/hierarchy.h"
 
 #include <gtest/gtest.h>
 
 #include <glm/gtc/constants.hpp>
 
-#include "engine/ecs/command_buffer.h"
+#include "cleave/ecs/command_buffer.h"
 
 namespace cleave::ecs {
 namespace {

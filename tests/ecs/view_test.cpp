@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-#include "engine/ecs/view.h"
+#include "cleave/ecs/view.h"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "engine/ecs/world.h"
+#include "cleave/ecs/world.h"
 
 namespace cleave::ecs {
 namespace {

@@ -7,8 +7,8 @@
 #include <set>
 #include <vector>
 
-#include "engine/ecs/command_buffer.h"
-#include "engine/ecs/world.h"
+#include "cleave/ecs/command_buffer.h"
+#include "cleave/ecs/world.h"
 
 namespace cleave::ecs {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/ecs/world.h"
+#include "cleave/ecs/world.h"
 
 #include <gtest/gtest.h>
 

@@ -27,8 +27,8 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/geometry/cap_triangulator.h"
-#include "engine/geometry/split_types.h"
+#include "cleave/geometry/cap_triangulator.h"
+#include "cleave/geometry/split_types.h"
 
 namespace cleave::geometry::testing {
 

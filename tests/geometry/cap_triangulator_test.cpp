@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/geometry/cap_triangulator.h"
+#include "cleave/geometry/cap_triangulator.h"
 
 namespace cleave::geometry {
 namespace {

@@ -2,7 +2,7 @@
 // Carried collider parts: the decomposition of concave meshes, the clip of parts into the pieces of
 // a split (each part in the island that holds it, every piece with parts), and the fit of the
 // clipped parts to the pieces they stand for.
-#include "engine/geometry/collider_parts.h"
+#include "cleave/geometry/collider_parts.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/primitives.h"
 
 namespace cleave::geometry {
 namespace {

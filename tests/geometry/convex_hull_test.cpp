@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Convex hulls: exact small cases, containment and convexity on random clouds, degenerate inputs,
 // determinism; and the convexity test the physics layer uses to pick a collider.
-#include "engine/geometry/convex_hull.h"
+#include "cleave/geometry/convex_hull.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/geometry/test_meshes.h"
 
 namespace cleave::geometry {

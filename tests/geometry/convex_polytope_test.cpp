@@ -2,7 +2,7 @@
 // Convex polytopes as carried collider parts: exact clips of small cases, clips through vertices and
 // faces that add no sliver, shrinking by a margin, mirrored transforms, simplification that never
 // grows a part, and invariants of random clips (volumes add up, both sides stay convex).
-#include "engine/geometry/convex_polytope.h"
+#include "cleave/geometry/convex_polytope.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/geometry/test_meshes.h"
 
 namespace cleave::geometry {

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "engine/geometry/fracture.h"
-#include "engine/geometry/mesh_container.h"
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/fracture.h"
+#include "cleave/geometry/mesh_container.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/geometry/test_meshes.h"
 
 namespace cleave::geometry {

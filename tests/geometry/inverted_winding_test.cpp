@@ -13,8 +13,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/geometry/test_meshes.h"
 
 namespace cleave::geometry {

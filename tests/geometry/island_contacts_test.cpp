@@ -8,9 +8,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/island_contacts.h"
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/island_contacts.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/geometry/test_meshes.h"
 
 namespace cleave::geometry {

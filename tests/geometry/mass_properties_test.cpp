@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Mass properties against exact and analytic values, principal axes, and the procedural primitives
 // (closed, outward, exact seams, analytic volumes) they are measured on.
-#include "engine/geometry/mass_properties.h"
+#include "cleave/geometry/mass_properties.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/primitives.h"
 #include "tests/geometry/test_meshes.h"
 
 namespace cleave::geometry {

@@ -12,8 +12,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/primitives.h"
 
 namespace cleave::geometry {
 namespace {

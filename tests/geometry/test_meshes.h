@@ -20,8 +20,8 @@
 
 #include <glm/glm.hpp>
 
-#include "engine/geometry/mesh_data.h"
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/geometry/mesh_data.h"
+#include "cleave/geometry/mesh_splitter.h"
 
 namespace cleave::geometry::testing {
 

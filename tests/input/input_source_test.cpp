@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/input/input_source.h"
+#include "cleave/input/input_source.h"
 
 #include <gtest/gtest.h>
 

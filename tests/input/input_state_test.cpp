@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/input/input_state.h"
+#include "cleave/input/input_state.h"
 
 #include <gtest/gtest.h>
 

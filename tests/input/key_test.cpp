@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/input/key.h"
+#include "cleave/input/key.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "engine/input/replay.h"
+#include "cleave/input/replay.h"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-#include "engine/log/log.h"
+#include "cleave/log/log.h"
 
 namespace cleave::log {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "engine/physics/physics_world.h"
+#include "cleave/physics/physics_world.h"
 #include "tests/physics/physics_test_helpers.h"
 
 namespace cleave::physics {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <gtest/gtest.h>
 
-#include "engine/physics/physics_world.h"
+#include "cleave/physics/physics_world.h"
 #include "tests/physics/physics_test_helpers.h"
 
 namespace cleave::physics {

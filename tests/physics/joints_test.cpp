@@ -9,7 +9,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "engine/physics/physics_world.h"
+#include "cleave/physics/physics_world.h"
 #include "tests/physics/physics_test_helpers.h"
 
 namespace cleave::physics {

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 
-#include "engine/physics/physics_world.h"
+#include "cleave/physics/physics_world.h"
 
 namespace cleave::physics::testing {
 

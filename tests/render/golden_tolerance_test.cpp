@@ -12,10 +12,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/geometry/primitives.h"
-#include "engine/render/gl_context.h"
-#include "engine/render/renderer.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/primitives.h"
+#include "cleave/render/gl_context.h"
+#include "cleave/render/renderer.h"
 #include "tests/render/image_compare.h"
 
 namespace cleave::render {

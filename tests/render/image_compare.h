@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/render/renderer.h"
+#include "cleave/render/renderer.h"
 
 namespace cleave::testing {
 

@@ -14,10 +14,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/primitives.h"
-#include "engine/render/dynamic_scale.h"
-#include "engine/render/gl_context.h"
-#include "engine/render/renderer.h"
+#include "cleave/geometry/primitives.h"
+#include "cleave/render/dynamic_scale.h"
+#include "cleave/render/gl_context.h"
+#include "cleave/render/renderer.h"
 #include "tests/render/image_compare.h"
 
 namespace cleave::render {

@@ -9,11 +9,11 @@
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/anim/animation_clip.h"
-#include "engine/assets/procedural_character.h"
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/render/gl_context.h"
-#include "engine/render/renderer.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/assets/procedural_character.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/render/gl_context.h"
+#include "cleave/render/renderer.h"
 
 namespace cleave::render {
 namespace {

@@ -8,16 +8,16 @@
 #include <memory>
 #include <string>
 
-#include "components/simulation.h"
-#include "components/skinned.h"
-#include "components/split_system.h"
-#include "engine/anim/animation_clip.h"
-#include "engine/ecs/hierarchy.h"
-#include "engine/assets/model.h"
-#include "engine/assets/procedural_character.h"
-#include "engine/geometry/fracture.h"
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/components/simulation.h"
+#include "cleave/components/skinned.h"
+#include "cleave/components/split_system.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/ecs/hierarchy.h"
+#include "cleave/assets/model.h"
+#include "cleave/assets/procedural_character.h"
+#include "cleave/geometry/fracture.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/primitives.h"
 
 namespace cleave::geometry {
 namespace {

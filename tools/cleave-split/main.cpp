@@ -21,13 +21,13 @@
 #include <nlohmann/json.hpp>
 
 #include "cleave_version.h"
-#include "engine/anim/animation_clip.h"
-#include "engine/anim/skeleton.h"
-#include "engine/assets/mesh_io.h"
-#include "engine/assets/model.h"
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/anim/animation_clip.h"
+#include "cleave/anim/skeleton.h"
+#include "cleave/assets/mesh_io.h"
+#include "cleave/assets/model.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/primitives.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <string>
 
-#include "engine/assets/mesh_io.h"
+#include "cleave/assets/mesh_io.h"
 #include "tools/fuzz/fuzz_driver.h"
 
 namespace cleave::fuzz {

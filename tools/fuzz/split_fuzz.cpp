@@ -15,8 +15,8 @@
 #include <memory>
 #include <string>
 
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/mesh_splitter.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/mesh_splitter.h"
 #include "tools/fuzz/fuzz_driver.h"
 
 namespace cleave::fuzz {

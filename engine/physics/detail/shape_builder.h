@@ -8,8 +8,8 @@
 
 #include <btBulletDynamicsCommon.h>
 
-#include "engine/physics/physics_result.h"
-#include "engine/physics/shape_def.h"
+#include "cleave/physics/physics_result.h"
+#include "cleave/physics/shape_def.h"
 
 namespace cleave::physics::detail {
 

@@ -2,8 +2,8 @@
 // Splits a box through the installed library and checks the two halves.
 #include <cstdio>
 
-#include "engine/geometry/mesh_splitter.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/primitives.h"
 
 int main() {
   using namespace cleave::geometry;

@@ -7,8 +7,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "engine/geometry/mass_properties.h"
-#include "engine/geometry/primitives.h"
+#include "cleave/geometry/mass_properties.h"
+#include "cleave/geometry/primitives.h"
 
 namespace prim = cleave::geometry::primitives;
 using cleave::geometry::MassProperties;
