@@ -10,6 +10,9 @@ include(CMakePackageConfigHelpers)
 include(GNUInstallDirs)
 set(CLEAVE_PACKAGE_COMPONENTS geometry anim physics assets engine)
 set_property(GLOBAL APPEND PROPERTY CLEAVE_TARGETS_engine cleave_engine cleave_glad)
+if(CLEAVE_HAVE_IMGUI)
+  set_property(GLOBAL APPEND PROPERTY CLEAVE_TARGETS_engine cleave_imgui)  # the inspector's backends
+endif()
 foreach(component IN LISTS CLEAVE_PACKAGE_COMPONENTS)
   get_property(targets GLOBAL PROPERTY CLEAVE_TARGETS_${component})
   install(TARGETS ${targets} EXPORT CleaveTargets-${component} COMPONENT ${component}

@@ -15,7 +15,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PACKAGES=(
   build-essential cmake ninja-build pkg-config ccache git python3 python3-dev python3-venv pybind11-dev
   libglfw3-dev libglm-dev libbullet-dev libtinygltf-dev libstb-dev
-  nlohmann-json3-dev
+  nlohmann-json3-dev libimgui-dev
   libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0 libgbm1 libglapi-mesa
   libosmesa6-dev python3-glad
   libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels libcgal-demo

@@ -37,6 +37,7 @@ void fnv(uint64_t& h, const void* data, size_t size) {
 App::App() = default;
 App::~App() {
   // GPU resources go before the context that owns them.
+  ui_.reset();
   renderer_.reset();
   platform_.reset();
 }
@@ -136,6 +137,35 @@ void App::addSystem(Phase phase, std::string name, System system) {
   systems_[size_t(phase)].emplace_back(std::move(name), std::move(system));
 }
 
+void App::setUi(std::function<void(TickContext&)> build) { uiBuild_ = std::move(build); }
+
+bool App::setUiOpen(bool open, std::string* error) {
+  if (!open) {
+    uiOpen_ = false;
+    return true;
+  }
+  if (!ui_) {
+    auto ui = std::make_unique<UiLayer>();
+    if (!ui->start(*platform_, platform_->frameSize(), error)) return false;
+    ui_ = std::move(ui);
+  }
+  uiOpen_ = true;
+  return true;
+}
+
+// Presses and scrolls over the UI, and keys typed into it, stay with it. Releases and moves always
+// reach the game, so that a drag begun in the game ends there.
+bool App::uiTakes(const input::InputEvent& event) const {
+  if (!uiOpen_ || !ui_) return false;
+  if (std::holds_alternative<input::MouseDown>(event) || std::holds_alternative<input::Scroll>(event))
+    return ui_->wantsMouse();
+  if (const auto* key = std::get_if<input::KeyDown>(&event)) {
+    const bool functionKey = int(key->key) >= int(input::Key::F1) && int(key->key) <= int(input::Key::F12);
+    return !functionKey && ui_->wantsKeyboard();
+  }
+  return false;
+}
+
 void App::setStateDumpExtension(StateDumpExtension extension) {
   dumpExtension_ = std::move(extension);
 }
@@ -204,6 +234,11 @@ void App::renderFrame(TickContext& context) {
   context.frameSize = size;
   for (auto& [name, system] : systems_[size_t(Phase::Render)]) system(context);
   renderer_->endFrame();
+  if (uiOpen_ && ui_ && uiBuild_) {
+    // Headless, the clock is the fixed ticks: the same picture on every run.
+    const double seconds = platform_->headless() ? double(tick_) * kTickSeconds : platform_->timeSeconds();
+    ui_->frame(*renderer_, size, seconds, [&] { uiBuild_(context); });
+  }
   framePending_ = true;
 }
 
@@ -227,7 +262,9 @@ void App::runWindowLoop() {
   int fpsFrames = 0;
   double lastPresent = -1.0;
   while (!quit_ && !platform_->closeRequested()) {
-    platform_->pollEvents([this](const input::InputEvent& e) { liveQueue_.push(e); });
+    platform_->pollEvents([this](const input::InputEvent& e) {
+      if (!uiTakes(e)) liveQueue_.push(e);
+    });
     const double now = platform_->timeSeconds();
     const double workStart = now;
     accumulator += std::min(now - previous, kMaxCatchUpTicks * kTickSeconds);

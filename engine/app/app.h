@@ -23,6 +23,7 @@
 #include "cleave/app/app_options.h"
 #include "cleave/app/phase.h"
 #include "cleave/app/platform.h"
+#include "cleave/app/ui_layer.h"
 #include "cleave/ecs/world.h"
 #include "cleave/input/input_state.h"
 #include "cleave/input/input_source.h"
@@ -72,6 +73,18 @@ class App {
   int run();
   void requestQuit() { quit_ = true; }
 
+  // The in-game UI (Dear ImGui, app/ui_layer.h; the games' inspector). `build` makes its windows
+  // with ImGui calls once per rendered frame while the UI is open, after the Render systems, and
+  // the UI is drawn over the HUD. While it is open in a window, mouse presses and scrolls over it
+  // (and keys while one of its text fields is active; F1-F12 always pass) go to it, not to the
+  // game: they are neither seen by the game nor recorded. What the UI changes is not recorded.
+  void setUi(std::function<void(TickContext&)> build);
+  // Opens (starting ImGui on first use) or closes the UI. False with a reason when it cannot open:
+  // the engine was built without Dear ImGui, or its GL backend did not start.
+  bool setUiOpen(bool open, std::string* error = nullptr);
+  bool uiOpen() const { return uiOpen_; }
+  static bool uiBuilt() { return UiLayer::built(); }
+
   ecs::World& world() { return world_; }
   render::Renderer& renderer() { return *renderer_; }
   Platform& platform() { return *platform_; }
@@ -103,10 +116,14 @@ class App {
   void applyRenderScale();
   void countTickRate();
   void runWindowLoop();
+  bool uiTakes(const input::InputEvent& event) const;
 
   AppOptions options_;
   std::unique_ptr<Platform> platform_;
   std::unique_ptr<render::Renderer> renderer_;
+  std::unique_ptr<UiLayer> ui_;  // made when the UI first opens
+  std::function<void(TickContext&)> uiBuild_;
+  bool uiOpen_ = false;
   ecs::World world_;
   input::InputState inputState_;
   std::unique_ptr<input::ReplaySource> replay_;

@@ -50,7 +50,9 @@ std::string appOptionsUsage() {
          "                             HUD at full size; auto (default): 0.35 to 0.6 by the frame\n"
          "                             time in a window on a software rasteriser (llvmpipe), else 1\n"
          "  --split-threads N          worker threads for split jobs (0: on the main thread;\n"
-         "                             default: hardware threads minus one); results are the same\n";
+         "                             default: hardware threads minus one); results are the same\n"
+         "  --inspector                open the inspector (F1) at start: the Splitable under the\n"
+         "                             crosshair, the split budget, the split log (Dear ImGui)\n";
 }
 
 ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
@@ -82,6 +84,8 @@ ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
       result.versionRequested = true;
     } else if (arg == "--headless") {
       out.headless = true;
+    } else if (arg == "--inspector") {
+      out.inspector = true;
     } else if (arg == "--print-state-hash") {
       out.printStateHash = true;
     } else if (arg == "--replay") {

@@ -28,6 +28,7 @@ struct AppOptions {
                                    // 1), the HUD at full size; 0 (auto): in a window on a CPU
                                    // rasteriser (llvmpipe, ...) a dynamic scale from 0.35 to 0.6 by
                                    // the frame time (render/dynamic_scale.h), 1 otherwise
+  bool inspector = false;          // --inspector: the game opens its inspector (F1) at start
   std::string sceneName = "default";  // the scene word written into recorded replays (set by the game)
   std::vector<std::string> extra;  // arguments the engine does not know, for the game to read
 };

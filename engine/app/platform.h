@@ -35,6 +35,14 @@ class Platform {
   virtual void setVsync(bool on) = 0;
   // Seconds since the platform started (monotonic).
   virtual double timeSeconds() const = 0;
+
+  // Dear ImGui input (app/ui_layer.h), with the current ImGui context. Window: attaches the GLFW
+  // backend of libimgui-dev (its callbacks run before the engine's, which still get every event)
+  // and returns true; uiNewFrame gives ImGui the window's size, clock and mouse; detach restores the
+  // callbacks. Headless (and built without ImGui): no input, false.
+  virtual bool attachUiInput() { return false; }
+  virtual void uiNewFrame() {}
+  virtual void detachUiInput() {}
 };
 
 // A GLFW window with an OpenGL 3.3 core context, loaded for the renderer. Returns nullptr with a

@@ -13,6 +13,10 @@
 #include "cleave/log/log.h"
 #include "cleave/render/gl_context.h"
 
+#if CLEAVE_HAVE_IMGUI
+#include <imgui_impl_glfw.h>
+#endif
+
 namespace cleave::app {
 
 namespace {
@@ -137,6 +141,11 @@ class WindowPlatform final : public Platform {
   void setTitle(const std::string& title) override { glfwSetWindowTitle(window_, title.c_str()); }
   double timeSeconds() const override { return glfwGetTime(); }
   void setVsync(bool on) override { glfwSwapInterval(on ? 1 : 0); }
+#if CLEAVE_HAVE_IMGUI
+  bool attachUiInput() override { return ImGui_ImplGlfw_InitForOpenGL(window_, true); }
+  void uiNewFrame() override { ImGui_ImplGlfw_NewFrame(); }
+  void detachUiInput() override { ImGui_ImplGlfw_Shutdown(); }
+#endif
 
  private:
   void emit(const input::InputEvent& e) {

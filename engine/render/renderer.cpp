@@ -728,6 +728,13 @@ FrameStats Renderer::endFrame() {
   return stats;
 }
 
+glm::ivec2 Renderer::bindFrame() {
+  const Impl& r = *impl_;
+  glBindFramebuffer(GL_FRAMEBUFFER, r.frame.fbo);  // 0 in window mode: the window's back buffer
+  glViewport(0, 0, r.frame.width, r.frame.height);
+  return {r.frame.width, r.frame.height};
+}
+
 void Renderer::readPixels(std::vector<uint8_t>& rgba, int& width, int& height) const {
   const Impl& r = *impl_;
   width = r.frame.width;

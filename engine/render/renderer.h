@@ -153,6 +153,10 @@ class Renderer {
   static float textWidth(const std::string& text, float scale);
   // Renders everything queued since beginFrame.
   FrameStats endFrame();
+  // Binds the last frame's target (the renderer's framebuffer object, or the window's in window
+  // mode) with a viewport over all of it, for a pass drawn on top after endFrame (the inspector's
+  // Dear ImGui pass). Returns the frame size in pixels.
+  glm::ivec2 bindFrame();
 
   // Reads the last frame back as RGBA8, rows top to bottom.
   void readPixels(std::vector<uint8_t>& rgba, int& width, int& height) const;

@@ -117,6 +117,8 @@ nlohmann::json ArenaGame::dumpMatch() {
 
 void ArenaGame::dumpFrame(nlohmann::json& line) {
   line["arena"] = dumpMatch();
+  inspector_.writeJson(line["inspector"]);
+  line["inspector"]["notice"] = inspectorNotice_;
   nlohmann::json splits;
   splitLog_.writeJson(splits);
   line["splits"] = std::move(splits);

@@ -14,6 +14,7 @@
 #include "cleave/components/skinned.h"
 #include "cleave/components/splitable.h"
 #include "cleave/ecs/hierarchy.h"
+#include "cleave/log/log.h"
 #include "cleave/geometry/primitives.h"
 #include "game/arena/arena_layout.h"
 #include "game/arena/arena_surroundings.h"
@@ -378,6 +379,11 @@ bool ArenaGame::setup(app::App& app, std::string* error) {
   app.addSystem(app::Phase::Render, "arena.render", [this](app::TickContext& c) { render(c); });
   app.setStateDumpExtension([this](ecs::Entity e, nlohmann::json& out) { dumpEntity(e, out); });
   app.setFrameDumpExtension([this](nlohmann::json& line) { dumpFrame(line); });
+  app.setUi([this](app::TickContext& c) { drawInspector(c); });
+  if (app.options().inspector) {
+    std::string why;
+    if (!inspector_.open(app, &why)) log::warning("cleave-arena", "--inspector: %s", why.c_str());
+  }
   (void)error;
   return true;
 }
@@ -409,6 +415,32 @@ bool ArenaGame::cursorOnFloor(const input::InputState& in, glm::ivec2 frame, glm
   const float t = -cameraPosition_.y / dir.y;
   *point = cameraPosition_ + dir * t;
   return true;
+}
+
+ecs::Entity ArenaGame::splitableUnderCursor(const input::InputState& in, glm::ivec2 frame) const {
+  const glm::vec3 dir = rayDirection(cursorInFrame(in, frame), frame);
+  const auto hit = physics_->raycast(cameraPosition_, cameraPosition_ + dir * 40.f);
+  const auto user = hit ? physics_->bodyUserData(hit->body) : std::nullopt;
+  if (!user) return {};
+  const ecs::Entity e = components::fromUserData(*user);
+  return app_->world().alive(e) && app_->world().has<components::Splitable>(e) ? e : ecs::Entity{};
+}
+
+void ArenaGame::toggleInspector(app::TickContext& c) {
+  inspectorNotice_ = inspector_.toggle(c.app);
+  if (!inspectorNotice_.empty()) inspectorNoticeUntil_ = c.tick + 120;
+}
+
+void ArenaGame::drawInspector(app::TickContext& c) {
+  uint32_t pieces = 0;
+  for (auto [e, origin] : c.world.view<components::SplitOrigin>()) {
+    (void)e;
+    (void)origin;
+    ++pieces;
+  }
+  const inspector::InspectorFeed feed{c.world, *splits_, splitLog_, splitMsHistory_,
+                                      splitableUnderCursor(c.input, c.frameSize), pieces};
+  inspector_.draw(c, feed);
 }
 
 void ArenaGame::updateCamera(float dt) {

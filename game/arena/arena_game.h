@@ -32,6 +32,7 @@
 #include "game/arena/arena_art.h"
 #include "game/arena/arena_tuning.h"
 #include "game/arena/enemies.h"
+#include "game/inspector/inspector.h"
 
 namespace cleave::arena {
 
@@ -173,6 +174,12 @@ class ArenaGame {
   glm::vec2 cursorInFrame(const input::InputState& in, glm::ivec2 frame) const;
   glm::vec3 rayDirection(glm::vec2 framePixel, glm::ivec2 frame) const;
   bool cursorOnFloor(const input::InputState& in, glm::ivec2 frame, glm::vec3* point) const;
+  // The splitable the cursor's ray hits first (null: none), for the inspector.
+  ecs::Entity splitableUnderCursor(const input::InputState& in, glm::ivec2 frame) const;
+
+  // The inspector (F1, --inspector; game/inspector): the window over the HUD.
+  void toggleInspector(app::TickContext& c);
+  void drawInspector(app::TickContext& c);
 
   // Drawing.
   void drawWeapons(render::Renderer& r);
@@ -252,6 +259,9 @@ class ArenaGame {
   std::map<ecs::Entity, std::vector<physics::BodyId>> ragdollBones_;  // live ragdoll pieces' bone bodies
   uint32_t ragdollBodiesLeaked_ = 0;  // bone bodies still in the physics world after their piece went
   components::SplitLog splitLog_;
+  inspector::Inspector inspector_;
+  std::string inspectorNotice_;  // why F1 could not open it, shown until inspectorNoticeUntil_
+  uint64_t inspectorNoticeUntil_ = 0;
   uint64_t deferredTotal_ = 0;
   uint32_t maxQueue_ = 0;
   uint32_t splitsThisTick_ = 0;

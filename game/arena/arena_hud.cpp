@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The arena's HUD, laid out for 720 lines and scaled to the frame: the match panel (top left), the
 // split budget panel (top right, wall-clock figures), the banners of the match (wave, get ready,
-// wave cleared and the refill, defeat), the controls and the crosshair.
+// wave cleared and the refill, defeat), the controls (F1, the inspector, on the menu) and the
+// crosshair.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,11 +31,16 @@ void ArenaGame::drawHud(app::TickContext& c) {
   if (state_ == MatchState::Menu || state_ == MatchState::Quitting) {
     centredText(r, "CLEAVE ARENA", W, 40.f * u, 5.f * u, kGold);
     centredText(r, "click a cube to cut it", W, 100.f * u, 2.4f * u, kWhite);
+    centredText(r, "F1: inspector (split settings, budget, log)", W, float(c.frameSize.y) - 40.f * u, 1.8f * u,
+                glm::vec4(1.f, 1.f, 1.f, 0.85f));
   } else {
     drawMatchPanel(r, u);
   }
   drawBudgetPanel(c, u);
   drawBanners(c, u);
+  // F1 could not open the inspector: why, for two seconds.
+  if (c.tick < inspectorNoticeUntil_)
+    centredText(r, inspectorNotice_, W, float(c.frameSize.y) * 0.85f, 1.8f * u, kGold);
 }
 
 void ArenaGame::drawMatchPanel(render::Renderer& r, float u) {

@@ -27,6 +27,7 @@ void ArenaGame::gameplay(app::TickContext& c) {
   const float dt = float(c.dt);
   hurtFlash_ = std::max(0.f, hurtFlash_ - dt);
   if (swing_.ticksLeft > 0) --swing_.ticksLeft;
+  if (c.input.pressed(input::Key::F1)) toggleInspector(c);
   updateCamera(dt);
   switch (state_) {
     case MatchState::Menu:

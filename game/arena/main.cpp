@@ -23,6 +23,8 @@ int main(int argc, char** argv) {
   }
   if (parsed.helpRequested) {
     std::printf("usage: cleave-arena [options]\n\n%s", cleave::app::appOptionsUsage().c_str());
+    std::printf("\nkeys: click START (or QUIT) to begin; WASD move, mouse aim, left button sword, right button\n"
+                "  disc, Space spin, Enter back to the menu after a defeat, F1 inspector\n");
     return 0;
   }
   cleave::app::App app;

@@ -18,6 +18,7 @@
 #include "cleave/assets/procedural_textures.h"
 #include "cleave/ecs/hierarchy.h"
 #include "cleave/geometry/primitives.h"
+#include "cleave/log/log.h"
 #include "game/demo/spawn_spots.h"
 
 namespace cleave::demo {
@@ -503,6 +504,11 @@ bool DemoGame::setup(app::App& app, std::string* error) {
   };
   components::installSplitting(app, *sim_, std::move(hooks));
   app.addSystem(app::Phase::Render, "demo.render", [this](app::TickContext& c) { render(c); });
+  app.setUi([this](app::TickContext& c) { drawInspector(c); });
+  if (app.options().inspector) {
+    std::string why;
+    if (!inspector_.open(app, &why)) log::warning("cleave-demo", "--inspector: %s", why.c_str());
+  }
   app.setStateDumpExtension([this](ecs::Entity e, nlohmann::json& out) { dumpExtension(e, out); });
   app.setFrameDumpExtension([this](nlohmann::json& line) {
     nlohmann::json splits;
@@ -520,6 +526,7 @@ bool DemoGame::setup(app::App& app, std::string* error) {
     }
     const glm::ivec2 frame = app_->platform().frameSize();
     line["hud"] = {{"frame", {frame.x, frame.y}}, {"items", std::move(hud)}};
+    inspector_.writeJson(line["inspector"]);
     const auto& stats = splits_->budget().stats();
     line["budget"] = {{"deferred_total", deferredTotal_},
                       {"max_queue", maxQueue_},
@@ -655,19 +662,23 @@ void DemoGame::gameplay(app::TickContext& c) {
       return;
     }
     mouseFree_ = true;
-    c.platform.setCursorMode(app::CursorMode::Normal);
-  } else if (mouseFree_ && !splitMode_ && in.pressed(input::MouseButton::Left)) {
+  } else if (mouseFree_ && !splitMode_ && !inspector_.isOpen() && in.pressed(input::MouseButton::Left)) {
     mouseFree_ = false;
-    c.platform.setCursorMode(app::CursorMode::Captured);
   }
+  if (in.pressed(Key::F1)) toggleInspector(c);
   // Split mode: hold Space; the camera stops turning and the cursor shows.
   const bool wantSplitMode = in.held(Key::Space);
   if (wantSplitMode != splitMode_) {
     splitMode_ = wantSplitMode;
-    c.platform.setCursorMode(splitMode_ || mouseFree_ ? app::CursorMode::Normal : app::CursorMode::Captured);
     dragging_ = false;
   }
-  if (!splitMode_ && !mouseFree_) {
+  // The inspector releases the mouse while it is open (its close button included).
+  const bool cursorFree = splitMode_ || mouseFree_ || inspector_.isOpen();
+  if (cursorFree != cursorFree_) {
+    cursorFree_ = cursorFree;
+    c.platform.setCursorMode(cursorFree ? app::CursorMode::Normal : app::CursorMode::Captured);
+  }
+  if (!cursorFree_) {
     yaw_ -= in.mouseDelta().x * kLookSensitivity;
     pitch_ = std::clamp(pitch_ - in.mouseDelta().y * kLookSensitivity, -1.5f, 1.5f);
   }
@@ -784,14 +795,30 @@ void DemoGame::hudText(app::TickContext& c, const std::string& text, glm::vec2 a
   }
 }
 
-void DemoGame::drawStatsPanel(app::TickContext& c, float u) {
-  const auto& stats = splits_->budget().stats();
+uint32_t DemoGame::countPieces() const {
   uint32_t pieces = 0;
-  for (auto [e, origin] : c.world.view<components::SplitOrigin>()) {
+  for (auto [e, origin] : app_->world().view<components::SplitOrigin>()) {
     (void)e;
     (void)origin;
     ++pieces;
   }
+  return pieces;
+}
+
+void DemoGame::toggleInspector(app::TickContext& c) {
+  const std::string why = inspector_.toggle(c.app);
+  if (!why.empty()) notify(why);
+}
+
+void DemoGame::drawInspector(app::TickContext& c) {
+  const inspector::InspectorFeed feed{c.world, *splits_, splitLog_, splitMsHistory_, entityUnderCrosshair(),
+                                      countPieces()};
+  inspector_.draw(c, feed);
+}
+
+void DemoGame::drawStatsPanel(app::TickContext& c, float u) {
+  const auto& stats = splits_->budget().stats();
+  const uint32_t pieces = countPieces();
   char texts[4][256];
   const glm::vec4 white(1.f), dim(0.f, 0.f, 0.f, 0.45f);
   // Headless runs draw no frames to count: they show the tick rate (as fast as the ticks run).
@@ -830,7 +857,8 @@ void DemoGame::drawHelp(app::TickContext& c, float u) {
                         "right button: push",        "1-8: spawn cube, sphere, cylinder, melon,",
                         "     figure, skinned, torus, stone block", "Q/E: cycle the material under the crosshair",
                         "F: shatter what is under the crosshair",
-                        "Esc: free the mouse; Esc again: quit", "H: this help"};
+                        "Esc: free the mouse; Esc again: quit",
+                        "F1: inspector (split settings, budget, log)", "H: this help"};
   float width = 0.f;
   for (const char* h : help) width = std::max(width, render::Renderer::textWidth(h, u));
   const float pad = 7.5f * u, line = 14.f * u;

@@ -19,6 +19,7 @@
 #include "cleave/components/split_system.h"
 #include "cleave/app/app.h"
 #include "cleave/physics/physics_world.h"
+#include "game/inspector/inspector.h"
 
 namespace cleave::demo {
 
@@ -75,6 +76,10 @@ class DemoGame {
   void drawHud(app::TickContext& c);
   void drawStatsPanel(app::TickContext& c, float scale);
   void drawHelp(app::TickContext& c, float scale);
+  // F1 (and --inspector): the inspector window over the HUD (game/inspector).
+  void drawInspector(app::TickContext& c);
+  void toggleInspector(app::TickContext& c);
+  uint32_t countPieces() const;
   // A HUD rectangle, and text (inside the last open box, or on its own), both recorded in hudLayout_.
   void hudBox(app::TickContext& c, const char* what, const glm::vec4& box, const glm::vec4& color);
   void hudText(app::TickContext& c, const std::string& text, glm::vec2 at, float scale, const glm::vec4& color);
@@ -101,6 +106,9 @@ class DemoGame {
   glm::vec2 dragEnd_{0.f};
   bool showHelp_ = false;
   bool mouseFree_ = false;  // Escape freed the mouse: no mouse look until a click
+  // The cursor shows (no mouse look): in split mode, after Escape, and while the inspector is open.
+  bool cursorFree_ = false;
+  inspector::Inspector inspector_;
   // A short message under the crosshair (a drag that crossed nothing, a push at nothing), shown
   // until noticeUntil_ (a tick) and written to the state dump.
   std::string notice_;

@@ -27,7 +27,9 @@ int main(int argc, char** argv) {
     std::printf("demo options:\n"
                 "  --bench-splits N           cut each demo object N times, print median stage times\n"
                 "  --bench-burst              cut 50 cubes, then 100 characters, each lot in one tick\n"
-                "  --json                     benchmarks print JSON instead of a table\n");
+                "  --json                     benchmarks print JSON instead of a table\n\n"
+                "keys: WASD move, mouse look, hold Space and drag to cut, right button push, F shatter,\n"
+                "  1-8 spawn, Q/E material, H help, F1 inspector, Esc free the mouse (twice: quit)\n");
     return 0;
   }
   cleave::app::App app;
@@ -57,6 +59,7 @@ int main(int argc, char** argv) {
     game.benchmarkSplits(repeats, json);
     return 0;
   }
+  // Mouse look from the start (the game frees the cursor for split mode, Escape and the inspector).
   if (!app.platform().headless()) app.platform().setCursorMode(cleave::app::CursorMode::Captured);
   return app.run();
 }

@@ -551,4 +551,29 @@ TEST(ArenaReplay, EastWallViewShowsTheStandsNotTheVoid) {
   expectFrameMatchesGolden(dir, "frame_000399.png", "east_wall_");
 }
 
+// F1 opens the inspector over the menu, showing the Splitable of the cube under the cursor (the
+// QUIT cube); built without Dear ImGui it stays shut and the notice says why.
+TEST(ArenaReplay, F1OpensTheInspectorOnTheCubeUnderTheCursor) {
+  const fs::path dir = scratchDir("f1");
+  const fs::path replayFile = dir / "f1.replay";
+  std::ofstream(replayFile) << "cleave-replay 1\nscene arena\nseed 1\nticks 40\n0 rs:1280,720 mm:812,435,0,0\n"
+                               "10 kd:f1\n11 ku:f1\n";
+  const RunResult r = run("--headless --replay \"" + replayFile.string() + "\" --dump-state \"" +
+                          (dir / "state.jsonl").string() + "\" --screenshot-every 1000 --screenshot-dir \"" +
+                          dir.string() + "\"");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
+  ASSERT_TRUE(dump.is_object());
+  const nlohmann::json& inspector = dump.at("inspector");
+  if (CLEAVE_HAVE_IMGUI) {
+    EXPECT_TRUE(inspector.at("open").get<bool>());
+    EXPECT_EQ(inspector.at("target"), "quit cube");
+    EXPECT_FALSE(inspector.at("settings").is_null());
+    EXPECT_EQ(inspector.at("notice"), "");
+  } else {
+    EXPECT_FALSE(inspector.at("open").get<bool>());
+    EXPECT_NE(inspector.at("notice").get<std::string>().find("not built"), std::string::npos) << inspector.dump();
+  }
+}
+
 }  // namespace

@@ -354,4 +354,78 @@ TEST(DemoReplay, TourFramesMatchGoldenImages) {
   }
 }
 
+// The blanks of a frame with the inspector open: the HUD's wall-clock lines (as in the tour test)
+// and every rectangle the inspector names as wall-clock in the dump (its times, its graph and the
+// milliseconds column of the split log), a pixel wider on each side.
+void maskWallClock(std::vector<uint8_t>& rgba, int width, int height, const nlohmann::json& inspector) {
+  cleave::testing::maskRect(rgba, width, height, 14, 13, 338, 33);
+  cleave::testing::maskRect(rgba, width, height, 14, 53, 338, 73);
+  cleave::testing::maskRect(rgba, width, height, 14, 94, 258, 122);
+  for (const auto& r : inspector.at("clock")) {
+    const auto [x, y, w, h] = r.get<std::array<double, 4>>();
+    cleave::testing::maskRect(rgba, width, height, int(std::floor(x)) - 1, int(std::floor(y)) - 1,
+                              int(std::ceil(x + w)) + 1, int(std::ceil(y + h)) + 1);
+  }
+}
+
+// --inspector: the inspector window over the HUD, drawn headless, against a golden image. It shows
+// the marble cylinder's Splitable (under the crosshair), the budget, the times and the split log
+// of the cuts the replay makes. Goldens are refreshed with CLEAVE_UPDATE_GOLDENS=1.
+TEST(DemoReplay, InspectorFrameMatchesGoldenImage) {
+  if (!CLEAVE_HAVE_IMGUI)
+    GTEST_SKIP() << "built without Dear ImGui (libimgui-dev missing, or CLEAVE_INSPECTOR=OFF): no inspector";
+  const fs::path dir = scratchDir("inspector");
+  const RunResult r = run("--headless --inspector --replay \"" + kReplays + "/demo_inspector.replay\" --width 1280 "
+                          "--height 720 --screenshot-dir \"" + dir.string() + "\" --screenshot-every 100000 "
+                          "--dump-state \"" + (dir / "state.jsonl").string() + "\"");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json dump = lastDumpLine(dir / "state.jsonl");
+  ASSERT_TRUE(dump.is_object());
+  const nlohmann::json& inspector = dump.at("inspector");
+  EXPECT_TRUE(inspector.at("open").get<bool>());
+  EXPECT_EQ(inspector.at("target"), "marble cylinder");
+  EXPECT_GE(dump.at("splits").size(), 2u);
+  // Its times, its graph and one milliseconds cell per row of the log are blanked, no more.
+  EXPECT_EQ(inspector.at("clock").size(), 2 + std::min<size_t>(10, dump.at("splits").size()));
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;
+  std::string error;
+  ASSERT_TRUE(cleave::render::readPng((dir / "frame_000149.png").string(), width, height, rgba, &error)) << error;
+  ASSERT_EQ(width, 1280);
+  ASSERT_EQ(height, 720);
+  maskWallClock(rgba, width, height, inspector);
+  const std::string golden = std::string(CLEAVE_SOURCE_DIR) + "/tests/replay/goldens/inspector_frame_000149.png";
+  const auto comparison =
+      cleave::testing::compareWithGolden(golden, width, height, rgba, cleave::testing::kGoldenTolerance);
+  EXPECT_TRUE(comparison.ok) << comparison.message;
+}
+
+// F1 in a replay opens the inspector and a second F1 closes it (the dump says which); built
+// without Dear ImGui it stays shut and the notice under the crosshair says why.
+TEST(DemoReplay, F1OpensAndClosesTheInspector) {
+  const fs::path dir = scratchDir("f1");
+  const fs::path replayFile = dir / "f1.replay";
+  auto runTo = [&](const char* events) {
+    std::ofstream(replayFile) << "cleave-replay 1\nscene demo\nseed 1\nticks 40\n" << events;
+    const RunResult r = run("--headless --replay \"" + replayFile.string() + "\" --dump-state \"" +
+                            (dir / "state.jsonl").string() + "\" --screenshot-every 1000 --screenshot-dir \"" +
+                            dir.string() + "\"");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return lastDumpLine(dir / "state.jsonl");
+  };
+  const nlohmann::json opened = runTo("10 kd:f1\n11 ku:f1\n");
+  const nlohmann::json closed = runTo("10 kd:f1\n11 ku:f1\n20 kd:f1\n21 ku:f1\n");
+  ASSERT_TRUE(opened.is_object() && closed.is_object());
+  EXPECT_FALSE(closed.at("inspector").at("open").get<bool>());
+  if (CLEAVE_HAVE_IMGUI) {
+    EXPECT_TRUE(opened.at("inspector").at("open").get<bool>());
+    EXPECT_EQ(opened.at("inspector").at("target"), "marble cylinder");
+    EXPECT_GT(opened.at("inspector").at("window")[2].get<double>(), 100.0);
+    EXPECT_EQ(opened.value("notice", "?"), "");
+  } else {
+    EXPECT_FALSE(opened.at("inspector").at("open").get<bool>());
+    EXPECT_NE(opened.value("notice", "").find("not built"), std::string::npos) << opened.dump();
+  }
+}
+
 }  // namespace
