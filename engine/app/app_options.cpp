@@ -2,6 +2,7 @@
 #include "cleave/app/app_options.h"
 
 #include <charconv>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 
@@ -55,6 +56,80 @@ std::string appOptionsUsage() {
          "                             crosshair, the split budget, the split log (Dear ImGui)\n";
 }
 
+namespace {
+
+// One engine option: its name, whether a value follows, the message when the value is missing or
+// refused, and what it sets (false: the value is refused).
+struct OptionSpec {
+  const char* name;
+  bool takesValue;
+  const char* need;
+  bool (*apply)(const std::string& value, AppOptions& out, ParseResult& result);
+};
+
+bool wholeNumber(const std::string& text, int64_t lowest, int64_t highest, int64_t& value) {
+  return parseInt(text, value) && value >= lowest && value <= highest;
+}
+
+constexpr int64_t kAny = INT64_MAX;
+
+const OptionSpec kOptions[] = {
+    {"--help", false, "", [](const std::string&, AppOptions&, ParseResult& r) { return r.helpRequested = true; }},
+    {"-h", false, "", [](const std::string&, AppOptions&, ParseResult& r) { return r.helpRequested = true; }},
+    {"--version", false, "", [](const std::string&, AppOptions&, ParseResult& r) { return r.versionRequested = true; }},
+    {"--headless", false, "", [](const std::string&, AppOptions& o, ParseResult&) { return o.headless = true; }},
+    {"--inspector", false, "", [](const std::string&, AppOptions& o, ParseResult&) { return o.inspector = true; }},
+    {"--print-state-hash", false, "",
+     [](const std::string&, AppOptions& o, ParseResult&) { return o.printStateHash = true; }},
+    {"--replay", true, "--replay needs a file name",
+     [](const std::string& v, AppOptions& o, ParseResult&) { return o.replayPath = v, true; }},
+    {"--record", true, "--record needs a file name",
+     [](const std::string& v, AppOptions& o, ParseResult&) { return o.recordPath = v, true; }},
+    {"--scene", true, "--scene needs a file name",
+     [](const std::string& v, AppOptions& o, ParseResult&) { return o.scenePath = v, true; }},
+    {"--screenshot-dir", true, "--screenshot-dir needs a directory",
+     [](const std::string& v, AppOptions& o, ParseResult&) { return o.screenshotDir = v, true; }},
+    {"--dump-state", true, "--dump-state needs a file name",
+     [](const std::string& v, AppOptions& o, ParseResult&) { return o.dumpStatePath = v, true; }},
+    {"--ticks", true, "--ticks needs a whole number >= 0",
+     [](const std::string& v, AppOptions& o, ParseResult&) { return wholeNumber(v, 0, kAny, o.ticks); }},
+    {"--screenshot-every", true, "--screenshot-every needs a whole number >= 1",
+     [](const std::string& v, AppOptions& o, ParseResult&) { return wholeNumber(v, 1, kAny, o.screenshotEvery); }},
+    {"--dump-every", true, "--dump-every needs a whole number >= 1",
+     [](const std::string& v, AppOptions& o, ParseResult&) { return wholeNumber(v, 1, kAny, o.dumpEvery); }},
+    {"--width", true, "--width needs a size from 16 to 8192 pixels",
+     [](const std::string& v, AppOptions& o, ParseResult&) {
+       int64_t n = 0;
+       return wholeNumber(v, 16, 8192, n) && (o.width = int(n), true);
+     }},
+    {"--height", true, "--height needs a size from 16 to 8192 pixels",
+     [](const std::string& v, AppOptions& o, ParseResult&) {
+       int64_t n = 0;
+       return wholeNumber(v, 16, 8192, n) && (o.height = int(n), true);
+     }},
+    {"--seed", true, "--seed needs a whole number >= 0",
+     [](const std::string& v, AppOptions& o, ParseResult&) {
+       int64_t n = 0;
+       return wholeNumber(v, 0, kAny, n) && (o.seed = uint64_t(n), true);
+     }},
+    {"--render-scale", true, "--render-scale needs 'auto' or a number from 0.25 to 1",
+     [](const std::string& v, AppOptions& o, ParseResult&) { return parseRenderScale(v, o.renderScale); }},
+    {"--split-threads", true, "--split-threads needs a whole number from 0 to 64",
+     [](const std::string& v, AppOptions& o, ParseResult&) {
+       int64_t n = 0;
+       return wholeNumber(v, 0, 64, n) && (o.splitThreads = int(n), true);
+     }},
+};
+
+const OptionSpec* findOption(const std::string& name) {
+  for (const OptionSpec& spec : kOptions) {
+    if (name == spec.name) return &spec;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
 ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
                             const std::vector<std::pair<std::string, int>>& gameOptions) {
   ParseResult result;
@@ -65,74 +140,26 @@ ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
   };
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    auto value = [&](std::string& into) -> bool {
-      if (i + 1 >= argc) return false;
-      into = argv[++i];
-      return true;
-    };
-    auto number = [&](int64_t& into, int64_t minimum) -> bool {
-      std::string text;
-      if (!value(text)) return false;
-      int64_t v = 0;
-      if (!parseInt(text, v) || v < minimum) return false;
-      into = v;
-      return true;
-    };
-    if (arg == "--help" || arg == "-h") {
-      result.helpRequested = true;
-    } else if (arg == "--version") {
-      result.versionRequested = true;
-    } else if (arg == "--headless") {
-      out.headless = true;
-    } else if (arg == "--inspector") {
-      out.inspector = true;
-    } else if (arg == "--print-state-hash") {
-      out.printStateHash = true;
-    } else if (arg == "--replay") {
-      if (!value(out.replayPath)) return fail("--replay needs a file name");
-    } else if (arg == "--record") {
-      if (!value(out.recordPath)) return fail("--record needs a file name");
-    } else if (arg == "--scene") {
-      if (!value(out.scenePath)) return fail("--scene needs a file name");
-    } else if (arg == "--screenshot-dir") {
-      if (!value(out.screenshotDir)) return fail("--screenshot-dir needs a directory");
-    } else if (arg == "--dump-state") {
-      if (!value(out.dumpStatePath)) return fail("--dump-state needs a file name");
-    } else if (arg == "--ticks") {
-      if (!number(out.ticks, 0)) return fail("--ticks needs a whole number >= 0");
-    } else if (arg == "--screenshot-every") {
-      if (!number(out.screenshotEvery, 1)) return fail("--screenshot-every needs a whole number >= 1");
-    } else if (arg == "--dump-every") {
-      if (!number(out.dumpEvery, 1)) return fail("--dump-every needs a whole number >= 1");
-    } else if (arg == "--width" || arg == "--height") {
-      int64_t v = 0;
-      if (!number(v, 16) || v > 8192) return fail(arg + " needs a size from 16 to 8192 pixels");
-      (arg == "--width" ? out.width : out.height) = int(v);
-    } else if (arg == "--seed") {
-      int64_t v = 0;
-      if (!number(v, 0)) return fail("--seed needs a whole number >= 0");
-      out.seed = uint64_t(v);
-    } else if (arg == "--render-scale") {
-      std::string text;
-      if (!value(text) || !parseRenderScale(text, out.renderScale))
-        return fail("--render-scale needs 'auto' or a number from 0.25 to 1");
-    } else if (arg == "--split-threads") {
-      int64_t v = 0;
-      if (!number(v, 0) || v > 64) return fail("--split-threads needs a whole number from 0 to 64");
-      out.splitThreads = int(v);
-    } else {
-      bool known = false;
-      for (const auto& [name, count] : gameOptions) {
-        if (arg != name) continue;
-        known = true;
-        out.extra.push_back(arg);
-        for (int k = 0; k < count; ++k) {
-          if (i + 1 >= argc) return fail(arg + " needs " + std::to_string(count) + " value(s)");
-          out.extra.push_back(argv[++i]);
-        }
+    if (const OptionSpec* spec = findOption(arg)) {
+      std::string value;
+      if (spec->takesValue) {
+        if (i + 1 >= argc) return fail(spec->need);
+        value = argv[++i];
       }
-      if (!known) return fail("unknown option '" + arg + "' (see --help)");
+      if (!spec->apply(value, out, result)) return fail(spec->need);
+      continue;
     }
+    bool known = false;
+    for (const auto& [name, count] : gameOptions) {
+      if (arg != name) continue;
+      known = true;
+      out.extra.push_back(arg);
+      for (int k = 0; k < count; ++k) {
+        if (i + 1 >= argc) return fail(arg + " needs " + std::to_string(count) + " value(s)");
+        out.extra.push_back(argv[++i]);
+      }
+    }
+    if (!known) return fail("unknown option '" + arg + "' (see --help)");
   }
   return result;
 }
