@@ -652,32 +652,46 @@ void DemoGame::gameplay(app::TickContext& c) {
     components::SplitWorld sw = splitWorld();
     sceneRunner_->update(sw, c.tick, c.dt);
   }
+  if (!updateModes(c)) return;
+  const glm::vec3 forward = updateCamera(c);
+  objectKeys(c, forward);
+  dragToCut(c);
+}
+
+// Escape frees the mouse (the camera stops turning, the cursor shows), a left click takes it back
+// and a second Escape quits (false: the game is quitting); F1 the inspector; holding Space split
+// mode. The cursor shows in split mode, with the mouse freed, and while the inspector is open.
+bool DemoGame::updateModes(app::TickContext& c) {
   const input::InputState& in = c.input;
   using input::Key;
-  // Escape frees the mouse (the camera stops turning, the cursor shows); a left click takes it back,
-  // a second Escape quits.
   if (in.pressed(Key::Escape)) {
     if (mouseFree_) {
       c.app.requestQuit();
-      return;
+      return false;
     }
     mouseFree_ = true;
   } else if (mouseFree_ && !splitMode_ && !inspector_.isOpen() && in.pressed(input::MouseButton::Left)) {
     mouseFree_ = false;
   }
   if (in.pressed(Key::F1)) toggleInspector(c);
-  // Split mode: hold Space; the camera stops turning and the cursor shows.
   const bool wantSplitMode = in.held(Key::Space);
   if (wantSplitMode != splitMode_) {
     splitMode_ = wantSplitMode;
     dragging_ = false;
   }
-  // The inspector releases the mouse while it is open (its close button included).
   const bool cursorFree = splitMode_ || mouseFree_ || inspector_.isOpen();
   if (cursorFree != cursorFree_) {
     cursorFree_ = cursorFree;
     c.platform.setCursorMode(cursorFree ? app::CursorMode::Normal : app::CursorMode::Captured);
   }
+  return true;
+}
+
+// Mouse look (when the cursor is captured) and WASD, Shift+E up; returns the forward direction on
+// the floor.
+glm::vec3 DemoGame::updateCamera(app::TickContext& c) {
+  const input::InputState& in = c.input;
+  using input::Key;
   if (!cursorFree_) {
     yaw_ -= in.mouseDelta().x * kLookSensitivity;
     pitch_ = std::clamp(pitch_ - in.mouseDelta().y * kLookSensitivity, -1.5f, 1.5f);
@@ -693,52 +707,67 @@ void DemoGame::gameplay(app::TickContext& c) {
   if (in.held(Key::E) && in.held(Key::LeftShift)) move.y += 1.f;
   if (glm::length(move) > 0.f) cameraPosition_ += glm::normalize(move) * kMoveSpeed * float(c.dt);
   cameraPosition_.y = std::max(cameraPosition_.y, 0.3f);
+  return forward;
+}
 
+// H help, 1-8 spawn, Q/E the look of the object under the crosshair, F a shatter at it, the right
+// button a push.
+void DemoGame::objectKeys(app::TickContext& c, const glm::vec3& forward) {
+  const input::InputState& in = c.input;
+  using input::Key;
   if (in.pressed(Key::H)) showHelp_ = !showHelp_;
   const Key spawnKeys[8] = {Key::Num1, Key::Num2, Key::Num3, Key::Num4,
                             Key::Num5, Key::Num6, Key::Num7, Key::Num8};
   for (int k = 0; k < 8; ++k)
     if (in.pressed(spawnKeys[k])) spawnInFront(ObjectKind(k + 1), forward);
-  if (in.pressed(Key::Q) || (in.pressed(Key::E) && !in.held(Key::LeftShift))) {
-    const ecs::Entity target = entityUnderCrosshair();
-    if (auto* choice = c.world.tryGet<components::MaterialChoice>(target)) {
-      choice->index = (choice->index + (in.pressed(Key::Q) ? 6 : 1)) % 7;
-      looksShown_.insert(lookNames_[size_t(choice->index)]);
-      if (auto* mr = c.world.tryGet<components::MeshRenderer>(target)) {
-        mr->materials[0] = looks_[size_t(choice->index)];
-        if (mr->materials.size() > 1) mr->materials[1] = capLooks_[size_t(choice->index)];
-      }
-      if (auto* sp = c.world.tryGet<components::Splitable>(target))
-        sp->capMaterial = capLooks_[size_t(choice->index)];
-    }
-  }
+  if (in.pressed(Key::Q) || (in.pressed(Key::E) && !in.held(Key::LeftShift))) cycleLook(c, in.pressed(Key::Q) ? 6 : 1);
   // F throws a shatter at the object under the crosshair: a one-tick shatter splitter at the point
   // the crosshair hits, 16 cells gathered around it, the pieces flying off at 2 m/s.
   if (in.pressed(Key::F)) shatterUnderCrosshair(c);
-  // Right button pushes the object under the crosshair.
-  if (in.pressed(input::MouseButton::Right)) {
-    glm::vec3 point;
-    const ecs::Entity target = entityUnderCrosshair(&point);
-    auto* rb = c.world.tryGet<components::RigidBody>(target);
-    if (!rb) notify("nothing to push under the crosshair");
-    if (rb) {
-      const float mass = physics_->bodyMass(rb->body).value_or(1.f);
-      const glm::vec3 dir = rayDirection(glm::vec2(c.frameSize) * 0.5f, c.frameSize);
-      physics_->activate(rb->body);
-      physics_->applyImpulse(rb->body, dir * kPushImpulse * mass, point);
-    }
+  if (in.pressed(input::MouseButton::Right)) pushUnderCrosshair(c);
+}
+
+// The object under the crosshair takes the look `step` places on (of the seven), its cap with it.
+void DemoGame::cycleLook(app::TickContext& c, int step) {
+  const ecs::Entity target = entityUnderCrosshair();
+  auto* choice = c.world.tryGet<components::MaterialChoice>(target);
+  if (!choice) return;
+  choice->index = (choice->index + step) % 7;
+  looksShown_.insert(lookNames_[size_t(choice->index)]);
+  if (auto* mr = c.world.tryGet<components::MeshRenderer>(target)) {
+    mr->materials[0] = looks_[size_t(choice->index)];
+    if (mr->materials.size() > 1) mr->materials[1] = capLooks_[size_t(choice->index)];
   }
-  // Drag to cut, in split mode.
-  if (splitMode_) {
-    if (in.pressed(input::MouseButton::Left)) {
-      dragging_ = true;
-      dragStart_ = dragEnd_ = in.mousePosition();
-    }
-    if (dragging_) dragEnd_ = in.mousePosition();
-    if (dragging_ && in.released(input::MouseButton::Left)) {
-      dragging_ = false;
-      dragCut(c, dragStart_, dragEnd_);
-    }
+  if (auto* sp = c.world.tryGet<components::Splitable>(target)) sp->capMaterial = capLooks_[size_t(choice->index)];
+}
+
+// The right button pushes the object under the crosshair where the crosshair hits it.
+void DemoGame::pushUnderCrosshair(app::TickContext& c) {
+  glm::vec3 point;
+  const ecs::Entity target = entityUnderCrosshair(&point);
+  auto* rb = c.world.tryGet<components::RigidBody>(target);
+  if (!rb) {
+    notify("nothing to push under the crosshair");
+    return;
+  }
+  const float mass = physics_->bodyMass(rb->body).value_or(1.f);
+  const glm::vec3 dir = rayDirection(glm::vec2(c.frameSize) * 0.5f, c.frameSize);
+  physics_->activate(rb->body);
+  physics_->applyImpulse(rb->body, dir * kPushImpulse * mass, point);
+}
+
+// In split mode, a drag with the left button cuts along the line drawn.
+void DemoGame::dragToCut(app::TickContext& c) {
+  if (!splitMode_) return;
+  const input::InputState& in = c.input;
+  if (in.pressed(input::MouseButton::Left)) {
+    dragging_ = true;
+    dragStart_ = dragEnd_ = in.mousePosition();
+  }
+  if (dragging_) dragEnd_ = in.mousePosition();
+  if (dragging_ && in.released(input::MouseButton::Left)) {
+    dragging_ = false;
+    dragCut(c, dragStart_, dragEnd_);
   }
 }
 

@@ -116,6 +116,13 @@ class DemoGame {
   uint64_t tick_ = 0;
   void notify(const std::string& text);
   void shatterUnderCrosshair(app::TickContext& c);
+  // gameplay, in steps.
+  bool updateModes(app::TickContext& c);
+  glm::vec3 updateCamera(app::TickContext& c);
+  void objectKeys(app::TickContext& c, const glm::vec3& forward);
+  void cycleLook(app::TickContext& c, int step);
+  void pushUnderCrosshair(app::TickContext& c);
+  void dragToCut(app::TickContext& c);
   bool lineCrossesSplitable(glm::vec2 from, glm::vec2 to, glm::ivec2 frame) const;
 
   // Materials: seven looks the player cycles with Q/E, and the matching cap materials.
