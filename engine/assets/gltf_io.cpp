@@ -17,6 +17,7 @@
 
 #include "cleave/assets/glb_builder.h"
 #include "cleave/assets/gltf_access.h"
+#include "cleave/assets/mesh_finish.h"
 #include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
