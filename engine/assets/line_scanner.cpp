@@ -55,7 +55,8 @@ bool LineScanner::nextLine() {
   }
   linePos_ = 0;
   ++lineNumber_;
-  if (end < text_.size() && text_[end] == '\r' && end + 1 < text_.size() && text_[end + 1] == '\n') {
+  if (end < text_.size() && text_[end] == '\r' && end + 1 < text_.size() &&
+      text_[end + 1] == '\n') {
     ++end;
   }
   pos_ = end + 1;

@@ -22,8 +22,8 @@ bool parseInt64(std::string_view token, int64_t& value);
 std::string quoted(std::string_view token);
 
 // Splits text into lines (LF, CRLF or CR) and lines into tokens separated by spaces, tabs, form
-// feeds, vertical tabs or NUL bytes, counting lines from 1. When commentChar is not '\0' it starts a
-// comment to the end of the line. The scanner views `text`, which must outlive it.
+// feeds, vertical tabs or NUL bytes, counting lines from 1. When commentChar is not '\0' it starts
+// a comment to the end of the line. The scanner views `text`, which must outlive it.
 class LineScanner {
  public:
   LineScanner(std::string_view text, char commentChar) : text_(text), comment_(commentChar) {}
@@ -45,7 +45,8 @@ class LineScanner {
   size_t lineNumber() const { return lineNumber_; }
   // Byte offset of the start of the next line in the text.
   size_t offset() const { return pos_; }
-  // Byte offset in the text just after the last token read (the end of the text past the last line).
+  // Byte offset in the text just after the last token read (the end of the text past the last
+  // line).
   size_t position() const { return lineStart_ + linePos_; }
 
  private:

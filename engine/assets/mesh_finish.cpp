@@ -13,19 +13,24 @@ void normalizeNormals(MeshReadResult& result, const std::string& name) {
   bool degenerate = false;
   for (glm::vec3& n : normals) {
     const float length = glm::length(n);
-    if (length > 0.f && std::isfinite(length)) n /= length;
-    else degenerate = true;
+    if (length > 0.f && std::isfinite(length))
+      n /= length;
+    else
+      degenerate = true;
   }
   if (degenerate) {
     normals.clear();
-    result.warnings.push_back(name + ": a normal has zero length or is not finite; normals dropped");
+    result.warnings.push_back(name +
+                              ": a normal has zero length or is not finite; normals dropped");
   }
 }
 
 namespace {
 
 bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && std::isfinite(v.w); }
 
 template <typename T>

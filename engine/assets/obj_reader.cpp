@@ -40,8 +40,10 @@ bool resolveIndex(std::string_view token, size_t count, uint32_t& index, std::st
     return false;
   }
   int64_t resolved = -1;
-  if (value > 0) resolved = value - 1;
-  else if (value < 0) resolved = static_cast<int64_t>(count) + value;
+  if (value > 0)
+    resolved = value - 1;
+  else if (value < 0)
+    resolved = static_cast<int64_t>(count) + value;
   else {
     reason = "index 0 is not valid (OBJ indices start at 1)";
     return false;
@@ -79,7 +81,8 @@ class ObjReader {
     if (keyword == "f" || keyword == "fo") return face();
     if (keyword == "usemtl") {
       const std::string_view materialName = scanner_.rest();
-      currentMaterial_ = materialId(materialName.empty() ? std::string_view("default") : materialName);
+      currentMaterial_ =
+          materialId(materialName.empty() ? std::string_view("default") : materialName);
     }
     // Everything else (o, g, s, l, p, mtllib, vp, curves, ...) does not change the triangle mesh.
     return {};
@@ -97,8 +100,10 @@ class ObjReader {
     positions_.emplace_back(values[0], values[1], values[2]);
     // `v x y z r g b` (a common extension); 7 values means x y z w r g b is not standard, so only
     // the 6-value form is read as a colour.
-    if (count == 6) vertexColors_.emplace_back(values[3], values[4], values[5], 1.f);
-    else allColored_ = false;
+    if (count == 6)
+      vertexColors_.emplace_back(values[3], values[4], values[5], 1.f);
+    else
+      allColored_ = false;
     return {};
   }
 
@@ -161,7 +166,8 @@ class ObjReader {
     geometry::MeshData& mesh = result_.mesh;
     const uint32_t material = static_cast<uint32_t>(currentMaterial_);
     if (mesh.submeshes.empty() || mesh.submeshes.back().materialId != material) {
-      mesh.submeshes.push_back(geometry::SubMesh{static_cast<uint32_t>(mesh.indices.size()), 0, material});
+      mesh.submeshes.push_back(
+          geometry::SubMesh{static_cast<uint32_t>(mesh.indices.size()), 0, material});
     }
     faces_.append(face_, facePositions_, mesh.indices);
     mesh.submeshes.back().indexCount =

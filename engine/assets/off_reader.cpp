@@ -36,7 +36,8 @@ bool parseKeyword(std::string_view token, OffHeader& header, std::string& reason
     prefix.remove_prefix(1);
   }
   if (!prefix.empty()) {
-    reason = "unsupported OFF variant " + quoted(token) + " (4D and n-dimensional OFF are not read)";
+    reason =
+        "unsupported OFF variant " + quoted(token) + " (4D and n-dimensional OFF are not read)";
   }
   return true;
 }
@@ -47,7 +48,8 @@ std::string parseColor(std::span<const std::string_view> values, glm::vec4& colo
   color = glm::vec4(1.f);
   bool integral = true;
   for (size_t k = 0; k < values.size(); ++k) {
-    if (!parseFloat(values[k], color[static_cast<int>(k)])) return "bad colour " + quoted(values[k]);
+    if (!parseFloat(values[k], color[static_cast<int>(k)]))
+      return "bad colour " + quoted(values[k]);
     integral = integral && values[k].find('.') == std::string_view::npos;
   }
   if (integral) {
@@ -83,8 +85,8 @@ class OffReader {
 
  private:
   MeshReadResult endsAfter(int64_t done, int64_t count, const char* what) const {
-    return failure(name_, "file ends after " + std::to_string(done) + " of " + std::to_string(count) +
-                              " " + what);
+    return failure(name_, "file ends after " + std::to_string(done) + " of " +
+                              std::to_string(count) + " " + what);
   }
 
   // The optional keyword and the three counts, checked against the bytes that follow them.
@@ -107,8 +109,8 @@ class OffReader {
     const int64_t remaining = static_cast<int64_t>(text_.size() - scanner_.offset()) + 1;
     if (vertexCount_ > remaining / 5 || faceCount_ > remaining / 7 ||
         vertexCount_ * 5 + faceCount_ * 7 > remaining + 2) {
-      return "counts (" + std::to_string(vertexCount_) + " vertices, " + std::to_string(faceCount_) +
-             " faces) exceed what the file can hold";
+      return "counts (" + std::to_string(vertexCount_) + " vertices, " +
+             std::to_string(faceCount_) + " faces) exceed what the file can hold";
     }
     return {};
   }

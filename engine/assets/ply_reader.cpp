@@ -79,7 +79,8 @@ class BodyReader {
         headerLines_(headerLines) {}
 
   size_t remaining() const {
-    return ascii() ? text_.size() - std::min(scanner_.position(), text_.size()) : body_.size() - pos_;
+    return ascii() ? text_.size() - std::min(scanner_.position(), text_.size())
+                   : body_.size() - pos_;
   }
   // The line of the last token read; past the end of the data, the line after the last line end.
   size_t line() const {
@@ -174,12 +175,13 @@ int roleOf(std::string_view name) {
 uint64_t minimumBytes(const Element& element, Encoding encoding) {
   uint64_t bytes = 0;
   for (const Property& p : element.properties) {
-    if (encoding == Encoding::Ascii) bytes += 2;  // one digit and one separator
-    else bytes += p.isList ? p.countType.size : p.type.size;
+    if (encoding == Encoding::Ascii)
+      bytes += 2;  // one digit and one separator
+    else
+      bytes += p.isList ? p.countType.size : p.type.size;
   }
   return bytes;
 }
-
 
 struct PlyHeader {
   Encoding encoding = Encoding::Ascii;
@@ -222,10 +224,14 @@ class HeaderReader {
 
   std::string format(Encoding& encoding) {
     const std::string_view kind = scanner_.nextToken();
-    if (kind == "ascii") encoding = Encoding::Ascii;
-    else if (kind == "binary_little_endian") encoding = Encoding::LittleEndian;
-    else if (kind == "binary_big_endian") encoding = Encoding::BigEndian;
-    else return "unknown PLY format " + quoted(kind);
+    if (kind == "ascii")
+      encoding = Encoding::Ascii;
+    else if (kind == "binary_little_endian")
+      encoding = Encoding::LittleEndian;
+    else if (kind == "binary_big_endian")
+      encoding = Encoding::BigEndian;
+    else
+      return "unknown PLY format " + quoted(kind);
     haveFormat_ = true;
     return {};
   }
@@ -314,11 +320,13 @@ class BodyElements {
       haveFaces_ = true;
       for (size_t p = 0; p < element.properties.size() && faceList_ < 0; ++p) {
         const Property& property = element.properties[p];
-        if (property.isList && (property.name == "vertex_indices" || property.name == "vertex_index")) {
+        if (property.isList &&
+            (property.name == "vertex_indices" || property.name == "vertex_index")) {
           faceList_ = static_cast<int>(p);
         }
       }
-      if (faceList_ < 0) return failureAt(name_, element.headerLine, "face element has no vertex_indices list");
+      if (faceList_ < 0)
+        return failureAt(name_, element.headerLine, "face element has no vertex_indices list");
     }
     return std::nullopt;
   }
@@ -347,8 +355,9 @@ class BodyElements {
       values[kAlpha] = 1.0;
       for (size_t p = 0; p < element.properties.size(); ++p) {
         const Property& property = element.properties[p];
-        const bool ok = property.isList ? readList(property, isFace_ && static_cast<int>(p) == faceList_)
-                                        : readScalar(property, roles_[p], values);
+        const bool ok = property.isList
+                            ? readList(property, isFace_ && static_cast<int>(p) == faceList_)
+                            : readScalar(property, roles_[p], values);
         if (!ok) return bodyError(element, e);
       }
       if (isVertex_) addVertex(values);
@@ -402,7 +411,8 @@ class BodyElements {
     }
     if (present_[kU] && present_[kV]) mesh.uv0.emplace_back(values[kU], values[kV]);
     if (present_[kRed] && present_[kGreen] && present_[kBlue]) {
-      mesh.colors.emplace_back(values[kRed] * colorScale_[kRed], values[kGreen] * colorScale_[kGreen],
+      mesh.colors.emplace_back(values[kRed] * colorScale_[kRed],
+                               values[kGreen] * colorScale_[kGreen],
                                values[kBlue] * colorScale_[kBlue],
                                present_[kAlpha] ? values[kAlpha] * colorScale_[kAlpha] : 1.0);
     }
@@ -431,7 +441,8 @@ MeshReadResult readPly(std::span<const uint8_t> bytes, const std::string& name) 
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   LineScanner scanner(text, '\0');
   PlyHeader header;
-  if (std::optional<MeshReadResult> failed = HeaderReader(scanner, name).read(header)) return *failed;
+  if (std::optional<MeshReadResult> failed = HeaderReader(scanner, name).read(header))
+    return *failed;
 
   const size_t bodyStart = std::min(scanner.offset(), bytes.size());
   BodyReader body(bytes.subspan(bodyStart), header.encoding, scanner.lineNumber());

@@ -3,10 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <span>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "cleave/geometry/cap_triangulator.h"
 
