@@ -14,11 +14,13 @@
 #include <fstream>
 #include <glm/gtc/quaternion.hpp>
 #include <initializer_list>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <string_view>
 
 #include "cleave/assets/gltf_access.h"
+#include "cleave/assets/gltf_attributes.h"
 #include "cleave/assets/model.h"
 
 namespace cleave::assets {
@@ -549,121 +551,89 @@ class Loader {
     return true;
   }
 
-  bool readPrimitive(size_t meshIndex, size_t primitiveIndex, const glm::dmat4& transform,
-                     ModelMesh& out) {
-    const tinygltf::Primitive& primitive = gltf_.meshes[meshIndex].primitives[primitiveIndex];
-    const std::string where =
-        "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex) + ": ";
-    if (primitive.extensions.count("KHR_draco_mesh_compression") != 0) {
-      return fail(where + "uses KHR_draco_mesh_compression, which is not supported");
-    }
-    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-      warn(where + "mode " + std::to_string(mode) + " (points or lines) skipped");
-      return true;
-    }
-    auto attribute = [&](const char* key, AccessorView& view, bool& present) -> bool {
-      present = false;
-      const auto it = primitive.attributes.find(key);
-      if (it == primitive.attributes.end()) return true;
+  // The accessors of a primitive's attributes, by VertexField (see gltf_attributes.h).
+  struct PrimitiveViews {
+    AccessorView views[5];
+    bool present[5] = {};
+    const AccessorView& operator[](detail::VertexField f) const { return views[size_t(f)]; }
+    bool has(detail::VertexField f) const { return present[size_t(f)]; }
+  };
+
+  // Views every attribute of the table, then checks each against what it accepts.
+  bool viewAttributes(const tinygltf::Primitive& primitive, const std::string& where, int skin,
+                      PrimitiveViews& v) {
+    using detail::VertexField;
+    for (size_t a = 0; a < std::size(detail::kGltfAttributes); ++a) {
+      const detail::GltfAttribute& attribute = detail::kGltfAttributes[a];
       std::string reason;
-      if (!viewAccessor(gltf_, it->second, view, reason))
-        return fail(where + std::string(key) + ": " + reason);
-      present = true;
-      return true;
-    };
-    AccessorView positions, normals, uvs, joints, weights;
-    bool hasPosition, hasNormal, hasUv, hasJoints, hasWeights;
-    if (!attribute("POSITION", positions, hasPosition) ||
-        !attribute("NORMAL", normals, hasNormal) || !attribute("TEXCOORD_0", uvs, hasUv) ||
-        !attribute("JOINTS_0", joints, hasJoints) || !attribute("WEIGHTS_0", weights, hasWeights)) {
-      return false;
+      int accessor = -1;
+      if (!detail::viewAttribute(gltf_, primitive, attribute, v.views[a], accessor, reason))
+        return fail(where + attribute.name + ": " + reason);
+      v.present[a] = accessor >= 0;
     }
-    if (!hasPosition) return fail(where + "has no POSITION attribute");
-    const size_t n = positions.count;
-    if (positions.components != 3 || positions.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-      return fail(where + "POSITION must be a float VEC3");
+    if (!v.has(VertexField::Positions)) return fail(where + "has no POSITION attribute");
+    const size_t n = v[VertexField::Positions].count;
+    for (const VertexField field : {VertexField::Positions, VertexField::Normals, VertexField::Uv0}) {
+      const detail::GltfAttribute& attribute = detail::gltfAttribute(field);
+      if (v.has(field) && !detail::attributeFits(attribute, v[field], n))
+        return fail(where + attribute.requirement);
     }
-    if (hasNormal &&
-        (normals.components != 3 || normals.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
-         normals.count != n)) {
-      return fail(where + "NORMAL must be a float VEC3 with one entry per vertex");
-    }
-    if (hasUv) {
-      const bool typeOk =
-          uvs.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-          (uvs.normalized && (uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                              uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
-      if (uvs.components != 2 || !typeOk || uvs.count != n) {
-        return fail(where + "TEXCOORD_0 must be a VEC2 (float or normalized unsigned) per vertex");
-      }
-    }
-    const bool skinned = out.skin >= 0;
-    const size_t jointCount =
-        skinned ? gltf_.skins[static_cast<size_t>(out.skin)].joints.size() : 0;
-    if (skinned && hasJoints != hasWeights)
+    if (skin < 0) return true;
+    const bool hasJoints = v.has(VertexField::Joints);
+    if (hasJoints != v.has(VertexField::Weights))
       return fail(where + "JOINTS_0 and WEIGHTS_0 must come together");
-    if (skinned && hasJoints) {
-      if (joints.components != 4 || joints.count != n ||
-          (joints.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-           joints.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)) {
-        return fail(where + "JOINTS_0 must be an unsigned byte or short VEC4 per vertex");
-      }
-      const bool weightTypeOk =
-          weights.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-          (weights.normalized && (weights.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                  weights.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
-      if (weights.components != 4 || weights.count != n || !weightTypeOk) {
-        return fail(where + "WEIGHTS_0 must be a float or normalized unsigned VEC4 per vertex");
-      }
-    } else if (skinned) {
+    if (!hasJoints) {
       warn(where + "a skinned mesh without JOINTS_0: bound to joint 0");
+      return true;
     }
+    for (const VertexField field : {VertexField::Joints, VertexField::Weights}) {
+      const detail::GltfAttribute& attribute = detail::gltfAttribute(field);
+      if (!detail::attributeFits(attribute, v[field], n)) return fail(where + attribute.requirement);
+    }
+    return true;
+  }
 
-    // Corners: the indices, or 0..n-1.
-    std::vector<uint32_t> corners;
-    if (primitive.indices >= 0) {
-      AccessorView indexView;
-      std::string reason;
-      if (!viewAccessor(gltf_, primitive.indices, indexView, reason))
-        return fail(where + "indices: " + reason);
-      if (indexView.components != 1 ||
-          (indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-           indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-           indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
-        return fail(where + "indices must be unsigned byte, short or int scalars");
+  // The joints and weights of vertex i: the weights normalised to a sum of 1, a joint without
+  // weight set to 0; joint 0 with weight 1 when the vertex has no weight at all.
+  bool skinVertex(const PrimitiveViews& v, size_t i, size_t jointCount, const std::string& where,
+                  glm::u16vec4& j, glm::vec4& w) {
+    using detail::VertexField;
+    j = glm::u16vec4(0);
+    w = glm::vec4(1.f, 0.f, 0.f, 0.f);
+    if (!v.has(VertexField::Joints)) return true;
+    double raw[4], total = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      raw[k] = component(v[VertexField::Weights], i, k);
+      if (!std::isfinite(raw[k]) || raw[k] < 0.0) raw[k] = 0.0;
+      const double joint = component(v[VertexField::Joints], i, k);
+      if (raw[k] > 0.0 && joint >= static_cast<double>(jointCount)) {
+        return fail(where + "vertex " + std::to_string(i) + " uses joint " +
+                    std::to_string(uint64_t(joint)) + " of a skin with " +
+                    std::to_string(jointCount) + " joints");
       }
-      corners.resize(indexView.count);
-      for (size_t i = 0; i < indexView.count; ++i) {
-        const double value = component(indexView, i, 0);
-        if (value >= static_cast<double>(n)) {
-          return fail(where + "index " + std::to_string(static_cast<uint64_t>(value)) +
-                      " at position " + std::to_string(i) + " is out of range (" +
-                      std::to_string(n) + " vertices)");
-        }
-        corners[i] = static_cast<uint32_t>(value);
-      }
+      j[k] = raw[k] > 0.0 ? static_cast<uint16_t>(joint) : 0;
+      total += raw[k];
+    }
+    if (total > 0.0) {
+      for (int k = 0; k < 4; ++k) w[k] = static_cast<float>(raw[k] / total);
     } else {
-      if (n > UINT32_MAX) return fail(where + "too many vertices");
-      corners.resize(n);
-      for (size_t i = 0; i < n; ++i) corners[i] = static_cast<uint32_t>(i);
+      j = glm::u16vec4(0);
     }
-    std::vector<uint32_t> triangles;
-    if (!detail::trianglesOfPrimitive(mode, corners, triangles))
-      warn(where + "index count not a multiple of 3; the last partial triangle is ignored");
-    if (triangles.empty()) return true;
-    const uint64_t elements = uint64_t{n} + triangles.size();
-    if (elements > budget_)
-      return fail("the scene instantiates more geometry than the file size allows");
-    budget_ -= elements;
+    return true;
+  }
 
+  // Appends the primitive's vertices to out.mesh: positions by `transform`, normals by its normal
+  // matrix (zero when absent or degenerate), uv0 (zero when absent), joints and weights when
+  // skinned.
+  bool appendVertices(const PrimitiveViews& v, const glm::dmat4& transform, const std::string& where,
+                      ModelMesh& out) {
+    using detail::VertexField;
     geometry::MeshData& m = out.mesh;
-    const size_t base = m.positions.size();
-    if (base + n > UINT32_MAX) return fail("too many vertices");
-    const glm::dmat3 linear(transform);
-    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
-    const bool mirrored = glm::determinant(linear) < 0.0;
+    const size_t n = v[VertexField::Positions].count;
+    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(transform)));
+    const size_t jointCount = out.skin >= 0 ? gltf_.skins[static_cast<size_t>(out.skin)].joints.size() : 0;
+    const AccessorView &positions = v[VertexField::Positions], &normals = v[VertexField::Normals],
+                       &uvs = v[VertexField::Uv0];
     for (size_t i = 0; i < n; ++i) {
       const glm::dvec3 local(component(positions, i, 0), component(positions, i, 1),
                              component(positions, i, 2));
@@ -673,85 +643,124 @@ class Loader {
       }
       m.positions.emplace_back(p);
       glm::vec3 normal(0.f);
-      if (hasNormal) {
-        const glm::dvec3 t =
-            normalMatrix * glm::dvec3(component(normals, i, 0), component(normals, i, 1),
-                                      component(normals, i, 2));
+      if (v.has(VertexField::Normals)) {
+        const glm::dvec3 t = normalMatrix * glm::dvec3(component(normals, i, 0), component(normals, i, 1),
+                                                       component(normals, i, 2));
         const double len = glm::length(t);
         if (len > 0.0 && std::isfinite(len)) normal = glm::vec3(t / len);
       }
       m.normals.push_back(normal);
-      m.uv0.push_back(hasUv ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1))
-                            : glm::vec2(0.f));
-      if (skinned) {
-        glm::u16vec4 j(0);
-        glm::vec4 w(1.f, 0.f, 0.f, 0.f);
-        if (hasJoints) {
-          double raw[4], total = 0.0;
-          for (int k = 0; k < 4; ++k) {
-            raw[k] = component(weights, i, k);
-            if (!std::isfinite(raw[k]) || raw[k] < 0.0) raw[k] = 0.0;
-            const double joint = component(joints, i, k);
-            if (raw[k] > 0.0 && joint >= static_cast<double>(jointCount)) {
-              return fail(where + "vertex " + std::to_string(i) + " uses joint " +
-                          std::to_string(uint64_t(joint)) + " of a skin with " +
-                          std::to_string(jointCount) + " joints");
-            }
-            j[k] = raw[k] > 0.0 ? static_cast<uint16_t>(joint) : 0;
-            total += raw[k];
-          }
-          if (total > 0.0) {
-            for (int k = 0; k < 4; ++k) w[k] = static_cast<float>(raw[k] / total);
-          } else {
-            j = glm::u16vec4(0);
-          }
-        }
-        m.joints.push_back(j);
-        m.weights.push_back(w);
-      }
+      m.uv0.push_back(v.has(VertexField::Uv0) ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1))
+                                              : glm::vec2(0.f));
+      if (out.skin < 0) continue;
+      glm::u16vec4 j;
+      glm::vec4 w;
+      if (!skinVertex(v, i, jointCount, where, j, w)) return false;
+      m.joints.push_back(j);
+      m.weights.push_back(w);
     }
-    anyUv_ = anyUv_ || hasUv;
+    return true;
+  }
 
-    uint32_t materialId;
-    if (primitive.material >= 0) {
-      if (static_cast<size_t>(primitive.material) >= gltf_.materials.size()) {
-        return fail(where + "material " + std::to_string(primitive.material) + " does not exist");
-      }
-      materialId = static_cast<uint32_t>(primitive.material);
-    } else {
-      materialId = static_cast<uint32_t>(gltf_.materials.size());
-      usesDefaultMaterial_ = true;
-    }
-    m.submeshes.push_back(
-        geometry::SubMesh{static_cast<uint32_t>(m.indices.size()), 0, materialId});
-    const size_t firstIndex = m.indices.size();
-    for (size_t t = 0; t < triangles.size(); t += 3) {
-      const uint32_t a = static_cast<uint32_t>(base) + triangles[t];
-      const uint32_t b = static_cast<uint32_t>(base) + triangles[t + 1];
-      const uint32_t c = static_cast<uint32_t>(base) + triangles[t + 2];
-      m.indices.insert(m.indices.end(), {a, mirrored ? c : b, mirrored ? b : c});
-    }
-    m.submeshes.back().indexCount = static_cast<uint32_t>(m.indices.size() - firstIndex);
-
-    // Missing (or degenerate) normals: area-weighted smooth normals of this primitive's triangles.
+  // Missing (or degenerate) normals: area-weighted smooth normals of the primitive's triangles
+  // (indices from firstIndex, vertices from base).
+  static void fillMissingNormals(geometry::MeshData& m, size_t base, size_t firstIndex, bool hasNormal) {
+    const size_t n = m.positions.size() - base;
     bool needNormals = !hasNormal;
     for (size_t i = base; i < m.positions.size() && !needNormals; ++i)
       needNormals = m.normals[i] == glm::vec3(0.f);
-    if (needNormals) {
-      std::vector<glm::dvec3> sum(n, glm::dvec3(0.0));
-      for (size_t t = firstIndex; t < m.indices.size(); t += 3) {
-        const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
-            c(m.positions[m.indices[t + 2]]);
-        const glm::dvec3 face = glm::cross(b - a, c - a);
-        for (int k = 0; k < 3; ++k) sum[m.indices[t + k] - base] += face;
-      }
-      for (size_t i = 0; i < n; ++i) {
-        if (hasNormal && m.normals[base + i] != glm::vec3(0.f)) continue;
-        const double len = glm::length(sum[i]);
-        m.normals[base + i] =
-            len > 0.0 && std::isfinite(len) ? glm::vec3(sum[i] / len) : glm::vec3(0.f, 1.f, 0.f);
+    if (!needNormals) return;
+    std::vector<glm::dvec3> sum(n, glm::dvec3(0.0));
+    for (size_t t = firstIndex; t < m.indices.size(); t += 3) {
+      const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
+          c(m.positions[m.indices[t + 2]]);
+      const glm::dvec3 face = glm::cross(b - a, c - a);
+      for (int k = 0; k < 3; ++k) sum[m.indices[t + k] - base] += face;
+    }
+    for (size_t i = 0; i < n; ++i) {
+      if (hasNormal && m.normals[base + i] != glm::vec3(0.f)) continue;
+      const double len = glm::length(sum[i]);
+      m.normals[base + i] =
+          len > 0.0 && std::isfinite(len) ? glm::vec3(sum[i] / len) : glm::vec3(0.f, 1.f, 0.f);
+    }
+  }
+
+  // The triangles of a primitive of n vertices (its indices or 0..n-1, by its mode).
+  bool primitiveTriangles(const tinygltf::Primitive& primitive, int mode, size_t n,
+                          const std::string& where, std::vector<uint32_t>& triangles) {
+    std::vector<uint32_t> corners;
+    detail::CornerFailure failure;
+    if (!detail::primitiveCorners(gltf_, primitive, n, corners, failure)) {
+      switch (failure.kind) {
+        case detail::CornerFailure::View: return fail(where + "indices: " + failure.reason);
+        case detail::CornerFailure::Type:
+          return fail(where + "indices must be unsigned byte, short or int scalars");
+        case detail::CornerFailure::Range:
+          return fail(where + "index " + std::to_string(failure.index) + " at position " +
+                      std::to_string(failure.position) + " is out of range (" + std::to_string(n) +
+                      " vertices)");
+        case detail::CornerFailure::TooManyVertices: return fail(where + "too many vertices");
       }
     }
+    if (!detail::trianglesOfPrimitive(mode, corners, triangles))
+      warn(where + "index count not a multiple of 3; the last partial triangle is ignored");
+    return true;
+  }
+
+  // The material id of a primitive: its material, or the default material after the file's.
+  bool primitiveMaterial(const tinygltf::Primitive& primitive, const std::string& where,
+                         uint32_t& materialId) {
+    if (primitive.material < 0) {
+      materialId = static_cast<uint32_t>(gltf_.materials.size());
+      usesDefaultMaterial_ = true;
+      return true;
+    }
+    if (static_cast<size_t>(primitive.material) >= gltf_.materials.size()) {
+      return fail(where + "material " + std::to_string(primitive.material) + " does not exist");
+    }
+    materialId = static_cast<uint32_t>(primitive.material);
+    return true;
+  }
+
+  bool readPrimitive(size_t meshIndex, size_t primitiveIndex, const glm::dmat4& transform,
+                     ModelMesh& out) {
+    const tinygltf::Primitive& primitive = gltf_.meshes[meshIndex].primitives[primitiveIndex];
+    const std::string where =
+        "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex) + ": ";
+    if (detail::usesDraco(primitive)) {
+      return fail(where + "uses KHR_draco_mesh_compression, which is not supported");
+    }
+    int mode = 0;
+    if (!detail::triangleMode(primitive, mode)) {
+      warn(where + "mode " + std::to_string(mode) + " (points or lines) skipped");
+      return true;
+    }
+    PrimitiveViews views;
+    if (!viewAttributes(primitive, where, out.skin, views)) return false;
+    const size_t n = views[detail::VertexField::Positions].count;
+    std::vector<uint32_t> triangles;
+    if (!primitiveTriangles(primitive, mode, n, where, triangles)) return false;
+    if (triangles.empty()) return true;
+    const uint64_t elements = uint64_t{n} + triangles.size();
+    if (elements > budget_)
+      return fail("the scene instantiates more geometry than the file size allows");
+    budget_ -= elements;
+
+    geometry::MeshData& m = out.mesh;
+    const size_t base = m.positions.size();
+    if (base + n > UINT32_MAX) return fail("too many vertices");
+    if (!appendVertices(views, transform, where, out)) return false;
+    const bool hasNormal = views.has(detail::VertexField::Normals);
+    anyUv_ = anyUv_ || views.has(detail::VertexField::Uv0);
+
+    uint32_t materialId = 0;
+    if (!primitiveMaterial(primitive, where, materialId)) return false;
+    const size_t firstIndex = m.indices.size();
+    m.submeshes.push_back(geometry::SubMesh{static_cast<uint32_t>(firstIndex), 0, materialId});
+    const bool mirrored = glm::determinant(glm::dmat3(transform)) < 0.0;
+    detail::appendTriangles(triangles, base, mirrored, m.indices);
+    m.submeshes.back().indexCount = static_cast<uint32_t>(m.indices.size() - firstIndex);
+    fillMissingNormals(m, base, firstIndex, hasNormal);
     return true;
   }
 
