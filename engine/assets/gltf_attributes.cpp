@@ -28,9 +28,10 @@ const GltfAttribute& gltfAttribute(VertexField field) {
 bool attributeFits(const GltfAttribute& attribute, const AccessorView& view, size_t vertexCount) {
   const bool smallUnsigned = view.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                              view.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-  const bool typeOk = (attribute.readsFloat && view.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) ||
-                      (attribute.readsNormalized && view.normalized && smallUnsigned) ||
-                      (attribute.readsUnsigned && smallUnsigned);
+  const bool typeOk =
+      (attribute.readsFloat && view.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) ||
+      (attribute.readsNormalized && view.normalized && smallUnsigned) ||
+      (attribute.readsUnsigned && smallUnsigned);
   const bool countOk = attribute.field == VertexField::Positions || view.count == vertexCount;
   return view.components == attribute.components && typeOk && countOk;
 }

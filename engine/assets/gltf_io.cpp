@@ -311,7 +311,9 @@ bool staticTriangles(const tinygltf::Model& model, const tinygltf::Primitive& pr
   CornerFailure failure;
   if (!primitiveCorners(model, primitive, n, corners, failure)) {
     switch (failure.kind) {
-      case CornerFailure::View: reason = where + failure.reason; break;
+      case CornerFailure::View:
+        reason = where + failure.reason;
+        break;
       case CornerFailure::Type:
         reason = where + "indices must be unsigned byte, short or int scalars";
         break;
@@ -319,7 +321,9 @@ bool staticTriangles(const tinygltf::Model& model, const tinygltf::Primitive& pr
         reason = where + "index " + std::to_string(failure.index) + " out of range (" +
                  std::to_string(n) + " vertices)";
         break;
-      case CornerFailure::TooManyVertices: reason = where + "too many vertices"; break;
+      case CornerFailure::TooManyVertices:
+        reason = where + "too many vertices";
+        break;
     }
     return false;
   }
@@ -351,8 +355,9 @@ void appendStaticVertices(const StaticViews& v, const glm::dmat4& transform, Mer
       else state.degenerateNormal = true;
     }
     mesh.normals.push_back(n);
-    mesh.uv0.push_back(v.has(VertexField::Uv0) ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1))
-                                               : glm::vec2(0.f));
+    mesh.uv0.push_back(v.has(VertexField::Uv0)
+                           ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1))
+                           : glm::vec2(0.f));
   }
 }
 
@@ -376,8 +381,8 @@ bool staticMaterial(const tinygltf::Model& model, const tinygltf::Primitive& pri
 bool appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t primitiveIndex,
                      const glm::dmat4& transform, MergeState& state, std::string& reason) {
   const tinygltf::Primitive& primitive = model.meshes[meshIndex].primitives[primitiveIndex];
-  const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " +
-                            std::to_string(primitiveIndex) + ": ";
+  const std::string where =
+      "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex) + ": ";
   if (usesDraco(primitive)) {
     reason = where + "uses KHR_draco_mesh_compression, which is not supported";
     return false;
@@ -392,7 +397,8 @@ bool appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
   if (!viewStaticAttributes(model, primitive, where, views, reason)) return false;
   const size_t count = views[VertexField::Positions].count;
   std::vector<uint32_t> triangles;
-  if (!staticTriangles(model, primitive, mode, count, where, state, triangles, reason)) return false;
+  if (!staticTriangles(model, primitive, mode, count, where, state, triangles, reason))
+    return false;
   if (triangles.empty()) return true;
 
   const MergeState::Shared& last = state.lastBlock;
@@ -422,7 +428,8 @@ bool appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
   uint32_t materialId = 0;
   if (!staticMaterial(model, primitive, where, state, materialId, reason)) return false;
   if (mesh.submeshes.empty() || mesh.submeshes.back().materialId != materialId) {
-    mesh.submeshes.push_back(geometry::SubMesh{static_cast<uint32_t>(mesh.indices.size()), 0, materialId});
+    mesh.submeshes.push_back(
+        geometry::SubMesh{static_cast<uint32_t>(mesh.indices.size()), 0, materialId});
   }
   appendTriangles(triangles, base, glm::determinant(glm::dmat3(transform)) < 0.0, mesh.indices);
   mesh.submeshes.back().indexCount =
@@ -444,7 +451,8 @@ bool sceneRoots(const tinygltf::Model& model, std::vector<int>& roots, std::stri
   std::vector<uint8_t> isChild(model.nodes.size(), 0);
   for (const tinygltf::Node& node : model.nodes) {
     for (int child : node.children) {
-      if (child >= 0 && static_cast<size_t>(child) < model.nodes.size()) isChild[static_cast<size_t>(child)] = 1;
+      if (child >= 0 && static_cast<size_t>(child) < model.nodes.size())
+        isChild[static_cast<size_t>(child)] = 1;
     }
   }
   for (size_t i = 0; i < model.nodes.size(); ++i) {
@@ -461,7 +469,8 @@ bool mergeNodeMesh(const tinygltf::Model& model, size_t nodeIndex, const glm::dm
   const tinygltf::Node& node = model.nodes[nodeIndex];
   if (node.mesh < 0) return true;
   if (static_cast<size_t>(node.mesh) >= model.meshes.size()) {
-    reason = "node " + std::to_string(nodeIndex) + " refers to missing mesh " + std::to_string(node.mesh);
+    reason = "node " + std::to_string(nodeIndex) + " refers to missing mesh " +
+             std::to_string(node.mesh);
     return false;
   }
   const glm::dmat4 transform = node.skin >= 0 ? glm::dmat4(1.0) : world;
@@ -496,7 +505,8 @@ bool mergeNodes(const tinygltf::Model& model, const std::vector<int>& roots, Mer
     }
     const size_t nodeIndex = static_cast<size_t>(item.node);
     if (visited[nodeIndex]) {
-      reason = "node " + std::to_string(item.node) + " is reached twice from the scene (a cycle or a shared child)";
+      reason = "node " + std::to_string(item.node) +
+               " is reached twice from the scene (a cycle or a shared child)";
       return false;
     }
     visited[nodeIndex] = 1;

@@ -346,6 +346,95 @@ class Loader {
     return true;
   }
 
+  // The joint index of each joint node of a skin; false when a node is missing or named twice.
+  bool jointNodes(const tinygltf::Skin& skin, const std::string& what,
+                  std::map<int, int32_t>& jointOf) {
+    if (skin.joints.empty()) return fail(what + " has no joints");
+    if (skin.joints.size() > 65535) return fail(what + " has too many joints");
+    for (size_t j = 0; j < skin.joints.size(); ++j) {
+      const int node = skin.joints[j];
+      if (node < 0 || static_cast<size_t>(node) >= gltf_.nodes.size()) {
+        return fail(what + " names missing joint node " + std::to_string(node));
+      }
+      if (!jointOf.emplace(node, static_cast<int32_t>(j)).second) {
+        return fail(what + " names node " + std::to_string(node) + " twice");
+      }
+    }
+    return true;
+  }
+
+  // The skin's inverse bind matrices (identity without them): float MAT4, one per joint, finite.
+  bool inverseBindMatrices(const tinygltf::Skin& skin, const std::string& what,
+                           std::vector<glm::mat4>& inverseBind) {
+    inverseBind.assign(skin.joints.size(), glm::mat4(1.f));
+    if (skin.inverseBindMatrices < 0) return true;
+    AccessorView view;
+    std::string reason;
+    if (!viewAccessor(gltf_, skin.inverseBindMatrices, view, reason))
+      return fail(what + ": " + reason);
+    if (view.components != 16 || view.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
+        view.count < skin.joints.size()) {
+      return fail(what + ": inverse bind matrices must be float MAT4, one per joint");
+    }
+    for (size_t j = 0; j < skin.joints.size(); ++j) {
+      for (int c = 0; c < 16; ++c) {
+        const double v = component(view, j, c);
+        if (!std::isfinite(v))
+          return fail(what + ": inverse bind matrix " + std::to_string(j) + " is not finite");
+        inverseBind[j][c / 4][c % 4] = static_cast<float>(v);
+      }
+    }
+    return true;
+  }
+
+  // A joint node's rest transform (translation, rotation, scale), or for a matrix node (glTF does
+  // not animate those) its matrix as the fixed offset.
+  bool jointRest(size_t node, anim::Joint& joint, glm::dmat4& offset) {
+    const tinygltf::Node& n = gltf_.nodes[node];
+    offset = glm::dmat4(1.0);
+    if (n.matrix.size() == 16) {
+      offset = detail::localMatrix(n);
+      return true;
+    }
+    if (n.translation.size() == 3)
+      joint.rest.translation = glm::vec3(n.translation[0], n.translation[1], n.translation[2]);
+    if (n.rotation.size() == 4) {
+      glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                  float(n.rotation[2]));
+      const float len = glm::length(q);
+      if (!(len > 0.f) || !std::isfinite(len))
+        return fail("node " + std::to_string(node) + " has an invalid rotation");
+      joint.rest.rotation = q / len;
+    }
+    if (n.scale.size() == 3) joint.rest.scale = glm::vec3(n.scale[0], n.scale[1], n.scale[2]);
+    return true;
+  }
+
+  // Joint j of a skin: its name, inverse bind, rest transform, parent joint and fixed offset.
+  bool readJoint(const tinygltf::Skin& skin, size_t j, std::map<int, int32_t>& jointOf,
+                 const std::string& what, anim::Joint& joint) {
+    const size_t node = static_cast<size_t>(skin.joints[j]);
+    const tinygltf::Node& n = gltf_.nodes[node];
+    joint.name = n.name.empty() ? "joint_" + std::to_string(j) : n.name;
+    glm::dmat4 offset(1.0);
+    if (!jointRest(node, joint, offset)) return false;
+    int at = parent_[node];
+    glm::dmat4 between(1.0);
+    while (at >= 0 && jointOf.find(at) == jointOf.end()) {
+      between = detail::localMatrix(gltf_.nodes[static_cast<size_t>(at)]) * between;
+      at = parent_[static_cast<size_t>(at)];
+    }
+    joint.parent = at >= 0 ? jointOf[at] : -1;
+    joint.offset = glm::mat4(between * offset);
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) {
+        if (!std::isfinite(joint.offset[c][r]))
+          return fail(what + ": joint " + std::to_string(j) + " has a non-finite transform");
+      }
+    }
+    return true;
+  }
+
   // One skeleton per skin. A joint's parent is its nearest ancestor node that is a joint of the
   // same skin; non-joint nodes between them (or above a root joint) become the joint's fixed
   // offset.
@@ -353,77 +442,16 @@ class Loader {
     for (size_t s = 0; s < gltf_.skins.size(); ++s) {
       const tinygltf::Skin& skin = gltf_.skins[s];
       const std::string what = "skin " + std::to_string(s);
-      if (skin.joints.empty()) return fail(what + " has no joints");
-      if (skin.joints.size() > 65535) return fail(what + " has too many joints");
       std::map<int, int32_t> jointOf;
-      for (size_t j = 0; j < skin.joints.size(); ++j) {
-        const int node = skin.joints[j];
-        if (node < 0 || static_cast<size_t>(node) >= gltf_.nodes.size()) {
-          return fail(what + " names missing joint node " + std::to_string(node));
-        }
-        if (!jointOf.emplace(node, static_cast<int32_t>(j)).second) {
-          return fail(what + " names node " + std::to_string(node) + " twice");
-        }
-      }
-      std::vector<glm::mat4> inverseBind(skin.joints.size(), glm::mat4(1.f));
-      if (skin.inverseBindMatrices >= 0) {
-        AccessorView view;
-        std::string reason;
-        if (!viewAccessor(gltf_, skin.inverseBindMatrices, view, reason))
-          return fail(what + ": " + reason);
-        if (view.components != 16 || view.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
-            view.count < skin.joints.size()) {
-          return fail(what + ": inverse bind matrices must be float MAT4, one per joint");
-        }
-        for (size_t j = 0; j < skin.joints.size(); ++j) {
-          for (int c = 0; c < 16; ++c) {
-            const double v = component(view, j, c);
-            if (!std::isfinite(v))
-              return fail(what + ": inverse bind matrix " + std::to_string(j) + " is not finite");
-            inverseBind[j][c / 4][c % 4] = static_cast<float>(v);
-          }
-        }
-      }
+      std::vector<glm::mat4> inverseBind;
+      if (!jointNodes(skin, what, jointOf) || !inverseBindMatrices(skin, what, inverseBind))
+        return false;
       ModelSkin out;
       out.name = skin.name.empty() ? what : skin.name;
       out.skeleton.joints.resize(skin.joints.size());
       for (size_t j = 0; j < skin.joints.size(); ++j) {
-        const size_t node = static_cast<size_t>(skin.joints[j]);
-        const tinygltf::Node& n = gltf_.nodes[node];
-        anim::Joint& joint = out.skeleton.joints[j];
-        joint.name = n.name.empty() ? "joint_" + std::to_string(j) : n.name;
-        joint.inverseBind = inverseBind[j];
-        glm::dmat4 offset(1.0);
-        if (n.matrix.size() == 16) {
-          offset = detail::localMatrix(n);  // matrix nodes are not animated (glTF rule)
-        } else {
-          if (n.translation.size() == 3)
-            joint.rest.translation =
-                glm::vec3(n.translation[0], n.translation[1], n.translation[2]);
-          if (n.rotation.size() == 4) {
-            glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
-                        float(n.rotation[2]));
-            const float len = glm::length(q);
-            if (!(len > 0.f) || !std::isfinite(len))
-              return fail("node " + std::to_string(node) + " has an invalid rotation");
-            joint.rest.rotation = q / len;
-          }
-          if (n.scale.size() == 3) joint.rest.scale = glm::vec3(n.scale[0], n.scale[1], n.scale[2]);
-        }
-        int at = parent_[node];
-        glm::dmat4 between(1.0);
-        while (at >= 0 && jointOf.find(at) == jointOf.end()) {
-          between = detail::localMatrix(gltf_.nodes[static_cast<size_t>(at)]) * between;
-          at = parent_[static_cast<size_t>(at)];
-        }
-        joint.parent = at >= 0 ? jointOf[at] : -1;
-        joint.offset = glm::mat4(between * offset);
-        for (int c = 0; c < 4; ++c) {
-          for (int r = 0; r < 4; ++r) {
-            if (!std::isfinite(joint.offset[c][r]))
-              return fail(what + ": joint " + std::to_string(j) + " has a non-finite transform");
-          }
-        }
+        out.skeleton.joints[j].inverseBind = inverseBind[j];
+        if (!readJoint(skin, j, jointOf, what, out.skeleton.joints[j])) return false;
       }
       std::string reason;
       if (!anim::validateSkeleton(out.skeleton, &reason)) return fail(what + ": " + reason);
@@ -432,99 +460,113 @@ class Loader {
     return true;
   }
 
+  // An animation sampler, decoded once for every skin's clip.
+  struct Sampler {
+    std::vector<float> times;
+    std::vector<glm::vec4> values;  // raw, components padded with 0
+    anim::Interpolation interpolation = anim::Interpolation::Linear;
+    int components = 0;
+  };
+
+  bool readSampler(const tinygltf::AnimationSampler& in, const std::string& what, Sampler& out) {
+    if (in.interpolation == "STEP")
+      out.interpolation = anim::Interpolation::Step;
+    else if (in.interpolation == "CUBICSPLINE")
+      out.interpolation = anim::Interpolation::CubicSpline;
+    else if (in.interpolation.empty() || in.interpolation == "LINEAR")
+      out.interpolation = anim::Interpolation::Linear;
+    else
+      return fail(what + ": unknown interpolation " + in.interpolation);
+    AccessorView input, output;
+    std::string reason;
+    if (!viewAccessor(gltf_, in.input, input, reason) ||
+        !viewAccessor(gltf_, in.output, output, reason)) {
+      return fail(what + ": " + reason);
+    }
+    if (input.components != 1 || input.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+      return fail(what + ": key times must be float scalars");
+    }
+    out.components = output.components;
+    for (size_t k = 0; k < input.count; ++k) {
+      const float t = static_cast<float>(component(input, k, 0));
+      if (!std::isfinite(t) || (!out.times.empty() && !(t > out.times.back()))) {
+        return fail(what + ": key times must be finite and increasing");
+      }
+      out.times.push_back(t);
+    }
+    if (output.components > 4) return true;
+    for (size_t k = 0; k < output.count; ++k) {
+      glm::vec4 v(0.f);
+      for (int c = 0; c < output.components; ++c)
+        v[c] = static_cast<float>(component(output, k, c));
+      out.values.push_back(v);
+    }
+    return true;
+  }
+
+  // Channel c of an animation as a channel of `skin`'s clip; `keep` false for a channel that
+  // targets no joint of the skin or morph-target weights.
+  bool readChannel(const tinygltf::Animation& animation, size_t c, const tinygltf::Skin& skin,
+                   const std::vector<Sampler>& samplers, const std::string& what,
+                   anim::Channel& out, bool& keep) {
+    keep = false;
+    const tinygltf::AnimationChannel& channel = animation.channels[c];
+    if (channel.sampler < 0 || static_cast<size_t>(channel.sampler) >= samplers.size()) {
+      return fail(what + " channel " + std::to_string(c) + " names missing sampler " +
+                  std::to_string(channel.sampler));
+    }
+    if (channel.target_node < 0) return true;
+    const auto it = std::find(skin.joints.begin(), skin.joints.end(), channel.target_node);
+    if (it == skin.joints.end()) return true;
+    out.joint = static_cast<uint32_t>(it - skin.joints.begin());
+    int components = 0;
+    if (channel.target_path == "translation")
+      out.path = anim::ChannelPath::Translation, components = 3;
+    else if (channel.target_path == "rotation")
+      out.path = anim::ChannelPath::Rotation, components = 4;
+    else if (channel.target_path == "scale")
+      out.path = anim::ChannelPath::Scale, components = 3;
+    else
+      return true;  // morph-target weights
+    const Sampler& sampler = samplers[static_cast<size_t>(channel.sampler)];
+    out.interpolation = sampler.interpolation;
+    out.times = sampler.times;
+    out.values = sampler.values;
+    const size_t perKey = out.interpolation == anim::Interpolation::CubicSpline ? 3 : 1;
+    if (sampler.components != components || out.values.size() != out.times.size() * perKey ||
+        out.times.empty()) {
+      return fail(what + " channel " + std::to_string(c) +
+                  ": the sampler output does not match its " + channel.target_path + " keys");
+    }
+    if (out.path == anim::ChannelPath::Rotation &&
+        out.interpolation != anim::Interpolation::CubicSpline) {
+      for (glm::vec4& q : out.values) {
+        const float len = glm::length(q);
+        if (len > 0.f && std::isfinite(len)) q /= len;
+      }
+    }
+    keep = true;
+    return true;
+  }
+
   bool readAnimations(Model& model) {
     for (size_t a = 0; a < gltf_.animations.size(); ++a) {
       const tinygltf::Animation& animation = gltf_.animations[a];
       const std::string what = "animation " + std::to_string(a);
-      // Decode every sampler once.
-      struct Sampler {
-        std::vector<float> times;
-        std::vector<glm::vec4> values;  // raw, components padded with 0
-        anim::Interpolation interpolation = anim::Interpolation::Linear;
-        int components = 0;
-      };
       std::vector<Sampler> samplers(animation.samplers.size());
       for (size_t s = 0; s < animation.samplers.size(); ++s) {
-        const tinygltf::AnimationSampler& in = animation.samplers[s];
-        Sampler& out = samplers[s];
-        if (in.interpolation == "STEP")
-          out.interpolation = anim::Interpolation::Step;
-        else if (in.interpolation == "CUBICSPLINE")
-          out.interpolation = anim::Interpolation::CubicSpline;
-        else if (in.interpolation.empty() || in.interpolation == "LINEAR")
-          out.interpolation = anim::Interpolation::Linear;
-        else
-          return fail(what + " sampler " + std::to_string(s) + ": unknown interpolation " +
-                      in.interpolation);
-        AccessorView input, output;
-        std::string reason;
-        if (!viewAccessor(gltf_, in.input, input, reason) ||
-            !viewAccessor(gltf_, in.output, output, reason)) {
-          return fail(what + " sampler " + std::to_string(s) + ": " + reason);
-        }
-        if (input.components != 1 || input.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-          return fail(what + " sampler " + std::to_string(s) + ": key times must be float scalars");
-        }
-        out.components = output.components;
-        for (size_t k = 0; k < input.count; ++k) {
-          const float t = static_cast<float>(component(input, k, 0));
-          if (!std::isfinite(t) || (!out.times.empty() && !(t > out.times.back()))) {
-            return fail(what + " sampler " + std::to_string(s) +
-                        ": key times must be finite and increasing");
-          }
-          out.times.push_back(t);
-        }
-        if (output.components <= 4) {
-          for (size_t k = 0; k < output.count; ++k) {
-            glm::vec4 v(0.f);
-            for (int c = 0; c < output.components; ++c)
-              v[c] = static_cast<float>(component(output, k, c));
-            out.values.push_back(v);
-          }
-        }
+        if (!readSampler(animation.samplers[s], what + " sampler " + std::to_string(s),
+                         samplers[s]))
+          return false;
       }
       for (size_t s = 0; s < model.skins.size(); ++s) {
-        const tinygltf::Skin& skin = gltf_.skins[s];
         anim::AnimationClip clip;
         clip.name = animation.name.empty() ? what : animation.name;
         for (size_t c = 0; c < animation.channels.size(); ++c) {
-          const tinygltf::AnimationChannel& channel = animation.channels[c];
-          if (channel.sampler < 0 || static_cast<size_t>(channel.sampler) >= samplers.size()) {
-            return fail(what + " channel " + std::to_string(c) + " names missing sampler " +
-                        std::to_string(channel.sampler));
-          }
-          if (channel.target_node < 0) continue;
-          const auto it = std::find(skin.joints.begin(), skin.joints.end(), channel.target_node);
-          if (it == skin.joints.end()) continue;
           anim::Channel out;
-          out.joint = static_cast<uint32_t>(it - skin.joints.begin());
-          int components = 0;
-          if (channel.target_path == "translation")
-            out.path = anim::ChannelPath::Translation, components = 3;
-          else if (channel.target_path == "rotation")
-            out.path = anim::ChannelPath::Rotation, components = 4;
-          else if (channel.target_path == "scale")
-            out.path = anim::ChannelPath::Scale, components = 3;
-          else
-            continue;  // morph-target weights
-          const Sampler& sampler = samplers[static_cast<size_t>(channel.sampler)];
-          out.interpolation = sampler.interpolation;
-          out.times = sampler.times;
-          out.values = sampler.values;
-          const size_t perKey = out.interpolation == anim::Interpolation::CubicSpline ? 3 : 1;
-          if (sampler.components != components || out.values.size() != out.times.size() * perKey ||
-              out.times.empty()) {
-            return fail(what + " channel " + std::to_string(c) +
-                        ": the sampler output does not match its " + channel.target_path + " keys");
-          }
-          if (out.path == anim::ChannelPath::Rotation &&
-              out.interpolation != anim::Interpolation::CubicSpline) {
-            for (glm::vec4& q : out.values) {
-              const float len = glm::length(q);
-              if (len > 0.f && std::isfinite(len)) q /= len;
-            }
-          }
-          clip.channels.push_back(std::move(out));
+          bool keep = false;
+          if (!readChannel(animation, c, gltf_.skins[s], samplers, what, out, keep)) return false;
+          if (keep) clip.channels.push_back(std::move(out));
         }
         if (clip.channels.empty()) continue;
         clip.updateDuration();
@@ -573,7 +615,8 @@ class Loader {
     }
     if (!v.has(VertexField::Positions)) return fail(where + "has no POSITION attribute");
     const size_t n = v[VertexField::Positions].count;
-    for (const VertexField field : {VertexField::Positions, VertexField::Normals, VertexField::Uv0}) {
+    for (const VertexField field :
+         {VertexField::Positions, VertexField::Normals, VertexField::Uv0}) {
       const detail::GltfAttribute& attribute = detail::gltfAttribute(field);
       if (v.has(field) && !detail::attributeFits(attribute, v[field], n))
         return fail(where + attribute.requirement);
@@ -588,7 +631,8 @@ class Loader {
     }
     for (const VertexField field : {VertexField::Joints, VertexField::Weights}) {
       const detail::GltfAttribute& attribute = detail::gltfAttribute(field);
-      if (!detail::attributeFits(attribute, v[field], n)) return fail(where + attribute.requirement);
+      if (!detail::attributeFits(attribute, v[field], n))
+        return fail(where + attribute.requirement);
     }
     return true;
   }
@@ -625,13 +669,14 @@ class Loader {
   // Appends the primitive's vertices to out.mesh: positions by `transform`, normals by its normal
   // matrix (zero when absent or degenerate), uv0 (zero when absent), joints and weights when
   // skinned.
-  bool appendVertices(const PrimitiveViews& v, const glm::dmat4& transform, const std::string& where,
-                      ModelMesh& out) {
+  bool appendVertices(const PrimitiveViews& v, const glm::dmat4& transform,
+                      const std::string& where, ModelMesh& out) {
     using detail::VertexField;
     geometry::MeshData& m = out.mesh;
     const size_t n = v[VertexField::Positions].count;
     const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(transform)));
-    const size_t jointCount = out.skin >= 0 ? gltf_.skins[static_cast<size_t>(out.skin)].joints.size() : 0;
+    const size_t jointCount =
+        out.skin >= 0 ? gltf_.skins[static_cast<size_t>(out.skin)].joints.size() : 0;
     const AccessorView &positions = v[VertexField::Positions], &normals = v[VertexField::Normals],
                        &uvs = v[VertexField::Uv0];
     for (size_t i = 0; i < n; ++i) {
@@ -644,14 +689,16 @@ class Loader {
       m.positions.emplace_back(p);
       glm::vec3 normal(0.f);
       if (v.has(VertexField::Normals)) {
-        const glm::dvec3 t = normalMatrix * glm::dvec3(component(normals, i, 0), component(normals, i, 1),
-                                                       component(normals, i, 2));
+        const glm::dvec3 t =
+            normalMatrix * glm::dvec3(component(normals, i, 0), component(normals, i, 1),
+                                      component(normals, i, 2));
         const double len = glm::length(t);
         if (len > 0.0 && std::isfinite(len)) normal = glm::vec3(t / len);
       }
       m.normals.push_back(normal);
-      m.uv0.push_back(v.has(VertexField::Uv0) ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1))
-                                              : glm::vec2(0.f));
+      m.uv0.push_back(v.has(VertexField::Uv0)
+                          ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1))
+                          : glm::vec2(0.f));
       if (out.skin < 0) continue;
       glm::u16vec4 j;
       glm::vec4 w;
@@ -664,7 +711,8 @@ class Loader {
 
   // Missing (or degenerate) normals: area-weighted smooth normals of the primitive's triangles
   // (indices from firstIndex, vertices from base).
-  static void fillMissingNormals(geometry::MeshData& m, size_t base, size_t firstIndex, bool hasNormal) {
+  static void fillMissingNormals(geometry::MeshData& m, size_t base, size_t firstIndex,
+                                 bool hasNormal) {
     const size_t n = m.positions.size() - base;
     bool needNormals = !hasNormal;
     for (size_t i = base; i < m.positions.size() && !needNormals; ++i)
@@ -692,14 +740,16 @@ class Loader {
     detail::CornerFailure failure;
     if (!detail::primitiveCorners(gltf_, primitive, n, corners, failure)) {
       switch (failure.kind) {
-        case detail::CornerFailure::View: return fail(where + "indices: " + failure.reason);
+        case detail::CornerFailure::View:
+          return fail(where + "indices: " + failure.reason);
         case detail::CornerFailure::Type:
           return fail(where + "indices must be unsigned byte, short or int scalars");
         case detail::CornerFailure::Range:
           return fail(where + "index " + std::to_string(failure.index) + " at position " +
                       std::to_string(failure.position) + " is out of range (" + std::to_string(n) +
                       " vertices)");
-        case detail::CornerFailure::TooManyVertices: return fail(where + "too many vertices");
+        case detail::CornerFailure::TooManyVertices:
+          return fail(where + "too many vertices");
       }
     }
     if (!detail::trianglesOfPrimitive(mode, corners, triangles))

@@ -9,7 +9,9 @@ namespace cleave::assets::detail {
 
 namespace {
 
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v' || c == '\0'; }
+bool isSpace(char c, bool nulSeparates) {
+  return c == ' ' || c == '\t' || c == '\f' || c == '\v' || (c == '\0' && nulSeparates);
+}
 
 // std::from_chars on the whole token, after an optional '+' (which from_chars does not take).
 template <typename T>
@@ -71,9 +73,9 @@ bool LineScanner::nextDataLine() {
 }
 
 std::string_view LineScanner::nextToken() {
-  while (linePos_ < line_.size() && isSpace(line_[linePos_])) ++linePos_;
+  while (linePos_ < line_.size() && isSpace(line_[linePos_], nulSeparates_)) ++linePos_;
   const size_t start = linePos_;
-  while (linePos_ < line_.size() && !isSpace(line_[linePos_])) ++linePos_;
+  while (linePos_ < line_.size() && !isSpace(line_[linePos_], nulSeparates_)) ++linePos_;
   return line_.substr(start, linePos_ - start);
 }
 
@@ -97,9 +99,9 @@ bool LineScanner::nextFloats(std::span<float> values, std::string_view& bad) {
 }
 
 std::string_view LineScanner::rest() {
-  while (linePos_ < line_.size() && isSpace(line_[linePos_])) ++linePos_;
+  while (linePos_ < line_.size() && isSpace(line_[linePos_], nulSeparates_)) ++linePos_;
   std::string_view r = line_.substr(linePos_);
-  while (!r.empty() && isSpace(r.back())) r.remove_suffix(1);
+  while (!r.empty() && isSpace(r.back(), nulSeparates_)) r.remove_suffix(1);
   return r;
 }
 

@@ -22,11 +22,15 @@ bool parseInt64(std::string_view token, int64_t& value);
 std::string quoted(std::string_view token);
 
 // Splits text into lines (LF, CRLF or CR) and lines into tokens separated by spaces, tabs, form
-// feeds, vertical tabs or NUL bytes, counting lines from 1. When commentChar is not '\0' it starts
-// a comment to the end of the line. The scanner views `text`, which must outlive it.
+// feeds, vertical tabs or (unless told otherwise) NUL bytes, counting lines from 1. When
+// commentChar is not '\0' it starts a comment to the end of the line. The scanner views `text`,
+// which must outlive it.
 class LineScanner {
  public:
-  LineScanner(std::string_view text, char commentChar) : text_(text), comment_(commentChar) {}
+  // `nulSeparates` false makes a NUL byte part of a token (a PLY body, where it is garbage that
+  // must fail as a bad number rather than split one).
+  LineScanner(std::string_view text, char commentChar, bool nulSeparates = true)
+      : text_(text), comment_(commentChar), nulSeparates_(nulSeparates) {}
 
   // Advances to the next line; false at the end of the text.
   bool nextLine();
@@ -52,6 +56,7 @@ class LineScanner {
  private:
   std::string_view text_;
   char comment_;
+  bool nulSeparates_;
   size_t pos_ = 0;        // start of the next line
   size_t lineStart_ = 0;  // start of the current line
   std::string_view line_;

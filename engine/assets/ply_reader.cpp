@@ -75,17 +75,19 @@ class BodyReader {
       : body_(body),
         encoding_(encoding),
         text_(reinterpret_cast<const char*>(body.data()), body.size()),
-        scanner_(text_, '\0'),
+        scanner_(text_, '\0', /*nulSeparates=*/false),
         headerLines_(headerLines) {}
 
   size_t remaining() const {
     return ascii() ? text_.size() - std::min(scanner_.position(), text_.size())
                    : body_.size() - pos_;
   }
-  // The line of the last token read; past the end of the data, the line after the last line end.
+  // The line of the last token read (past the end of the data, the line after the last line
+  // end): one more than the LF bytes before it, so a lone CR inside the data is no line end here.
+  // Counted only for a message.
   size_t line() const {
-    if (!atEnd_) return headerLines_ + scanner_.lineNumber();
-    return headerLines_ + 1 + static_cast<size_t>(std::count(text_.begin(), text_.end(), '\n'));
+    const std::string_view before = text_.substr(0, std::min(scanner_.position(), text_.size()));
+    return headerLines_ + 1 + static_cast<size_t>(std::count(before.begin(), before.end(), '\n'));
   }
   bool ascii() const { return encoding_ == Encoding::Ascii; }
 
@@ -132,7 +134,6 @@ class BodyReader {
   bool readAscii(double& value, std::string& reason) {
     const std::string_view token = scanner_.nextTokenAnyLine();
     if (token.empty()) {
-      atEnd_ = true;
       reason = "file ends inside the data";
       return false;
     }
@@ -149,7 +150,6 @@ class BodyReader {
   std::string_view text_;
   LineScanner scanner_;  // ascii
   size_t headerLines_;
-  bool atEnd_ = false;
 };
 
 // Property roles of the vertex element.
