@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -245,13 +246,17 @@ const char* typeName(const json& j) {
   }
 }
 
-std::string joinNames(std::initializer_list<const char*> names) {
+std::string joinNames(std::span<const char* const> names) {
   std::string out;
   for (const char* n : names) {
     if (!out.empty()) out += ", ";
     out += n;
   }
   return out;
+}
+
+std::string joinNames(std::initializer_list<const char*> names) {
+  return joinNames(std::span<const char* const>(names.begin(), names.size()));
 }
 
 class Reader {
@@ -278,6 +283,9 @@ class Reader {
   }
 
   bool expectObject(const Node& n, std::initializer_list<const char*> allowed) {
+    return expectObject(n, std::span<const char* const>(allowed.begin(), allowed.size()));
+  }
+  bool expectObject(const Node& n, std::span<const char* const> allowed) {
     if (!n->is_object()) return fail(n, std::string("expected an object, found ") + typeName(*n));
     for (const auto& item : n->items()) {
       bool known = false;
@@ -492,111 +500,182 @@ bool readTransform(Reader& rd, const Node& parent, ecs::Transform& t, bool allow
   return true;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Mesh primitives: one table row per primitive names its fields (in the order they are read and
+// checked), their defaults and limits, and the builder that makes the mesh of the values read.
+
+struct PrimitiveField {
+  enum Kind {
+    Positive,
+    Count,
+    Extents
+  };                          // a number > 0, a whole number in [min, max], 3 numbers > 0
+  const char* key = nullptr;  // null ends a row's fields
+  Kind kind = Positive;
+  double value = 0.0;  // default of Positive and Count
+  uint32_t minimum = 0, maximum = 0;
+  glm::vec3 extents{0.f};  // default of Extents
+};
+
+constexpr size_t kMaxPrimitiveFields = 5;
+
+// The values of a row's fields, by field slot (number[k] for Positive, count[k] for Count).
+struct PrimitiveValues {
+  double number[kMaxPrimitiveFields] = {};
+  uint32_t count[kMaxPrimitiveFields] = {};
+  glm::vec3 extents{0.f};
+  float f(size_t k) const { return float(number[k]); }
+};
+
+struct PrimitiveRow {
+  const char* name;
+  PrimitiveField fields[kMaxPrimitiveFields];
+  geometry::MeshData (*build)(const PrimitiveValues&);
+  // A pair of fields where the first must be below the second (slots), or -1.
+  int smaller = -1, larger = -1;
+};
+
+PrimitiveField positiveField(const char* key, double value) {
+  return {key, PrimitiveField::Positive, value, 0, 0, {}};
+}
+PrimitiveField countField(const char* key, uint32_t value, uint32_t minimum, uint32_t maximum) {
+  return {key, PrimitiveField::Count, double(value), minimum, maximum, {}};
+}
+PrimitiveField extentsField(const char* key, glm::vec3 value) {
+  return {key, PrimitiveField::Extents, 0.0, 0, 0, value};
+}
+
+namespace P = geometry::primitives;
+using V = PrimitiveValues;
+
+const PrimitiveRow kPrimitives[] = {
+    {"box",
+     {extentsField("half_extents", glm::vec3(0.5f))},
+     [](const V& v) { return P::box(v.extents); }},
+    {"sphere",
+     {positiveField("radius", 0.5), countField("segments", 32, 3, 1024),
+      countField("rings", 16, 2, 1024)},
+     [](const V& v) { return P::uvSphere(v.f(0), v.count[1], v.count[2]); }},
+    {"ellipsoid",
+     {extentsField("radii", glm::vec3(0.5f, 0.35f, 0.35f)), countField("segments", 32, 3, 1024),
+      countField("rings", 16, 2, 1024)},
+     [](const V& v) { return P::ellipsoid(v.extents, v.count[1], v.count[2]); }},
+    {"cylinder",
+     {positiveField("radius", 0.4), positiveField("height", 1.0),
+      countField("segments", 32, 3, 1024)},
+     [](const V& v) { return P::cylinder(v.f(0), v.f(1), v.count[2]); }},
+    {"torus",
+     {positiveField("major_radius", 0.5), positiveField("minor_radius", 0.2),
+      countField("segments", 48, 3, 1024), countField("sides", 24, 3, 1024)},
+     [](const V& v) { return P::torus(v.f(0), v.f(1), v.count[2], v.count[3]); },
+     1,
+     0},
+    {"capsule",
+     {positiveField("radius", 0.3), positiveField("height", 0.6),
+      countField("segments", 24, 3, 1024), countField("rings", 12, 2, 1024)},
+     [](const V& v) { return P::capsule(v.f(0), v.f(1), v.count[2], v.count[3]); }},
+    {"comb",
+     {countField("teeth", 2, 1, 256), positiveField("pitch", 0.2),
+      positiveField("tooth_length", 0.6), positiveField("spine_height", 0.2),
+      positiveField("depth", 0.3)},
+     [](const V& v) { return P::combPrism(v.count[0], v.f(1), v.f(2), v.f(3), v.f(4)); }},
+    {"star",
+     {countField("points", 5, 3, 256), positiveField("outer_radius", 1.0),
+      positiveField("inner_radius", 0.4), positiveField("height", 0.5)},
+     [](const V& v) { return P::starPrism(v.count[0], v.f(1), v.f(2), v.f(3)); },
+     2,
+     1},
+    {"tetrahedron",
+     {positiveField("radius", 0.5)},
+     [](const V& v) { return P::tetrahedron(v.f(0)); }},
+    {"hollow_sphere",
+     {positiveField("outer_radius", 0.5), positiveField("inner_radius", 0.4),
+      countField("segments", 32, 3, 1024), countField("rings", 16, 2, 1024)},
+     [](const V& v) { return P::hollowSphere(v.f(0), v.f(1), v.count[2], v.count[3]); },
+     1,
+     0},
+};
+
+// Reads one field into slot k (its default when absent).
+bool readPrimitiveField(Reader& rd, const Node& n, const PrimitiveField& field, size_t k,
+                        PrimitiveValues& v) {
+  switch (field.kind) {
+    case PrimitiveField::Positive:
+      v.number[k] = field.value;
+      return rd.number(n, field.key, v.number[k], true);
+    case PrimitiveField::Count:
+      v.count[k] = uint32_t(field.value);
+      return rd.integer32(n, field.key, v.count[k], field.minimum, field.maximum);
+    case PrimitiveField::Extents:
+      v.extents = field.extents;
+      return rd.vec3(n, field.key, v.extents, true);
+  }
+  return false;
+}
+
+// Reads the fields of `row` from n (defaults for those absent) and checks its limits.
+bool readPrimitiveFields(Reader& rd, const Node& n, const PrimitiveRow& row, PrimitiveValues& v) {
+  const char* allowed[kMaxPrimitiveFields + 1] = {"primitive"};
+  size_t fieldCount = 0;
+  while (fieldCount < kMaxPrimitiveFields && row.fields[fieldCount].key != nullptr) {
+    allowed[fieldCount + 1] = row.fields[fieldCount].key;
+    ++fieldCount;
+  }
+  if (!rd.expectObject(n, std::span<const char* const>(allowed, fieldCount + 1))) return false;
+  for (size_t k = 0; k < fieldCount; ++k) {
+    const PrimitiveField& field = row.fields[k];
+    if (!readPrimitiveField(rd, n, field, k, v)) return false;
+  }
+  if (row.smaller >= 0 && !(v.number[row.smaller] < v.number[row.larger])) {
+    const std::string smaller = row.fields[row.smaller].key, larger = row.fields[row.larger].key;
+    return rd.fail(n.child(smaller), smaller + " must be below " + larger);
+  }
+  return true;
+}
+
+std::string primitiveNames() {
+  std::string names;
+  for (const PrimitiveRow& row : kPrimitives)
+    names += (names.empty() ? "" : ", ") + std::string(row.name);
+  return names;
+}
+
+bool readPrimitive(Reader& rd, const Node& n, EntityDesc& d) {
+  std::string kind;
+  if (!rd.string(n, "primitive", kind)) return false;
+  for (const PrimitiveRow& row : kPrimitives) {
+    if (kind != row.name) continue;
+    PrimitiveValues values;
+    if (!readPrimitiveFields(rd, n, row, values)) return false;
+    d.mesh = row.build(values);
+    if (kind == "box") {  // a static box gets a box collider
+      d.isBox = true;
+      d.boxHalfExtents = values.extents;
+    }
+    return true;
+  }
+  return rd.fail(n.child("primitive"),
+                 "unknown primitive '" + kind + "' (expected one of: " + primitiveNames() + ")");
+}
+
+bool readMeshFile(Reader& rd, const Node& n, const std::string& baseDirectory, EntityDesc& d) {
+  if (!rd.expectObject(n, {"file"})) return false;
+  std::string file;
+  if (!rd.string(n, "file", file)) return false;
+  std::filesystem::path p(file);
+  if (p.is_relative()) p = std::filesystem::path(baseDirectory) / p;
+  assets::MeshReadResult r = assets::loadMesh(p.lexically_normal().string());
+  if (!r.ok) return rd.fail(n.child("file"), "cannot load the model: " + r.error);
+  d.mesh = std::move(r.mesh);
+  return true;
+}
+
 bool readMesh(Reader& rd, const Node& n, const std::string& baseDirectory, EntityDesc& d) {
   if (!n->is_object()) return rd.fail(n, std::string("expected an object, found ") + typeName(*n));
   if (n.has("primitive") == n.has("file"))
     return rd.fail(n, "give exactly one of 'primitive' (a name) or 'file' (a model path)");
   d.hasMesh = true;
-  if (n.has("file")) {
-    if (!rd.expectObject(n, {"file"})) return false;
-    std::string file;
-    if (!rd.string(n, "file", file)) return false;
-    std::filesystem::path p(file);
-    if (p.is_relative()) p = std::filesystem::path(baseDirectory) / p;
-    assets::MeshReadResult r = assets::loadMesh(p.lexically_normal().string());
-    if (!r.ok) return rd.fail(n.child("file"), "cannot load the model: " + r.error);
-    d.mesh = std::move(r.mesh);
-    return true;
-  }
-  std::string kind;
-  if (!rd.string(n, "primitive", kind)) return false;
-  namespace P = geometry::primitives;
-  if (kind == "box") {
-    if (!rd.expectObject(n, {"primitive", "half_extents"})) return false;
-    if (!rd.vec3(n, "half_extents", d.boxHalfExtents, true)) return false;
-    d.mesh = P::box(d.boxHalfExtents);
-    d.isBox = true;
-  } else if (kind == "sphere") {
-    if (!rd.expectObject(n, {"primitive", "radius", "segments", "rings"})) return false;
-    double radius = 0.5;
-    uint32_t segments = 32, rings = 16;
-    if (!rd.number(n, "radius", radius, true) || !rd.integer32(n, "segments", segments, 3, 1024) ||
-        !rd.integer32(n, "rings", rings, 2, 1024))
-      return false;
-    d.mesh = P::uvSphere(float(radius), segments, rings);
-  } else if (kind == "ellipsoid") {
-    if (!rd.expectObject(n, {"primitive", "radii", "segments", "rings"})) return false;
-    glm::vec3 radii(0.5f, 0.35f, 0.35f);
-    uint32_t segments = 32, rings = 16;
-    if (!rd.vec3(n, "radii", radii, true) || !rd.integer32(n, "segments", segments, 3, 1024) ||
-        !rd.integer32(n, "rings", rings, 2, 1024))
-      return false;
-    d.mesh = P::ellipsoid(radii, segments, rings);
-  } else if (kind == "cylinder") {
-    if (!rd.expectObject(n, {"primitive", "radius", "height", "segments"})) return false;
-    double radius = 0.4, height = 1.0;
-    uint32_t segments = 32;
-    if (!rd.number(n, "radius", radius, true) || !rd.number(n, "height", height, true) ||
-        !rd.integer32(n, "segments", segments, 3, 1024))
-      return false;
-    d.mesh = P::cylinder(float(radius), float(height), segments);
-  } else if (kind == "torus") {
-    if (!rd.expectObject(n, {"primitive", "major_radius", "minor_radius", "segments", "sides"})) return false;
-    double major = 0.5, minor = 0.2;
-    uint32_t segments = 48, sides = 24;
-    if (!rd.number(n, "major_radius", major, true) || !rd.number(n, "minor_radius", minor, true) ||
-        !rd.integer32(n, "segments", segments, 3, 1024) || !rd.integer32(n, "sides", sides, 3, 1024))
-      return false;
-    if (!(minor < major)) return rd.fail(n.child("minor_radius"), "minor_radius must be below major_radius");
-    d.mesh = P::torus(float(major), float(minor), segments, sides);
-  } else if (kind == "capsule") {
-    if (!rd.expectObject(n, {"primitive", "radius", "height", "segments", "rings"})) return false;
-    double radius = 0.3, height = 0.6;
-    uint32_t segments = 24, rings = 12;
-    if (!rd.number(n, "radius", radius, true) || !rd.number(n, "height", height, true) ||
-        !rd.integer32(n, "segments", segments, 3, 1024) || !rd.integer32(n, "rings", rings, 2, 1024))
-      return false;
-    d.mesh = P::capsule(float(radius), float(height), segments, rings);
-  } else if (kind == "comb") {
-    if (!rd.expectObject(n, {"primitive", "teeth", "pitch", "tooth_length", "spine_height", "depth"}))
-      return false;
-    uint32_t teeth = 2;
-    double pitch = 0.2, toothLength = 0.6, spineHeight = 0.2, depth = 0.3;
-    if (!rd.integer32(n, "teeth", teeth, 1, 256) || !rd.number(n, "pitch", pitch, true) ||
-        !rd.number(n, "tooth_length", toothLength, true) ||
-        !rd.number(n, "spine_height", spineHeight, true) || !rd.number(n, "depth", depth, true))
-      return false;
-    d.mesh = P::combPrism(teeth, float(pitch), float(toothLength), float(spineHeight), float(depth));
-  } else if (kind == "star") {
-    if (!rd.expectObject(n, {"primitive", "points", "outer_radius", "inner_radius", "height"})) return false;
-    uint32_t points = 5;
-    double outer = 1.0, inner = 0.4, height = 0.5;
-    if (!rd.integer32(n, "points", points, 3, 256) || !rd.number(n, "outer_radius", outer, true) ||
-        !rd.number(n, "inner_radius", inner, true) || !rd.number(n, "height", height, true))
-      return false;
-    if (!(inner < outer)) return rd.fail(n.child("inner_radius"), "inner_radius must be below outer_radius");
-    d.mesh = P::starPrism(points, float(outer), float(inner), float(height));
-  } else if (kind == "tetrahedron") {
-    if (!rd.expectObject(n, {"primitive", "radius"})) return false;
-    double radius = 0.5;
-    if (!rd.number(n, "radius", radius, true)) return false;
-    d.mesh = P::tetrahedron(float(radius));
-  } else if (kind == "hollow_sphere") {
-    if (!rd.expectObject(n, {"primitive", "outer_radius", "inner_radius", "segments", "rings"})) return false;
-    double outer = 0.5, inner = 0.4;
-    uint32_t segments = 32, rings = 16;
-    if (!rd.number(n, "outer_radius", outer, true) || !rd.number(n, "inner_radius", inner, true) ||
-        !rd.integer32(n, "segments", segments, 3, 1024) || !rd.integer32(n, "rings", rings, 2, 1024))
-      return false;
-    if (!(inner < outer)) return rd.fail(n.child("inner_radius"), "inner_radius must be below outer_radius");
-    d.mesh = P::hollowSphere(float(outer), float(inner), segments, rings);
-  } else {
-    return rd.fail(n.child("primitive"),
-                   "unknown primitive '" + kind +
-                       "' (expected one of: box, sphere, ellipsoid, cylinder, torus, capsule, comb, "
-                       "star, tetrahedron, hollow_sphere)");
-  }
-  return true;
+  return n.has("file") ? readMeshFile(rd, n, baseDirectory, d) : readPrimitive(rd, n, d);
 }
 
 bool readSplitable(Reader& rd, const Node& n, EntityDesc& d) {

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <utility>
 
+#include "cleave/assets/gltf_attributes.h"
 #include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
@@ -79,11 +80,25 @@ bool glbRuns(const geometry::MeshData& mesh, std::vector<geometry::SubMesh>& run
   return true;
 }
 
+namespace {
+
+// `values` of the attribute of `field` as the attribute table writes it.
+template <typename T>
+int addAttribute(tinygltf::Model& model, const std::vector<T>& values, VertexField field,
+                 GlbAttributes& attributes) {
+  const GltfAttribute& attribute = gltfAttribute(field);
+  const int accessor = addData(model, values, TINYGLTF_TARGET_ARRAY_BUFFER,
+                               attribute.writtenComponentType, attribute.type);
+  attributes[attribute.name] = accessor;
+  return accessor;
+}
+
+}  // namespace
+
 GlbAttributes addVertexAttributes(tinygltf::Model& model, const geometry::MeshData& mesh,
                                   const MeshWriteOptions& options) {
   GlbAttributes attributes;
-  const int position = addData(model, mesh.positions, TINYGLTF_TARGET_ARRAY_BUFFER,
-                               TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3);
+  const int position = addAttribute(model, mesh.positions, VertexField::Positions, attributes);
   glm::vec3 lo(0.f), hi(0.f);
   if (!mesh.positions.empty()) lo = hi = mesh.positions[0];
   for (const glm::vec3& p : mesh.positions) {
@@ -92,15 +107,12 @@ GlbAttributes addVertexAttributes(tinygltf::Model& model, const geometry::MeshDa
   }
   model.accessors[static_cast<size_t>(position)].minValues = {lo.x, lo.y, lo.z};
   model.accessors[static_cast<size_t>(position)].maxValues = {hi.x, hi.y, hi.z};
-  attributes["POSITION"] = position;
   // writableRuns made sure that normals and uv0 are either empty or one per vertex.
   if (options.writeNormals && !mesh.normals.empty()) {
-    attributes["NORMAL"] = addData(model, mesh.normals, TINYGLTF_TARGET_ARRAY_BUFFER,
-                                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3);
+    addAttribute(model, mesh.normals, VertexField::Normals, attributes);
   }
   if (options.writeUvs && !mesh.uv0.empty()) {
-    attributes["TEXCOORD_0"] = addData(model, mesh.uv0, TINYGLTF_TARGET_ARRAY_BUFFER,
-                                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2);
+    addAttribute(model, mesh.uv0, VertexField::Uv0, attributes);
   }
   return attributes;
 }

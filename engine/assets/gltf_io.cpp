@@ -17,6 +17,8 @@
 
 #include "cleave/assets/glb_builder.h"
 #include "cleave/assets/gltf_access.h"
+#include "cleave/assets/gltf_attributes.h"
+#include "cleave/assets/mesh_finish.h"
 #include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {
@@ -272,138 +274,79 @@ struct MergeState {
   } lastBlock;
 };
 
-bool appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t primitiveIndex,
-                     const glm::dmat4& transform, MergeState& state, std::string& reason) {
-  const tinygltf::Primitive& primitive = model.meshes[meshIndex].primitives[primitiveIndex];
-  const std::string where = "mesh " + std::to_string(meshIndex) + " primitive " +
-                            std::to_string(primitiveIndex) + ": ";
-  if (primitive.extensions.count("KHR_draco_mesh_compression") != 0) {
-    reason = where + "uses KHR_draco_mesh_compression, which is not supported";
-    return false;
-  }
-  const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
-  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-    state.warnings.push_back(state.name + ": " + where + "mode " + std::to_string(mode) +
-                             " (points or lines) skipped");
-    return true;
-  }
-  const auto positionIt = primitive.attributes.find("POSITION");
-  if (positionIt == primitive.attributes.end()) {
-    reason = where + "has no POSITION attribute";
-    return false;
-  }
-  AccessorView positions;
-  if (!viewAccessor(model, positionIt->second, positions, reason)) {
-    reason = where + reason;
-    return false;
-  }
-  if (positions.components != 3 || positions.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-    reason = where + "POSITION must be a float VEC3";
-    return false;
-  }
-  AccessorView normals;
-  bool hasNormals = false;
-  if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
-    if (!viewAccessor(model, it->second, normals, reason)) {
-      reason = where + reason;
-      return false;
-    }
-    if (normals.components != 3 || normals.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
-        normals.count != positions.count) {
-      reason = where + "NORMAL must be a float VEC3 with one entry per vertex";
-      return false;
-    }
-    hasNormals = true;
-  }
-  AccessorView uvs;
-  bool hasUv = false;
-  if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
-    if (!viewAccessor(model, it->second, uvs, reason)) {
-      reason = where + reason;
-      return false;
-    }
-    const bool typeOk = uvs.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                        (uvs.normalized && (uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                            uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
-    if (uvs.components != 2 || !typeOk || uvs.count != positions.count) {
-      reason = where + "TEXCOORD_0 must be a VEC2 (float or normalized unsigned) per vertex";
-      return false;
-    }
-    hasUv = true;
-  }
+// The accessors of POSITION, NORMAL and TEXCOORD_0 (the first three rows of the attribute table),
+// each checked against what it accepts as soon as it is viewed; accessor -1 for one that is absent.
+struct StaticViews {
+  AccessorView views[3];
+  int accessors[3] = {-1, -1, -1};
+  const AccessorView& operator[](VertexField f) const { return views[size_t(f)]; }
+  bool has(VertexField f) const { return accessors[size_t(f)] >= 0; }
+};
 
-  // The corner list: indices, or 0..count-1 without them.
+bool viewStaticAttributes(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                          const std::string& where, StaticViews& v, std::string& reason) {
+  for (size_t a = 0; a < 3; ++a) {
+    const GltfAttribute& attribute = kGltfAttributes[a];
+    if (!viewAttribute(model, primitive, attribute, v.views[a], v.accessors[a], reason)) {
+      reason = where + reason;
+      return false;
+    }
+    if (attribute.field == VertexField::Positions && v.accessors[a] < 0) {
+      reason = where + "has no POSITION attribute";
+      return false;
+    }
+    if (v.accessors[a] >= 0 && !attributeFits(attribute, v.views[a], v.views[0].count)) {
+      reason = where + attribute.requirement;
+      return false;
+    }
+  }
+  return true;
+}
+
+// The triangles of a primitive of n vertices (its indices or 0..n-1, by its mode).
+bool staticTriangles(const tinygltf::Model& model, const tinygltf::Primitive& primitive, int mode,
+                     size_t n, const std::string& where, MergeState& state,
+                     std::vector<uint32_t>& triangles, std::string& reason) {
   std::vector<uint32_t> corners;
-  if (primitive.indices >= 0) {
-    AccessorView indexView;
-    if (!viewAccessor(model, primitive.indices, indexView, reason)) {
-      reason = where + reason;
-      return false;
+  CornerFailure failure;
+  if (!primitiveCorners(model, primitive, n, corners, failure)) {
+    switch (failure.kind) {
+      case CornerFailure::View:
+        reason = where + failure.reason;
+        break;
+      case CornerFailure::Type:
+        reason = where + "indices must be unsigned byte, short or int scalars";
+        break;
+      case CornerFailure::Range:
+        reason = where + "index " + std::to_string(failure.index) + " out of range (" +
+                 std::to_string(n) + " vertices)";
+        break;
+      case CornerFailure::TooManyVertices:
+        reason = where + "too many vertices";
+        break;
     }
-    if (indexView.components != 1 ||
-        (indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-         indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-         indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
-      reason = where + "indices must be unsigned byte, short or int scalars";
-      return false;
-    }
-    corners.resize(indexView.count);
-    for (size_t i = 0; i < indexView.count; ++i) {
-      const double value = component(indexView, i, 0);
-      if (value >= static_cast<double>(positions.count)) {
-        reason = where + "index " + std::to_string(static_cast<uint64_t>(value)) +
-                 " out of range (" + std::to_string(positions.count) + " vertices)";
-        return false;
-      }
-      corners[i] = static_cast<uint32_t>(value);
-    }
-  } else {
-    if (positions.count > UINT32_MAX) {
-      reason = where + "too many vertices";
-      return false;
-    }
-    corners.resize(positions.count);
-    for (size_t i = 0; i < corners.size(); ++i) corners[i] = static_cast<uint32_t>(i);
+    return false;
   }
-
-  // Triangles from the corner list.
-  std::vector<uint32_t> triangles;
   if (!trianglesOfPrimitive(mode, corners, triangles)) {
     state.warnings.push_back(state.name + ": " + where +
                              "index count not a multiple of 3; the last partial triangle is ignored");
   }
-  if (triangles.empty()) return true;
+  return true;
+}
 
-  const int normalIndex = hasNormals ? primitive.attributes.at("NORMAL") : -1;
-  const int uvIndex = hasUv ? primitive.attributes.at("TEXCOORD_0") : -1;
-  const MergeState::Shared& last = state.lastBlock;
-  const bool reuse = last.nodeVisit == state.nodeVisit && last.position == positionIt->second &&
-                     last.normal == normalIndex && last.uv == uvIndex;
-
-  const uint64_t elements = (reuse ? 0 : uint64_t{positions.count}) + triangles.size();
-  if (elements > state.elementBudget) {
-    reason = "the scene instantiates more geometry than the file size allows";
-    return false;
-  }
-  state.elementBudget -= elements;
-
+// Appends the vertices: positions by `transform`, normals by its normal matrix (zero, and the
+// mesh's normals dropped, when one is degenerate), uv0 (zero when absent).
+void appendStaticVertices(const StaticViews& v, const glm::dmat4& transform, MergeState& state) {
   geometry::MeshData& mesh = state.mesh;
-  const size_t base = reuse ? last.base : mesh.positions.size();
-  if (base + positions.count > UINT32_MAX) {
-    reason = "too many vertices";
-    return false;
-  }
-  const glm::dmat3 linear(transform);
-  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
-  const bool mirrored = glm::determinant(linear) < 0.0;
-  if (!reuse) state.lastBlock = {state.nodeVisit, positionIt->second, normalIndex, uvIndex, base};
-  for (size_t i = 0; !reuse && i < positions.count; ++i) {
+  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(transform)));
+  const AccessorView &positions = v[VertexField::Positions], &normals = v[VertexField::Normals],
+                     &uvs = v[VertexField::Uv0];
+  for (size_t i = 0; i < positions.count; ++i) {
     const glm::dvec4 p = transform * glm::dvec4(component(positions, i, 0), component(positions, i, 1),
                                                 component(positions, i, 2), 1.0);
     mesh.positions.emplace_back(p);
     glm::vec3 n(0.f);
-    if (hasNormals) {
+    if (v.has(VertexField::Normals)) {
       const glm::dvec3 transformed = normalMatrix * glm::dvec3(component(normals, i, 0),
                                                                component(normals, i, 1),
                                                                component(normals, i, 2));
@@ -412,33 +355,169 @@ bool appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t prim
       else state.degenerateNormal = true;
     }
     mesh.normals.push_back(n);
-    mesh.uv0.push_back(hasUv ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1)) : glm::vec2(0.f));
+    mesh.uv0.push_back(v.has(VertexField::Uv0)
+                           ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1))
+                           : glm::vec2(0.f));
   }
-  state.allNormals = state.allNormals && hasNormals;
-  state.anyUv = state.anyUv || hasUv;
+}
 
-  uint32_t materialId = 0;
-  if (primitive.material >= 0) {
-    if (static_cast<size_t>(primitive.material) >= model.materials.size()) {
-      reason = where + "material " + std::to_string(primitive.material) + " does not exist";
-      return false;
-    }
-    materialId = static_cast<uint32_t>(primitive.material);
-  } else {
+// The material id of a primitive: its material, or the default material after the file's.
+bool staticMaterial(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                    const std::string& where, MergeState& state, uint32_t& materialId,
+                    std::string& reason) {
+  if (primitive.material < 0) {
     materialId = static_cast<uint32_t>(model.materials.size());
     state.usesDefaultMaterial = true;
+    return true;
   }
+  if (static_cast<size_t>(primitive.material) >= model.materials.size()) {
+    reason = where + "material " + std::to_string(primitive.material) + " does not exist";
+    return false;
+  }
+  materialId = static_cast<uint32_t>(primitive.material);
+  return true;
+}
+
+bool appendPrimitive(const tinygltf::Model& model, size_t meshIndex, size_t primitiveIndex,
+                     const glm::dmat4& transform, MergeState& state, std::string& reason) {
+  const tinygltf::Primitive& primitive = model.meshes[meshIndex].primitives[primitiveIndex];
+  const std::string where =
+      "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex) + ": ";
+  if (usesDraco(primitive)) {
+    reason = where + "uses KHR_draco_mesh_compression, which is not supported";
+    return false;
+  }
+  int mode = 0;
+  if (!triangleMode(primitive, mode)) {
+    state.warnings.push_back(state.name + ": " + where + "mode " + std::to_string(mode) +
+                             " (points or lines) skipped");
+    return true;
+  }
+  StaticViews views;
+  if (!viewStaticAttributes(model, primitive, where, views, reason)) return false;
+  const size_t count = views[VertexField::Positions].count;
+  std::vector<uint32_t> triangles;
+  if (!staticTriangles(model, primitive, mode, count, where, state, triangles, reason))
+    return false;
+  if (triangles.empty()) return true;
+
+  const MergeState::Shared& last = state.lastBlock;
+  const int position = views.accessors[0], normal = views.accessors[1], uv = views.accessors[2];
+  const bool reuse = last.nodeVisit == state.nodeVisit && last.position == position &&
+                     last.normal == normal && last.uv == uv;
+  const uint64_t elements = (reuse ? 0 : uint64_t{count}) + triangles.size();
+  if (elements > state.elementBudget) {
+    reason = "the scene instantiates more geometry than the file size allows";
+    return false;
+  }
+  state.elementBudget -= elements;
+
+  geometry::MeshData& mesh = state.mesh;
+  const size_t base = reuse ? last.base : mesh.positions.size();
+  if (base + count > UINT32_MAX) {
+    reason = "too many vertices";
+    return false;
+  }
+  if (!reuse) {
+    state.lastBlock = {state.nodeVisit, position, normal, uv, base};
+    appendStaticVertices(views, transform, state);
+  }
+  state.allNormals = state.allNormals && views.has(VertexField::Normals);
+  state.anyUv = state.anyUv || views.has(VertexField::Uv0);
+
+  uint32_t materialId = 0;
+  if (!staticMaterial(model, primitive, where, state, materialId, reason)) return false;
   if (mesh.submeshes.empty() || mesh.submeshes.back().materialId != materialId) {
-    mesh.submeshes.push_back(geometry::SubMesh{static_cast<uint32_t>(mesh.indices.size()), 0, materialId});
+    mesh.submeshes.push_back(
+        geometry::SubMesh{static_cast<uint32_t>(mesh.indices.size()), 0, materialId});
   }
-  for (size_t t = 0; t < triangles.size(); t += 3) {
-    const uint32_t a = static_cast<uint32_t>(base) + triangles[t];
-    const uint32_t b = static_cast<uint32_t>(base) + triangles[t + 1];
-    const uint32_t c = static_cast<uint32_t>(base) + triangles[t + 2];
-    mesh.indices.insert(mesh.indices.end(), {a, mirrored ? c : b, mirrored ? b : c});
-  }
+  appendTriangles(triangles, base, glm::determinant(glm::dmat3(transform)) < 0.0, mesh.indices);
   mesh.submeshes.back().indexCount =
       static_cast<uint32_t>(mesh.indices.size()) - mesh.submeshes.back().firstIndex;
+  return true;
+}
+
+// Roots: the default scene, else the first scene, else every node that is nobody's child.
+bool sceneRoots(const tinygltf::Model& model, std::vector<int>& roots, std::string& reason) {
+  if (!model.scenes.empty()) {
+    const int sceneIndex = model.defaultScene < 0 ? 0 : model.defaultScene;
+    if (static_cast<size_t>(sceneIndex) >= model.scenes.size()) {
+      reason = "default scene " + std::to_string(sceneIndex) + " does not exist";
+      return false;
+    }
+    roots = model.scenes[static_cast<size_t>(sceneIndex)].nodes;
+    return true;
+  }
+  std::vector<uint8_t> isChild(model.nodes.size(), 0);
+  for (const tinygltf::Node& node : model.nodes) {
+    for (int child : node.children) {
+      if (child >= 0 && static_cast<size_t>(child) < model.nodes.size())
+        isChild[static_cast<size_t>(child)] = 1;
+    }
+  }
+  for (size_t i = 0; i < model.nodes.size(); ++i) {
+    if (!isChild[i]) roots.push_back(static_cast<int>(i));
+  }
+  return true;
+}
+
+// The primitives of node `nodeIndex`'s mesh into the merged mesh. A skinned mesh is placed by its
+// joints only (the glTF rule); read statically it is the bind pose, so its node transform is not
+// applied.
+bool mergeNodeMesh(const tinygltf::Model& model, size_t nodeIndex, const glm::dmat4& world,
+                   MergeState& state, std::string& reason, bool& primitiveFailed) {
+  const tinygltf::Node& node = model.nodes[nodeIndex];
+  if (node.mesh < 0) return true;
+  if (static_cast<size_t>(node.mesh) >= model.meshes.size()) {
+    reason = "node " + std::to_string(nodeIndex) + " refers to missing mesh " +
+             std::to_string(node.mesh);
+    return false;
+  }
+  const glm::dmat4 transform = node.skin >= 0 ? glm::dmat4(1.0) : world;
+  const tinygltf::Mesh& mesh = model.meshes[static_cast<size_t>(node.mesh)];
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    if (!appendPrimitive(model, static_cast<size_t>(node.mesh), p, transform, state, reason)) {
+      primitiveFailed = true;
+      return false;
+    }
+  }
+  return true;
+}
+
+// Depth-first over the node tree with an explicit stack; a node reached twice means a cycle or a
+// node with two parents, both invalid glTF. `primitiveFailed` tells a primitive's failure (which
+// keeps the warnings so far) from a node's.
+bool mergeNodes(const tinygltf::Model& model, const std::vector<int>& roots, MergeState& state,
+                std::string& reason, bool& primitiveFailed) {
+  std::vector<uint8_t> visited(model.nodes.size(), 0);
+  struct Item {
+    int node;
+    glm::dmat4 parent;
+  };
+  std::vector<Item> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0)});
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    if (item.node < 0 || static_cast<size_t>(item.node) >= model.nodes.size()) {
+      reason = "node " + std::to_string(item.node) + " does not exist";
+      return false;
+    }
+    const size_t nodeIndex = static_cast<size_t>(item.node);
+    if (visited[nodeIndex]) {
+      reason = "node " + std::to_string(item.node) +
+               " is reached twice from the scene (a cycle or a shared child)";
+      return false;
+    }
+    visited[nodeIndex] = 1;
+    ++state.nodeVisit;
+    const tinygltf::Node& node = model.nodes[nodeIndex];
+    const glm::dmat4 world = item.parent * localMatrix(node);
+    if (!mergeNodeMesh(model, nodeIndex, world, state, reason, primitiveFailed)) return false;
+    for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) {
+      stack.push_back({*it, world});
+    }
+  }
   return true;
 }
 
@@ -460,77 +539,20 @@ MeshReadResult readGltf(std::span<const uint8_t> bytes, const std::string& name,
     return failure(name, "requires the glTF extension " + extension + ", which is not supported");
   }
 
-  // Roots: the default scene, else the first scene, else every node that is nobody's child.
   std::vector<int> roots;
-  if (!model.scenes.empty()) {
-    int sceneIndex = model.defaultScene < 0 ? 0 : model.defaultScene;
-    if (static_cast<size_t>(sceneIndex) >= model.scenes.size()) {
-      return failure(name, "default scene " + std::to_string(sceneIndex) + " does not exist");
-    }
-    roots = model.scenes[static_cast<size_t>(sceneIndex)].nodes;
-  } else {
-    std::vector<uint8_t> isChild(model.nodes.size(), 0);
-    for (const tinygltf::Node& node : model.nodes) {
-      for (int child : node.children) {
-        if (child >= 0 && static_cast<size_t>(child) < model.nodes.size()) isChild[static_cast<size_t>(child)] = 1;
-      }
-    }
-    for (size_t i = 0; i < model.nodes.size(); ++i) {
-      if (!isChild[i]) roots.push_back(static_cast<int>(i));
-    }
-  }
+  std::string reason;
+  if (!sceneRoots(model, roots, reason)) return failure(name, reason);
 
   MeshReadResult result;
   result.warnings = std::move(warnings);
   MergeState state(result.mesh, result.warnings, name);
   state.elementBudget = (uint64_t{1} << 24) + 64 * uint64_t{bytes.size()};
   for (const tinygltf::Buffer& buffer : model.buffers) state.elementBudget += buffer.data.size();
-
-  // Depth-first over the node tree with an explicit stack; a node reached twice means a cycle or a
-  // node with two parents, both invalid glTF.
-  std::vector<uint8_t> visited(model.nodes.size(), 0);
-  struct Item {
-    int node;
-    glm::dmat4 parent;
-  };
-  std::vector<Item> stack;
-  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0)});
-  std::string reason;
-  while (!stack.empty()) {
-    const Item item = stack.back();
-    stack.pop_back();
-    if (item.node < 0 || static_cast<size_t>(item.node) >= model.nodes.size()) {
-      return failure(name, "node " + std::to_string(item.node) + " does not exist");
-    }
-    const size_t nodeIndex = static_cast<size_t>(item.node);
-    if (visited[nodeIndex]) {
-      return failure(name, "node " + std::to_string(item.node) +
-                               " is reached twice from the scene (a cycle or a shared child)");
-    }
-    visited[nodeIndex] = 1;
-    ++state.nodeVisit;
-    const tinygltf::Node& node = model.nodes[nodeIndex];
-    const glm::dmat4 world = item.parent * localMatrix(node);
-    if (node.mesh >= 0) {
-      if (static_cast<size_t>(node.mesh) >= model.meshes.size()) {
-        return failure(name, "node " + std::to_string(item.node) + " refers to missing mesh " +
-                                 std::to_string(node.mesh));
-      }
-      // A skinned mesh is placed by its joints only (the glTF rule); read statically it is the
-      // bind pose, so its node transform is not applied.
-      const glm::dmat4 transform = node.skin >= 0 ? glm::dmat4(1.0) : world;
-      const tinygltf::Mesh& mesh = model.meshes[static_cast<size_t>(node.mesh)];
-      for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-        if (!appendPrimitive(model, static_cast<size_t>(node.mesh), p, transform, state, reason)) {
-          MeshReadResult failed = failure(name, reason);
-          failed.warnings = std::move(result.warnings);
-          return failed;
-        }
-      }
-    }
-    for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) {
-      stack.push_back({*it, world});
-    }
+  bool primitiveFailed = false;
+  if (!mergeNodes(model, roots, state, reason, primitiveFailed)) {
+    MeshReadResult failed = failure(name, reason);
+    if (primitiveFailed) failed.warnings = std::move(result.warnings);
+    return failed;
   }
 
   geometry::MeshData& mesh = result.mesh;

@@ -14,11 +14,13 @@
 #include <fstream>
 #include <glm/gtc/quaternion.hpp>
 #include <initializer_list>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <string_view>
 
 #include "cleave/assets/gltf_access.h"
+#include "cleave/assets/gltf_attributes.h"
 #include "cleave/assets/model.h"
 
 namespace cleave::assets {
@@ -344,6 +346,95 @@ class Loader {
     return true;
   }
 
+  // The joint index of each joint node of a skin; false when a node is missing or named twice.
+  bool jointNodes(const tinygltf::Skin& skin, const std::string& what,
+                  std::map<int, int32_t>& jointOf) {
+    if (skin.joints.empty()) return fail(what + " has no joints");
+    if (skin.joints.size() > 65535) return fail(what + " has too many joints");
+    for (size_t j = 0; j < skin.joints.size(); ++j) {
+      const int node = skin.joints[j];
+      if (node < 0 || static_cast<size_t>(node) >= gltf_.nodes.size()) {
+        return fail(what + " names missing joint node " + std::to_string(node));
+      }
+      if (!jointOf.emplace(node, static_cast<int32_t>(j)).second) {
+        return fail(what + " names node " + std::to_string(node) + " twice");
+      }
+    }
+    return true;
+  }
+
+  // The skin's inverse bind matrices (identity without them): float MAT4, one per joint, finite.
+  bool inverseBindMatrices(const tinygltf::Skin& skin, const std::string& what,
+                           std::vector<glm::mat4>& inverseBind) {
+    inverseBind.assign(skin.joints.size(), glm::mat4(1.f));
+    if (skin.inverseBindMatrices < 0) return true;
+    AccessorView view;
+    std::string reason;
+    if (!viewAccessor(gltf_, skin.inverseBindMatrices, view, reason))
+      return fail(what + ": " + reason);
+    if (view.components != 16 || view.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
+        view.count < skin.joints.size()) {
+      return fail(what + ": inverse bind matrices must be float MAT4, one per joint");
+    }
+    for (size_t j = 0; j < skin.joints.size(); ++j) {
+      for (int c = 0; c < 16; ++c) {
+        const double v = component(view, j, c);
+        if (!std::isfinite(v))
+          return fail(what + ": inverse bind matrix " + std::to_string(j) + " is not finite");
+        inverseBind[j][c / 4][c % 4] = static_cast<float>(v);
+      }
+    }
+    return true;
+  }
+
+  // A joint node's rest transform (translation, rotation, scale), or for a matrix node (glTF does
+  // not animate those) its matrix as the fixed offset.
+  bool jointRest(size_t node, anim::Joint& joint, glm::dmat4& offset) {
+    const tinygltf::Node& n = gltf_.nodes[node];
+    offset = glm::dmat4(1.0);
+    if (n.matrix.size() == 16) {
+      offset = detail::localMatrix(n);
+      return true;
+    }
+    if (n.translation.size() == 3)
+      joint.rest.translation = glm::vec3(n.translation[0], n.translation[1], n.translation[2]);
+    if (n.rotation.size() == 4) {
+      glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                  float(n.rotation[2]));
+      const float len = glm::length(q);
+      if (!(len > 0.f) || !std::isfinite(len))
+        return fail("node " + std::to_string(node) + " has an invalid rotation");
+      joint.rest.rotation = q / len;
+    }
+    if (n.scale.size() == 3) joint.rest.scale = glm::vec3(n.scale[0], n.scale[1], n.scale[2]);
+    return true;
+  }
+
+  // Joint j of a skin: its name, inverse bind, rest transform, parent joint and fixed offset.
+  bool readJoint(const tinygltf::Skin& skin, size_t j, std::map<int, int32_t>& jointOf,
+                 const std::string& what, anim::Joint& joint) {
+    const size_t node = static_cast<size_t>(skin.joints[j]);
+    const tinygltf::Node& n = gltf_.nodes[node];
+    joint.name = n.name.empty() ? "joint_" + std::to_string(j) : n.name;
+    glm::dmat4 offset(1.0);
+    if (!jointRest(node, joint, offset)) return false;
+    int at = parent_[node];
+    glm::dmat4 between(1.0);
+    while (at >= 0 && jointOf.find(at) == jointOf.end()) {
+      between = detail::localMatrix(gltf_.nodes[static_cast<size_t>(at)]) * between;
+      at = parent_[static_cast<size_t>(at)];
+    }
+    joint.parent = at >= 0 ? jointOf[at] : -1;
+    joint.offset = glm::mat4(between * offset);
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) {
+        if (!std::isfinite(joint.offset[c][r]))
+          return fail(what + ": joint " + std::to_string(j) + " has a non-finite transform");
+      }
+    }
+    return true;
+  }
+
   // One skeleton per skin. A joint's parent is its nearest ancestor node that is a joint of the
   // same skin; non-joint nodes between them (or above a root joint) become the joint's fixed
   // offset.
@@ -351,77 +442,16 @@ class Loader {
     for (size_t s = 0; s < gltf_.skins.size(); ++s) {
       const tinygltf::Skin& skin = gltf_.skins[s];
       const std::string what = "skin " + std::to_string(s);
-      if (skin.joints.empty()) return fail(what + " has no joints");
-      if (skin.joints.size() > 65535) return fail(what + " has too many joints");
       std::map<int, int32_t> jointOf;
-      for (size_t j = 0; j < skin.joints.size(); ++j) {
-        const int node = skin.joints[j];
-        if (node < 0 || static_cast<size_t>(node) >= gltf_.nodes.size()) {
-          return fail(what + " names missing joint node " + std::to_string(node));
-        }
-        if (!jointOf.emplace(node, static_cast<int32_t>(j)).second) {
-          return fail(what + " names node " + std::to_string(node) + " twice");
-        }
-      }
-      std::vector<glm::mat4> inverseBind(skin.joints.size(), glm::mat4(1.f));
-      if (skin.inverseBindMatrices >= 0) {
-        AccessorView view;
-        std::string reason;
-        if (!viewAccessor(gltf_, skin.inverseBindMatrices, view, reason))
-          return fail(what + ": " + reason);
-        if (view.components != 16 || view.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
-            view.count < skin.joints.size()) {
-          return fail(what + ": inverse bind matrices must be float MAT4, one per joint");
-        }
-        for (size_t j = 0; j < skin.joints.size(); ++j) {
-          for (int c = 0; c < 16; ++c) {
-            const double v = component(view, j, c);
-            if (!std::isfinite(v))
-              return fail(what + ": inverse bind matrix " + std::to_string(j) + " is not finite");
-            inverseBind[j][c / 4][c % 4] = static_cast<float>(v);
-          }
-        }
-      }
+      std::vector<glm::mat4> inverseBind;
+      if (!jointNodes(skin, what, jointOf) || !inverseBindMatrices(skin, what, inverseBind))
+        return false;
       ModelSkin out;
       out.name = skin.name.empty() ? what : skin.name;
       out.skeleton.joints.resize(skin.joints.size());
       for (size_t j = 0; j < skin.joints.size(); ++j) {
-        const size_t node = static_cast<size_t>(skin.joints[j]);
-        const tinygltf::Node& n = gltf_.nodes[node];
-        anim::Joint& joint = out.skeleton.joints[j];
-        joint.name = n.name.empty() ? "joint_" + std::to_string(j) : n.name;
-        joint.inverseBind = inverseBind[j];
-        glm::dmat4 offset(1.0);
-        if (n.matrix.size() == 16) {
-          offset = detail::localMatrix(n);  // matrix nodes are not animated (glTF rule)
-        } else {
-          if (n.translation.size() == 3)
-            joint.rest.translation =
-                glm::vec3(n.translation[0], n.translation[1], n.translation[2]);
-          if (n.rotation.size() == 4) {
-            glm::quat q(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
-                        float(n.rotation[2]));
-            const float len = glm::length(q);
-            if (!(len > 0.f) || !std::isfinite(len))
-              return fail("node " + std::to_string(node) + " has an invalid rotation");
-            joint.rest.rotation = q / len;
-          }
-          if (n.scale.size() == 3) joint.rest.scale = glm::vec3(n.scale[0], n.scale[1], n.scale[2]);
-        }
-        int at = parent_[node];
-        glm::dmat4 between(1.0);
-        while (at >= 0 && jointOf.find(at) == jointOf.end()) {
-          between = detail::localMatrix(gltf_.nodes[static_cast<size_t>(at)]) * between;
-          at = parent_[static_cast<size_t>(at)];
-        }
-        joint.parent = at >= 0 ? jointOf[at] : -1;
-        joint.offset = glm::mat4(between * offset);
-        for (int c = 0; c < 4; ++c) {
-          for (int r = 0; r < 4; ++r) {
-            if (!std::isfinite(joint.offset[c][r]))
-              return fail(what + ": joint " + std::to_string(j) + " has a non-finite transform");
-          }
-        }
+        out.skeleton.joints[j].inverseBind = inverseBind[j];
+        if (!readJoint(skin, j, jointOf, what, out.skeleton.joints[j])) return false;
       }
       std::string reason;
       if (!anim::validateSkeleton(out.skeleton, &reason)) return fail(what + ": " + reason);
@@ -430,99 +460,113 @@ class Loader {
     return true;
   }
 
+  // An animation sampler, decoded once for every skin's clip.
+  struct Sampler {
+    std::vector<float> times;
+    std::vector<glm::vec4> values;  // raw, components padded with 0
+    anim::Interpolation interpolation = anim::Interpolation::Linear;
+    int components = 0;
+  };
+
+  bool readSampler(const tinygltf::AnimationSampler& in, const std::string& what, Sampler& out) {
+    if (in.interpolation == "STEP")
+      out.interpolation = anim::Interpolation::Step;
+    else if (in.interpolation == "CUBICSPLINE")
+      out.interpolation = anim::Interpolation::CubicSpline;
+    else if (in.interpolation.empty() || in.interpolation == "LINEAR")
+      out.interpolation = anim::Interpolation::Linear;
+    else
+      return fail(what + ": unknown interpolation " + in.interpolation);
+    AccessorView input, output;
+    std::string reason;
+    if (!viewAccessor(gltf_, in.input, input, reason) ||
+        !viewAccessor(gltf_, in.output, output, reason)) {
+      return fail(what + ": " + reason);
+    }
+    if (input.components != 1 || input.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+      return fail(what + ": key times must be float scalars");
+    }
+    out.components = output.components;
+    for (size_t k = 0; k < input.count; ++k) {
+      const float t = static_cast<float>(component(input, k, 0));
+      if (!std::isfinite(t) || (!out.times.empty() && !(t > out.times.back()))) {
+        return fail(what + ": key times must be finite and increasing");
+      }
+      out.times.push_back(t);
+    }
+    if (output.components > 4) return true;
+    for (size_t k = 0; k < output.count; ++k) {
+      glm::vec4 v(0.f);
+      for (int c = 0; c < output.components; ++c)
+        v[c] = static_cast<float>(component(output, k, c));
+      out.values.push_back(v);
+    }
+    return true;
+  }
+
+  // Channel c of an animation as a channel of `skin`'s clip; `keep` false for a channel that
+  // targets no joint of the skin or morph-target weights.
+  bool readChannel(const tinygltf::Animation& animation, size_t c, const tinygltf::Skin& skin,
+                   const std::vector<Sampler>& samplers, const std::string& what,
+                   anim::Channel& out, bool& keep) {
+    keep = false;
+    const tinygltf::AnimationChannel& channel = animation.channels[c];
+    if (channel.sampler < 0 || static_cast<size_t>(channel.sampler) >= samplers.size()) {
+      return fail(what + " channel " + std::to_string(c) + " names missing sampler " +
+                  std::to_string(channel.sampler));
+    }
+    if (channel.target_node < 0) return true;
+    const auto it = std::find(skin.joints.begin(), skin.joints.end(), channel.target_node);
+    if (it == skin.joints.end()) return true;
+    out.joint = static_cast<uint32_t>(it - skin.joints.begin());
+    int components = 0;
+    if (channel.target_path == "translation")
+      out.path = anim::ChannelPath::Translation, components = 3;
+    else if (channel.target_path == "rotation")
+      out.path = anim::ChannelPath::Rotation, components = 4;
+    else if (channel.target_path == "scale")
+      out.path = anim::ChannelPath::Scale, components = 3;
+    else
+      return true;  // morph-target weights
+    const Sampler& sampler = samplers[static_cast<size_t>(channel.sampler)];
+    out.interpolation = sampler.interpolation;
+    out.times = sampler.times;
+    out.values = sampler.values;
+    const size_t perKey = out.interpolation == anim::Interpolation::CubicSpline ? 3 : 1;
+    if (sampler.components != components || out.values.size() != out.times.size() * perKey ||
+        out.times.empty()) {
+      return fail(what + " channel " + std::to_string(c) +
+                  ": the sampler output does not match its " + channel.target_path + " keys");
+    }
+    if (out.path == anim::ChannelPath::Rotation &&
+        out.interpolation != anim::Interpolation::CubicSpline) {
+      for (glm::vec4& q : out.values) {
+        const float len = glm::length(q);
+        if (len > 0.f && std::isfinite(len)) q /= len;
+      }
+    }
+    keep = true;
+    return true;
+  }
+
   bool readAnimations(Model& model) {
     for (size_t a = 0; a < gltf_.animations.size(); ++a) {
       const tinygltf::Animation& animation = gltf_.animations[a];
       const std::string what = "animation " + std::to_string(a);
-      // Decode every sampler once.
-      struct Sampler {
-        std::vector<float> times;
-        std::vector<glm::vec4> values;  // raw, components padded with 0
-        anim::Interpolation interpolation = anim::Interpolation::Linear;
-        int components = 0;
-      };
       std::vector<Sampler> samplers(animation.samplers.size());
       for (size_t s = 0; s < animation.samplers.size(); ++s) {
-        const tinygltf::AnimationSampler& in = animation.samplers[s];
-        Sampler& out = samplers[s];
-        if (in.interpolation == "STEP")
-          out.interpolation = anim::Interpolation::Step;
-        else if (in.interpolation == "CUBICSPLINE")
-          out.interpolation = anim::Interpolation::CubicSpline;
-        else if (in.interpolation.empty() || in.interpolation == "LINEAR")
-          out.interpolation = anim::Interpolation::Linear;
-        else
-          return fail(what + " sampler " + std::to_string(s) + ": unknown interpolation " +
-                      in.interpolation);
-        AccessorView input, output;
-        std::string reason;
-        if (!viewAccessor(gltf_, in.input, input, reason) ||
-            !viewAccessor(gltf_, in.output, output, reason)) {
-          return fail(what + " sampler " + std::to_string(s) + ": " + reason);
-        }
-        if (input.components != 1 || input.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-          return fail(what + " sampler " + std::to_string(s) + ": key times must be float scalars");
-        }
-        out.components = output.components;
-        for (size_t k = 0; k < input.count; ++k) {
-          const float t = static_cast<float>(component(input, k, 0));
-          if (!std::isfinite(t) || (!out.times.empty() && !(t > out.times.back()))) {
-            return fail(what + " sampler " + std::to_string(s) +
-                        ": key times must be finite and increasing");
-          }
-          out.times.push_back(t);
-        }
-        if (output.components <= 4) {
-          for (size_t k = 0; k < output.count; ++k) {
-            glm::vec4 v(0.f);
-            for (int c = 0; c < output.components; ++c)
-              v[c] = static_cast<float>(component(output, k, c));
-            out.values.push_back(v);
-          }
-        }
+        if (!readSampler(animation.samplers[s], what + " sampler " + std::to_string(s),
+                         samplers[s]))
+          return false;
       }
       for (size_t s = 0; s < model.skins.size(); ++s) {
-        const tinygltf::Skin& skin = gltf_.skins[s];
         anim::AnimationClip clip;
         clip.name = animation.name.empty() ? what : animation.name;
         for (size_t c = 0; c < animation.channels.size(); ++c) {
-          const tinygltf::AnimationChannel& channel = animation.channels[c];
-          if (channel.sampler < 0 || static_cast<size_t>(channel.sampler) >= samplers.size()) {
-            return fail(what + " channel " + std::to_string(c) + " names missing sampler " +
-                        std::to_string(channel.sampler));
-          }
-          if (channel.target_node < 0) continue;
-          const auto it = std::find(skin.joints.begin(), skin.joints.end(), channel.target_node);
-          if (it == skin.joints.end()) continue;
           anim::Channel out;
-          out.joint = static_cast<uint32_t>(it - skin.joints.begin());
-          int components = 0;
-          if (channel.target_path == "translation")
-            out.path = anim::ChannelPath::Translation, components = 3;
-          else if (channel.target_path == "rotation")
-            out.path = anim::ChannelPath::Rotation, components = 4;
-          else if (channel.target_path == "scale")
-            out.path = anim::ChannelPath::Scale, components = 3;
-          else
-            continue;  // morph-target weights
-          const Sampler& sampler = samplers[static_cast<size_t>(channel.sampler)];
-          out.interpolation = sampler.interpolation;
-          out.times = sampler.times;
-          out.values = sampler.values;
-          const size_t perKey = out.interpolation == anim::Interpolation::CubicSpline ? 3 : 1;
-          if (sampler.components != components || out.values.size() != out.times.size() * perKey ||
-              out.times.empty()) {
-            return fail(what + " channel " + std::to_string(c) +
-                        ": the sampler output does not match its " + channel.target_path + " keys");
-          }
-          if (out.path == anim::ChannelPath::Rotation &&
-              out.interpolation != anim::Interpolation::CubicSpline) {
-            for (glm::vec4& q : out.values) {
-              const float len = glm::length(q);
-              if (len > 0.f && std::isfinite(len)) q /= len;
-            }
-          }
-          clip.channels.push_back(std::move(out));
+          bool keep = false;
+          if (!readChannel(animation, c, gltf_.skins[s], samplers, what, out, keep)) return false;
+          if (keep) clip.channels.push_back(std::move(out));
         }
         if (clip.channels.empty()) continue;
         clip.updateDuration();
@@ -549,121 +593,92 @@ class Loader {
     return true;
   }
 
-  bool readPrimitive(size_t meshIndex, size_t primitiveIndex, const glm::dmat4& transform,
-                     ModelMesh& out) {
-    const tinygltf::Primitive& primitive = gltf_.meshes[meshIndex].primitives[primitiveIndex];
-    const std::string where =
-        "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex) + ": ";
-    if (primitive.extensions.count("KHR_draco_mesh_compression") != 0) {
-      return fail(where + "uses KHR_draco_mesh_compression, which is not supported");
-    }
-    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-      warn(where + "mode " + std::to_string(mode) + " (points or lines) skipped");
-      return true;
-    }
-    auto attribute = [&](const char* key, AccessorView& view, bool& present) -> bool {
-      present = false;
-      const auto it = primitive.attributes.find(key);
-      if (it == primitive.attributes.end()) return true;
+  // The accessors of a primitive's attributes, by VertexField (see gltf_attributes.h).
+  struct PrimitiveViews {
+    AccessorView views[5];
+    bool present[5] = {};
+    const AccessorView& operator[](detail::VertexField f) const { return views[size_t(f)]; }
+    bool has(detail::VertexField f) const { return present[size_t(f)]; }
+  };
+
+  // Views every attribute of the table, then checks each against what it accepts.
+  bool viewAttributes(const tinygltf::Primitive& primitive, const std::string& where, int skin,
+                      PrimitiveViews& v) {
+    using detail::VertexField;
+    for (size_t a = 0; a < std::size(detail::kGltfAttributes); ++a) {
+      const detail::GltfAttribute& attribute = detail::kGltfAttributes[a];
       std::string reason;
-      if (!viewAccessor(gltf_, it->second, view, reason))
-        return fail(where + std::string(key) + ": " + reason);
-      present = true;
-      return true;
-    };
-    AccessorView positions, normals, uvs, joints, weights;
-    bool hasPosition, hasNormal, hasUv, hasJoints, hasWeights;
-    if (!attribute("POSITION", positions, hasPosition) ||
-        !attribute("NORMAL", normals, hasNormal) || !attribute("TEXCOORD_0", uvs, hasUv) ||
-        !attribute("JOINTS_0", joints, hasJoints) || !attribute("WEIGHTS_0", weights, hasWeights)) {
-      return false;
+      int accessor = -1;
+      if (!detail::viewAttribute(gltf_, primitive, attribute, v.views[a], accessor, reason))
+        return fail(where + attribute.name + ": " + reason);
+      v.present[a] = accessor >= 0;
     }
-    if (!hasPosition) return fail(where + "has no POSITION attribute");
-    const size_t n = positions.count;
-    if (positions.components != 3 || positions.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-      return fail(where + "POSITION must be a float VEC3");
+    if (!v.has(VertexField::Positions)) return fail(where + "has no POSITION attribute");
+    const size_t n = v[VertexField::Positions].count;
+    for (const VertexField field :
+         {VertexField::Positions, VertexField::Normals, VertexField::Uv0}) {
+      const detail::GltfAttribute& attribute = detail::gltfAttribute(field);
+      if (v.has(field) && !detail::attributeFits(attribute, v[field], n))
+        return fail(where + attribute.requirement);
     }
-    if (hasNormal &&
-        (normals.components != 3 || normals.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
-         normals.count != n)) {
-      return fail(where + "NORMAL must be a float VEC3 with one entry per vertex");
-    }
-    if (hasUv) {
-      const bool typeOk =
-          uvs.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-          (uvs.normalized && (uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                              uvs.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
-      if (uvs.components != 2 || !typeOk || uvs.count != n) {
-        return fail(where + "TEXCOORD_0 must be a VEC2 (float or normalized unsigned) per vertex");
-      }
-    }
-    const bool skinned = out.skin >= 0;
-    const size_t jointCount =
-        skinned ? gltf_.skins[static_cast<size_t>(out.skin)].joints.size() : 0;
-    if (skinned && hasJoints != hasWeights)
+    if (skin < 0) return true;
+    const bool hasJoints = v.has(VertexField::Joints);
+    if (hasJoints != v.has(VertexField::Weights))
       return fail(where + "JOINTS_0 and WEIGHTS_0 must come together");
-    if (skinned && hasJoints) {
-      if (joints.components != 4 || joints.count != n ||
-          (joints.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-           joints.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)) {
-        return fail(where + "JOINTS_0 must be an unsigned byte or short VEC4 per vertex");
-      }
-      const bool weightTypeOk =
-          weights.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-          (weights.normalized && (weights.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                  weights.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
-      if (weights.components != 4 || weights.count != n || !weightTypeOk) {
-        return fail(where + "WEIGHTS_0 must be a float or normalized unsigned VEC4 per vertex");
-      }
-    } else if (skinned) {
+    if (!hasJoints) {
       warn(where + "a skinned mesh without JOINTS_0: bound to joint 0");
+      return true;
     }
+    for (const VertexField field : {VertexField::Joints, VertexField::Weights}) {
+      const detail::GltfAttribute& attribute = detail::gltfAttribute(field);
+      if (!detail::attributeFits(attribute, v[field], n))
+        return fail(where + attribute.requirement);
+    }
+    return true;
+  }
 
-    // Corners: the indices, or 0..n-1.
-    std::vector<uint32_t> corners;
-    if (primitive.indices >= 0) {
-      AccessorView indexView;
-      std::string reason;
-      if (!viewAccessor(gltf_, primitive.indices, indexView, reason))
-        return fail(where + "indices: " + reason);
-      if (indexView.components != 1 ||
-          (indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-           indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-           indexView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
-        return fail(where + "indices must be unsigned byte, short or int scalars");
+  // The joints and weights of vertex i: the weights normalised to a sum of 1, a joint without
+  // weight set to 0; joint 0 with weight 1 when the vertex has no weight at all.
+  bool skinVertex(const PrimitiveViews& v, size_t i, size_t jointCount, const std::string& where,
+                  glm::u16vec4& j, glm::vec4& w) {
+    using detail::VertexField;
+    j = glm::u16vec4(0);
+    w = glm::vec4(1.f, 0.f, 0.f, 0.f);
+    if (!v.has(VertexField::Joints)) return true;
+    double raw[4], total = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      raw[k] = component(v[VertexField::Weights], i, k);
+      if (!std::isfinite(raw[k]) || raw[k] < 0.0) raw[k] = 0.0;
+      const double joint = component(v[VertexField::Joints], i, k);
+      if (raw[k] > 0.0 && joint >= static_cast<double>(jointCount)) {
+        return fail(where + "vertex " + std::to_string(i) + " uses joint " +
+                    std::to_string(uint64_t(joint)) + " of a skin with " +
+                    std::to_string(jointCount) + " joints");
       }
-      corners.resize(indexView.count);
-      for (size_t i = 0; i < indexView.count; ++i) {
-        const double value = component(indexView, i, 0);
-        if (value >= static_cast<double>(n)) {
-          return fail(where + "index " + std::to_string(static_cast<uint64_t>(value)) +
-                      " at position " + std::to_string(i) + " is out of range (" +
-                      std::to_string(n) + " vertices)");
-        }
-        corners[i] = static_cast<uint32_t>(value);
-      }
+      j[k] = raw[k] > 0.0 ? static_cast<uint16_t>(joint) : 0;
+      total += raw[k];
+    }
+    if (total > 0.0) {
+      for (int k = 0; k < 4; ++k) w[k] = static_cast<float>(raw[k] / total);
     } else {
-      if (n > UINT32_MAX) return fail(where + "too many vertices");
-      corners.resize(n);
-      for (size_t i = 0; i < n; ++i) corners[i] = static_cast<uint32_t>(i);
+      j = glm::u16vec4(0);
     }
-    std::vector<uint32_t> triangles;
-    if (!detail::trianglesOfPrimitive(mode, corners, triangles))
-      warn(where + "index count not a multiple of 3; the last partial triangle is ignored");
-    if (triangles.empty()) return true;
-    const uint64_t elements = uint64_t{n} + triangles.size();
-    if (elements > budget_)
-      return fail("the scene instantiates more geometry than the file size allows");
-    budget_ -= elements;
+    return true;
+  }
 
+  // Appends the primitive's vertices to out.mesh: positions by `transform`, normals by its normal
+  // matrix (zero when absent or degenerate), uv0 (zero when absent), joints and weights when
+  // skinned.
+  bool appendVertices(const PrimitiveViews& v, const glm::dmat4& transform,
+                      const std::string& where, ModelMesh& out) {
+    using detail::VertexField;
     geometry::MeshData& m = out.mesh;
-    const size_t base = m.positions.size();
-    if (base + n > UINT32_MAX) return fail("too many vertices");
-    const glm::dmat3 linear(transform);
-    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
-    const bool mirrored = glm::determinant(linear) < 0.0;
+    const size_t n = v[VertexField::Positions].count;
+    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(transform)));
+    const size_t jointCount =
+        out.skin >= 0 ? gltf_.skins[static_cast<size_t>(out.skin)].joints.size() : 0;
+    const AccessorView &positions = v[VertexField::Positions], &normals = v[VertexField::Normals],
+                       &uvs = v[VertexField::Uv0];
     for (size_t i = 0; i < n; ++i) {
       const glm::dvec3 local(component(positions, i, 0), component(positions, i, 1),
                              component(positions, i, 2));
@@ -673,7 +688,7 @@ class Loader {
       }
       m.positions.emplace_back(p);
       glm::vec3 normal(0.f);
-      if (hasNormal) {
+      if (v.has(VertexField::Normals)) {
         const glm::dvec3 t =
             normalMatrix * glm::dvec3(component(normals, i, 0), component(normals, i, 1),
                                       component(normals, i, 2));
@@ -681,77 +696,121 @@ class Loader {
         if (len > 0.0 && std::isfinite(len)) normal = glm::vec3(t / len);
       }
       m.normals.push_back(normal);
-      m.uv0.push_back(hasUv ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1))
-                            : glm::vec2(0.f));
-      if (skinned) {
-        glm::u16vec4 j(0);
-        glm::vec4 w(1.f, 0.f, 0.f, 0.f);
-        if (hasJoints) {
-          double raw[4], total = 0.0;
-          for (int k = 0; k < 4; ++k) {
-            raw[k] = component(weights, i, k);
-            if (!std::isfinite(raw[k]) || raw[k] < 0.0) raw[k] = 0.0;
-            const double joint = component(joints, i, k);
-            if (raw[k] > 0.0 && joint >= static_cast<double>(jointCount)) {
-              return fail(where + "vertex " + std::to_string(i) + " uses joint " +
-                          std::to_string(uint64_t(joint)) + " of a skin with " +
-                          std::to_string(jointCount) + " joints");
-            }
-            j[k] = raw[k] > 0.0 ? static_cast<uint16_t>(joint) : 0;
-            total += raw[k];
-          }
-          if (total > 0.0) {
-            for (int k = 0; k < 4; ++k) w[k] = static_cast<float>(raw[k] / total);
-          } else {
-            j = glm::u16vec4(0);
-          }
-        }
-        m.joints.push_back(j);
-        m.weights.push_back(w);
-      }
+      m.uv0.push_back(v.has(VertexField::Uv0)
+                          ? glm::vec2(component(uvs, i, 0), component(uvs, i, 1))
+                          : glm::vec2(0.f));
+      if (out.skin < 0) continue;
+      glm::u16vec4 j;
+      glm::vec4 w;
+      if (!skinVertex(v, i, jointCount, where, j, w)) return false;
+      m.joints.push_back(j);
+      m.weights.push_back(w);
     }
-    anyUv_ = anyUv_ || hasUv;
+    return true;
+  }
 
-    uint32_t materialId;
-    if (primitive.material >= 0) {
-      if (static_cast<size_t>(primitive.material) >= gltf_.materials.size()) {
-        return fail(where + "material " + std::to_string(primitive.material) + " does not exist");
-      }
-      materialId = static_cast<uint32_t>(primitive.material);
-    } else {
-      materialId = static_cast<uint32_t>(gltf_.materials.size());
-      usesDefaultMaterial_ = true;
-    }
-    m.submeshes.push_back(
-        geometry::SubMesh{static_cast<uint32_t>(m.indices.size()), 0, materialId});
-    const size_t firstIndex = m.indices.size();
-    for (size_t t = 0; t < triangles.size(); t += 3) {
-      const uint32_t a = static_cast<uint32_t>(base) + triangles[t];
-      const uint32_t b = static_cast<uint32_t>(base) + triangles[t + 1];
-      const uint32_t c = static_cast<uint32_t>(base) + triangles[t + 2];
-      m.indices.insert(m.indices.end(), {a, mirrored ? c : b, mirrored ? b : c});
-    }
-    m.submeshes.back().indexCount = static_cast<uint32_t>(m.indices.size() - firstIndex);
-
-    // Missing (or degenerate) normals: area-weighted smooth normals of this primitive's triangles.
+  // Missing (or degenerate) normals: area-weighted smooth normals of the primitive's triangles
+  // (indices from firstIndex, vertices from base).
+  static void fillMissingNormals(geometry::MeshData& m, size_t base, size_t firstIndex,
+                                 bool hasNormal) {
+    const size_t n = m.positions.size() - base;
     bool needNormals = !hasNormal;
     for (size_t i = base; i < m.positions.size() && !needNormals; ++i)
       needNormals = m.normals[i] == glm::vec3(0.f);
-    if (needNormals) {
-      std::vector<glm::dvec3> sum(n, glm::dvec3(0.0));
-      for (size_t t = firstIndex; t < m.indices.size(); t += 3) {
-        const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
-            c(m.positions[m.indices[t + 2]]);
-        const glm::dvec3 face = glm::cross(b - a, c - a);
-        for (int k = 0; k < 3; ++k) sum[m.indices[t + k] - base] += face;
-      }
-      for (size_t i = 0; i < n; ++i) {
-        if (hasNormal && m.normals[base + i] != glm::vec3(0.f)) continue;
-        const double len = glm::length(sum[i]);
-        m.normals[base + i] =
-            len > 0.0 && std::isfinite(len) ? glm::vec3(sum[i] / len) : glm::vec3(0.f, 1.f, 0.f);
+    if (!needNormals) return;
+    std::vector<glm::dvec3> sum(n, glm::dvec3(0.0));
+    for (size_t t = firstIndex; t < m.indices.size(); t += 3) {
+      const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
+          c(m.positions[m.indices[t + 2]]);
+      const glm::dvec3 face = glm::cross(b - a, c - a);
+      for (int k = 0; k < 3; ++k) sum[m.indices[t + k] - base] += face;
+    }
+    for (size_t i = 0; i < n; ++i) {
+      if (hasNormal && m.normals[base + i] != glm::vec3(0.f)) continue;
+      const double len = glm::length(sum[i]);
+      m.normals[base + i] =
+          len > 0.0 && std::isfinite(len) ? glm::vec3(sum[i] / len) : glm::vec3(0.f, 1.f, 0.f);
+    }
+  }
+
+  // The triangles of a primitive of n vertices (its indices or 0..n-1, by its mode).
+  bool primitiveTriangles(const tinygltf::Primitive& primitive, int mode, size_t n,
+                          const std::string& where, std::vector<uint32_t>& triangles) {
+    std::vector<uint32_t> corners;
+    detail::CornerFailure failure;
+    if (!detail::primitiveCorners(gltf_, primitive, n, corners, failure)) {
+      switch (failure.kind) {
+        case detail::CornerFailure::View:
+          return fail(where + "indices: " + failure.reason);
+        case detail::CornerFailure::Type:
+          return fail(where + "indices must be unsigned byte, short or int scalars");
+        case detail::CornerFailure::Range:
+          return fail(where + "index " + std::to_string(failure.index) + " at position " +
+                      std::to_string(failure.position) + " is out of range (" + std::to_string(n) +
+                      " vertices)");
+        case detail::CornerFailure::TooManyVertices:
+          return fail(where + "too many vertices");
       }
     }
+    if (!detail::trianglesOfPrimitive(mode, corners, triangles))
+      warn(where + "index count not a multiple of 3; the last partial triangle is ignored");
+    return true;
+  }
+
+  // The material id of a primitive: its material, or the default material after the file's.
+  bool primitiveMaterial(const tinygltf::Primitive& primitive, const std::string& where,
+                         uint32_t& materialId) {
+    if (primitive.material < 0) {
+      materialId = static_cast<uint32_t>(gltf_.materials.size());
+      usesDefaultMaterial_ = true;
+      return true;
+    }
+    if (static_cast<size_t>(primitive.material) >= gltf_.materials.size()) {
+      return fail(where + "material " + std::to_string(primitive.material) + " does not exist");
+    }
+    materialId = static_cast<uint32_t>(primitive.material);
+    return true;
+  }
+
+  bool readPrimitive(size_t meshIndex, size_t primitiveIndex, const glm::dmat4& transform,
+                     ModelMesh& out) {
+    const tinygltf::Primitive& primitive = gltf_.meshes[meshIndex].primitives[primitiveIndex];
+    const std::string where =
+        "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex) + ": ";
+    if (detail::usesDraco(primitive)) {
+      return fail(where + "uses KHR_draco_mesh_compression, which is not supported");
+    }
+    int mode = 0;
+    if (!detail::triangleMode(primitive, mode)) {
+      warn(where + "mode " + std::to_string(mode) + " (points or lines) skipped");
+      return true;
+    }
+    PrimitiveViews views;
+    if (!viewAttributes(primitive, where, out.skin, views)) return false;
+    const size_t n = views[detail::VertexField::Positions].count;
+    std::vector<uint32_t> triangles;
+    if (!primitiveTriangles(primitive, mode, n, where, triangles)) return false;
+    if (triangles.empty()) return true;
+    const uint64_t elements = uint64_t{n} + triangles.size();
+    if (elements > budget_)
+      return fail("the scene instantiates more geometry than the file size allows");
+    budget_ -= elements;
+
+    geometry::MeshData& m = out.mesh;
+    const size_t base = m.positions.size();
+    if (base + n > UINT32_MAX) return fail("too many vertices");
+    if (!appendVertices(views, transform, where, out)) return false;
+    const bool hasNormal = views.has(detail::VertexField::Normals);
+    anyUv_ = anyUv_ || views.has(detail::VertexField::Uv0);
+
+    uint32_t materialId = 0;
+    if (!primitiveMaterial(primitive, where, materialId)) return false;
+    const size_t firstIndex = m.indices.size();
+    m.submeshes.push_back(geometry::SubMesh{static_cast<uint32_t>(firstIndex), 0, materialId});
+    const bool mirrored = glm::determinant(glm::dmat3(transform)) < 0.0;
+    detail::appendTriangles(triangles, base, mirrored, m.indices);
+    m.submeshes.back().indexCount = static_cast<uint32_t>(m.indices.size() - firstIndex);
+    fillMissingNormals(m, base, firstIndex, hasNormal);
     return true;
   }
 

@@ -4,11 +4,16 @@
 // and the `face` element's vertex_indices (or vertex_index) list with any count and index types,
 // triangulating polygons. Every other element and property is parsed and skipped. Each
 // element's declared count is checked against the bytes that remain before anything is allocated.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
+#include "cleave/assets/line_scanner.h"
+#include "cleave/assets/mesh_finish.h"
 #include "cleave/assets/mesh_reader.h"
+#include "cleave/assets/polygon_triangulator.h"
 
 namespace cleave::assets::detail {
 
@@ -62,20 +67,34 @@ struct Element {
   size_t headerLine = 0;
 };
 
-// Reads scalar values from the body in one of the three encodings; tracks line numbers in ascii.
+// Reads scalar values from the body in one of the three encodings. Ascii bodies are read with the
+// text formats' tokenizer, which keeps the line number for messages.
 class BodyReader {
  public:
-  BodyReader(std::span<const uint8_t> body, Encoding encoding, size_t firstLine)
-      : body_(body), encoding_(encoding), line_(firstLine) {}
+  BodyReader(std::span<const uint8_t> body, Encoding encoding, size_t headerLines)
+      : body_(body),
+        encoding_(encoding),
+        text_(reinterpret_cast<const char*>(body.data()), body.size()),
+        scanner_(text_, '\0', /*nulSeparates=*/false),
+        headerLines_(headerLines) {}
 
-  size_t remaining() const { return body_.size() - pos_; }
-  size_t line() const { return line_; }
+  size_t remaining() const {
+    return ascii() ? text_.size() - std::min(scanner_.position(), text_.size())
+                   : body_.size() - pos_;
+  }
+  // The line of the last token read (past the end of the data, the line after the last line
+  // end): one more than the LF bytes before it, so a lone CR inside the data is no line end here.
+  // Counted only for a message.
+  size_t line() const {
+    const std::string_view before = text_.substr(0, std::min(scanner_.position(), text_.size()));
+    return headerLines_ + 1 + static_cast<size_t>(std::count(before.begin(), before.end(), '\n'));
+  }
   bool ascii() const { return encoding_ == Encoding::Ascii; }
 
   // False at the end of the data or on a token that is not a number.
   bool read(const ScalarType& type, double& value, std::string& reason) {
-    if (encoding_ == Encoding::Ascii) return readAscii(value, reason);
-    if (remaining() < type.size) {
+    if (ascii()) return readAscii(value, reason);
+    if (body_.size() - pos_ < type.size) {
       reason = "file ends inside the data";
       return false;
     }
@@ -88,41 +107,32 @@ class BodyReader {
     // raw is now little-endian; assemble without assuming the host order.
     uint64_t bits = 0;
     for (int i = type.size - 1; i >= 0; --i) bits = (bits << 8) | raw[i];
-    if (type.isFloat) {
-      if (type.size == 4) {
-        const uint32_t b32 = static_cast<uint32_t>(bits);
-        float f;
-        std::memcpy(&f, &b32, sizeof(f));
-        value = f;
-      } else {
-        double d;
-        std::memcpy(&d, &bits, sizeof(d));
-        value = d;
-      }
-    } else if (type.isSigned) {
-      const int shift = 64 - 8 * type.size;
-      value = static_cast<double>(static_cast<int64_t>(bits << shift) >> shift);
-    } else {
-      value = static_cast<double>(bits);
-    }
+    value = decode(type, bits);
     return true;
   }
 
  private:
+  static double decode(const ScalarType& type, uint64_t bits) {
+    if (type.isFloat && type.size == 4) {
+      const uint32_t b32 = static_cast<uint32_t>(bits);
+      float f;
+      std::memcpy(&f, &b32, sizeof(f));
+      return f;
+    }
+    if (type.isFloat) {
+      double d;
+      std::memcpy(&d, &bits, sizeof(d));
+      return d;
+    }
+    if (type.isSigned) {
+      const int shift = 64 - 8 * type.size;
+      return static_cast<double>(static_cast<int64_t>(bits << shift) >> shift);
+    }
+    return static_cast<double>(bits);
+  }
+
   bool readAscii(double& value, std::string& reason) {
-    while (pos_ < body_.size()) {
-      const uint8_t c = body_[pos_];
-      if (c == '\n') ++line_;
-      if (c != ' ' && c != '\t' && c != '\r' && c != '\n' && c != '\f' && c != '\v') break;
-      ++pos_;
-    }
-    const size_t start = pos_;
-    while (pos_ < body_.size()) {
-      const uint8_t c = body_[pos_];
-      if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v') break;
-      ++pos_;
-    }
-    const std::string_view token(reinterpret_cast<const char*>(body_.data()) + start, pos_ - start);
+    const std::string_view token = scanner_.nextTokenAnyLine();
     if (token.empty()) {
       reason = "file ends inside the data";
       return false;
@@ -136,8 +146,10 @@ class BodyReader {
 
   std::span<const uint8_t> body_;
   Encoding encoding_;
-  size_t pos_ = 0;
-  size_t line_;
+  size_t pos_ = 0;  // binary
+  std::string_view text_;
+  LineScanner scanner_;  // ascii
+  size_t headerLines_;
 };
 
 // Property roles of the vertex element.
@@ -163,212 +175,281 @@ int roleOf(std::string_view name) {
 uint64_t minimumBytes(const Element& element, Encoding encoding) {
   uint64_t bytes = 0;
   for (const Property& p : element.properties) {
-    if (encoding == Encoding::Ascii) bytes += 2;  // one digit and one separator
-    else bytes += p.isList ? p.countType.size : p.type.size;
+    if (encoding == Encoding::Ascii)
+      bytes += 2;  // one digit and one separator
+    else
+      bytes += p.isList ? p.countType.size : p.type.size;
   }
   return bytes;
 }
+
+struct PlyHeader {
+  Encoding encoding = Encoding::Ascii;
+  std::vector<Element> elements;
+};
+
+// Reads the header, from "ply" to "end_header". Each line handler returns the reason of a failure
+// on that line, empty when the line is good.
+class HeaderReader {
+ public:
+  HeaderReader(LineScanner& scanner, const std::string& name) : scanner_(scanner), name_(name) {}
+
+  std::optional<MeshReadResult> read(PlyHeader& header) {
+    if (!scanner_.nextLine() || scanner_.nextToken() != "ply") {
+      return failureAt(name_, 1, "not a PLY file (the first line must be 'ply')");
+    }
+    bool ended = false;
+    while (!ended && scanner_.nextLine()) {
+      const std::string_view keyword = scanner_.nextToken();
+      ended = keyword == "end_header";
+      const std::string reason = ended ? std::string() : line(keyword, header);
+      if (!reason.empty()) return failureAt(name_, scanner_.lineNumber(), reason);
+    }
+    if (!ended) return failure(name_, "PLY header has no end_header");
+    if (!haveFormat_) return failure(name_, "PLY header has no format line");
+    return std::nullopt;
+  }
+
+ private:
+  std::string line(std::string_view keyword, PlyHeader& header) {
+    if (keyword.empty() || keyword == "comment" || keyword == "obj_info") return {};
+    if (keyword == "format") return format(header.encoding);
+    if (keyword == "element") return element(header.elements);
+    if (keyword == "property") {
+      if (header.elements.empty()) return "property before any element";
+      return property(header.elements.back());
+    }
+    return "unexpected " + quoted(keyword) + " in the PLY header";
+  }
+
+  std::string format(Encoding& encoding) {
+    const std::string_view kind = scanner_.nextToken();
+    if (kind == "ascii")
+      encoding = Encoding::Ascii;
+    else if (kind == "binary_little_endian")
+      encoding = Encoding::LittleEndian;
+    else if (kind == "binary_big_endian")
+      encoding = Encoding::BigEndian;
+    else
+      return "unknown PLY format " + quoted(kind);
+    haveFormat_ = true;
+    return {};
+  }
+
+  std::string element(std::vector<Element>& elements) {
+    Element element;
+    element.name = std::string(scanner_.nextToken());
+    const std::string_view countToken = scanner_.nextToken();
+    int64_t count = 0;
+    if (element.name.empty() || !parseInt64(countToken, count) || count < 0) {
+      return "bad element declaration";
+    }
+    element.count = static_cast<uint64_t>(count);
+    element.headerLine = scanner_.lineNumber();
+    elements.push_back(std::move(element));
+    return {};
+  }
+
+  std::string property(Element& element) {
+    Property property;
+    std::string_view typeToken = scanner_.nextToken();
+    if (typeToken == "list") {
+      property.isList = true;
+      const std::string_view countToken = scanner_.nextToken();
+      if (!parseType(countToken, property.countType) || property.countType.isFloat) {
+        return "bad list count type " + quoted(countToken);
+      }
+      typeToken = scanner_.nextToken();
+    }
+    if (!parseType(typeToken, property.type)) return "unknown property type " + quoted(typeToken);
+    property.name = std::string(scanner_.nextToken());
+    if (property.name.empty()) return "property without a name";
+    element.properties.push_back(std::move(property));
+    return {};
+  }
+
+  LineScanner& scanner_;
+  const std::string& name_;
+  bool haveFormat_ = false;
+};
+
+// Reads the body element by element: the first `vertex` element gives the vertices, the first
+// `face` element the faces, every other element is read and dropped.
+class BodyElements {
+ public:
+  BodyElements(BodyReader& body, Encoding encoding, const std::string& name)
+      : body_(body), encoding_(encoding), name_(name) {}
+
+  std::optional<MeshReadResult> read(const std::vector<Element>& elements) {
+    for (const Element& element : elements) {
+      std::optional<MeshReadResult> failed = begin(element);
+      if (!failed && !element.properties.empty()) failed = readEntries(element);
+      if (failed) return failed;
+      if (isVertex_) present_ = {};  // roles only apply to the vertex element
+    }
+    if (!haveVertices_) return failure(name_, "PLY file has no vertex element");
+    if (!haveFaces_) return failure(name_, "PLY file has no face element");
+    return std::nullopt;
+  }
+
+  MeshReadResult& result() { return result_; }
+
+ private:
+  // Checks the element's count against the bytes left and sets up its roles.
+  std::optional<MeshReadResult> begin(const Element& element) {
+    const uint64_t minBytes = minimumBytes(element, encoding_);
+    if (minBytes > 0 && element.count > (body_.remaining() + 1) / minBytes) {
+      return failureAt(name_, element.headerLine,
+                       "element " + quoted(element.name) + " declares " +
+                           std::to_string(element.count) + " entries, more than the file can hold");
+    }
+    isVertex_ = element.name == "vertex" && !haveVertices_;
+    isFace_ = element.name == "face" && !haveFaces_;
+    roles_.assign(element.properties.size(), -1);
+    faceList_ = -1;
+    if (isVertex_) {
+      if (element.count > UINT32_MAX / 2) return failure(name_, "too many vertices");
+      haveVertices_ = true;
+      assignRoles(element);
+      if (!present_[kX] || !present_[kY] || !present_[kZ]) {
+        return failureAt(name_, element.headerLine, "vertex element lacks x, y or z");
+      }
+      result_.mesh.positions.reserve(static_cast<size_t>(element.count));
+    }
+    if (isFace_) {
+      haveFaces_ = true;
+      for (size_t p = 0; p < element.properties.size() && faceList_ < 0; ++p) {
+        const Property& property = element.properties[p];
+        if (property.isList &&
+            (property.name == "vertex_indices" || property.name == "vertex_index")) {
+          faceList_ = static_cast<int>(p);
+        }
+      }
+      if (faceList_ < 0)
+        return failureAt(name_, element.headerLine, "face element has no vertex_indices list");
+    }
+    return std::nullopt;
+  }
+
+  void assignRoles(const Element& element) {
+    for (size_t p = 0; p < element.properties.size(); ++p) {
+      const Property& property = element.properties[p];
+      const int role = property.isList ? -1 : roleOf(property.name);
+      if (role >= 0 && !present_[static_cast<size_t>(role)]) {
+        roles_[p] = role;
+        present_[static_cast<size_t>(role)] = true;
+        colorScale_[static_cast<size_t>(role)] =
+            property.type.isFloat ? 1.0 : 1.0 / property.type.normalizer;
+      }
+    }
+  }
+
+  std::optional<MeshReadResult> bodyError(const Element& element, uint64_t index) const {
+    const std::string where = "in " + element.name + " " + std::to_string(index) + ": " + reason_;
+    return body_.ascii() ? failureAt(name_, body_.line(), where) : failure(name_, where);
+  }
+
+  std::optional<MeshReadResult> readEntries(const Element& element) {
+    for (uint64_t e = 0; e < element.count; ++e) {
+      std::array<double, kRoleCount> values{};
+      values[kAlpha] = 1.0;
+      for (size_t p = 0; p < element.properties.size(); ++p) {
+        const Property& property = element.properties[p];
+        const bool ok = property.isList
+                            ? readList(property, isFace_ && static_cast<int>(p) == faceList_)
+                            : readScalar(property, roles_[p], values);
+        if (!ok) return bodyError(element, e);
+      }
+      if (isVertex_) addVertex(values);
+    }
+    return std::nullopt;
+  }
+
+  bool readScalar(const Property& property, int role, std::array<double, kRoleCount>& values) {
+    double value = 0.0;
+    if (!body_.read(property.type, value, reason_)) return false;
+    if (role >= 0) values[static_cast<size_t>(role)] = value;
+    return true;
+  }
+
+  // A list property; the face element's index list becomes a polygon.
+  bool readList(const Property& property, bool indices) {
+    double countValue = 0.0;
+    if (!body_.read(property.countType, countValue, reason_)) return false;
+    const uint64_t itemBytes = encoding_ == Encoding::Ascii ? 2 : property.type.size;
+    if (!(countValue >= 0.0) || countValue != std::floor(countValue) ||
+        countValue > static_cast<double>((body_.remaining() + 1) / itemBytes)) {
+      reason_ = "list length " + std::to_string(countValue) + " is invalid or exceeds the file";
+      return false;
+    }
+    const uint64_t count = static_cast<uint64_t>(countValue);
+    if (indices) polygon_.clear();
+    for (uint64_t k = 0; k < count; ++k) {
+      double value = 0.0;
+      if (!body_.read(property.type, value, reason_)) return false;
+      if (!indices) continue;
+      if (!(value >= 0.0) || value != std::floor(value) || value >= 4294967295.0) {
+        reason_ = "bad vertex index " + std::to_string(value);
+        return false;
+      }
+      polygon_.push_back(static_cast<uint32_t>(value));
+    }
+    if (!indices) return true;
+    if (polygon_.size() < 3) {
+      reason_ = "a face needs at least 3 corners";
+      return false;
+    }
+    faces_.appendIndexed(polygon_, result_.mesh.positions, result_.mesh.indices);
+    return true;
+  }
+
+  void addVertex(const std::array<double, kRoleCount>& values) {
+    geometry::MeshData& mesh = result_.mesh;
+    mesh.positions.emplace_back(values[kX], values[kY], values[kZ]);
+    if (present_[kNx] && present_[kNy] && present_[kNz]) {
+      mesh.normals.emplace_back(values[kNx], values[kNy], values[kNz]);
+    }
+    if (present_[kU] && present_[kV]) mesh.uv0.emplace_back(values[kU], values[kV]);
+    if (present_[kRed] && present_[kGreen] && present_[kBlue]) {
+      mesh.colors.emplace_back(values[kRed] * colorScale_[kRed],
+                               values[kGreen] * colorScale_[kGreen],
+                               values[kBlue] * colorScale_[kBlue],
+                               present_[kAlpha] ? values[kAlpha] * colorScale_[kAlpha] : 1.0);
+    }
+  }
+
+  BodyReader& body_;
+  Encoding encoding_;
+  const std::string& name_;
+  MeshReadResult result_;
+  bool haveVertices_ = false;
+  bool haveFaces_ = false;
+  bool isVertex_ = false;
+  bool isFace_ = false;
+  std::vector<int> roles_;
+  int faceList_ = -1;
+  std::array<bool, kRoleCount> present_{};
+  std::array<double, kRoleCount> colorScale_{};
+  std::vector<uint32_t> polygon_;
+  PolygonTriangulator faces_;
+  std::string reason_;
+};
 
 }  // namespace
 
 MeshReadResult readPly(std::span<const uint8_t> bytes, const std::string& name) {
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   LineScanner scanner(text, '\0');
-  if (!scanner.nextLine() || scanner.nextToken() != "ply") {
-    return failureAt(name, 1, "not a PLY file (the first line must be 'ply')");
-  }
-  Encoding encoding = Encoding::Ascii;
-  bool haveFormat = false;
-  bool ended = false;
-  std::vector<Element> elements;
-  while (!ended && scanner.nextLine()) {
-    const size_t line = scanner.lineNumber();
-    const std::string_view keyword = scanner.nextToken();
-    if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
-    if (keyword == "format") {
-      const std::string_view kind = scanner.nextToken();
-      if (kind == "ascii") encoding = Encoding::Ascii;
-      else if (kind == "binary_little_endian") encoding = Encoding::LittleEndian;
-      else if (kind == "binary_big_endian") encoding = Encoding::BigEndian;
-      else return failureAt(name, line, "unknown PLY format " + quoted(kind));
-      haveFormat = true;
-    } else if (keyword == "element") {
-      Element element;
-      element.name = std::string(scanner.nextToken());
-      const std::string_view countToken = scanner.nextToken();
-      int64_t count = 0;
-      if (element.name.empty() || !parseInt64(countToken, count) || count < 0) {
-        return failureAt(name, line, "bad element declaration");
-      }
-      element.count = static_cast<uint64_t>(count);
-      element.headerLine = line;
-      elements.push_back(std::move(element));
-    } else if (keyword == "property") {
-      if (elements.empty()) return failureAt(name, line, "property before any element");
-      Property property;
-      std::string_view typeToken = scanner.nextToken();
-      if (typeToken == "list") {
-        property.isList = true;
-        const std::string_view countToken = scanner.nextToken();
-        if (!parseType(countToken, property.countType) || property.countType.isFloat) {
-          return failureAt(name, line, "bad list count type " + quoted(countToken));
-        }
-        typeToken = scanner.nextToken();
-      }
-      if (!parseType(typeToken, property.type)) {
-        return failureAt(name, line, "unknown property type " + quoted(typeToken));
-      }
-      property.name = std::string(scanner.nextToken());
-      if (property.name.empty()) return failureAt(name, line, "property without a name");
-      elements.back().properties.push_back(std::move(property));
-    } else if (keyword == "end_header") {
-      ended = true;
-    } else {
-      return failureAt(name, line, "unexpected " + quoted(keyword) + " in the PLY header");
-    }
-  }
-  if (!ended) return failure(name, "PLY header has no end_header");
-  if (!haveFormat) return failure(name, "PLY header has no format line");
+  PlyHeader header;
+  if (std::optional<MeshReadResult> failed = HeaderReader(scanner, name).read(header))
+    return *failed;
 
   const size_t bodyStart = std::min(scanner.offset(), bytes.size());
-  BodyReader body(bytes.subspan(bodyStart), encoding, scanner.lineNumber() + 1);
-
-  MeshReadResult result;
-  geometry::MeshData& mesh = result.mesh;
-  bool haveVertices = false;
-  bool haveFaces = false;
-  std::array<bool, kRoleCount> present{};
-  std::array<double, kRoleCount> colorScale{};
-  std::vector<uint32_t> polygon;
-  std::vector<glm::vec3> polygonPositions;
-  PolygonTriangulator faces;
-  std::string reason;
-  auto bodyError = [&](const Element& element, uint64_t index) {
-    const std::string where = "in " + element.name + " " + std::to_string(index) + ": " + reason;
-    return body.ascii() ? failureAt(name, body.line(), where) : failure(name, where);
-  };
-
-  for (const Element& element : elements) {
-    const uint64_t minBytes = minimumBytes(element, encoding);
-    if (minBytes > 0 && element.count > (body.remaining() + 1) / minBytes) {
-      return failureAt(name, element.headerLine,
-                       "element " + quoted(element.name) + " declares " +
-                           std::to_string(element.count) + " entries, more than the file can hold");
-    }
-    const bool isVertex = element.name == "vertex" && !haveVertices;
-    const bool isFace = element.name == "face" && !haveFaces;
-    std::vector<int> roles(element.properties.size(), -1);
-    int faceList = -1;
-    if (isVertex) {
-      if (element.count > UINT32_MAX / 2) return failure(name, "too many vertices");
-      haveVertices = true;
-      for (size_t p = 0; p < element.properties.size(); ++p) {
-        const Property& property = element.properties[p];
-        const int role = property.isList ? -1 : roleOf(property.name);
-        if (role >= 0 && !present[static_cast<size_t>(role)]) {
-          roles[p] = role;
-          present[static_cast<size_t>(role)] = true;
-          colorScale[static_cast<size_t>(role)] =
-              property.type.isFloat ? 1.0 : 1.0 / property.type.normalizer;
-        }
-      }
-      if (!present[kX] || !present[kY] || !present[kZ]) {
-        return failureAt(name, element.headerLine, "vertex element lacks x, y or z");
-      }
-      mesh.positions.reserve(static_cast<size_t>(element.count));
-    }
-    if (isFace) {
-      haveFaces = true;
-      for (size_t p = 0; p < element.properties.size(); ++p) {
-        const Property& property = element.properties[p];
-        if (property.isList && (property.name == "vertex_indices" || property.name == "vertex_index")) {
-          faceList = static_cast<int>(p);
-          break;
-        }
-      }
-      if (faceList < 0) {
-        return failureAt(name, element.headerLine, "face element has no vertex_indices list");
-      }
-    }
-    if (element.properties.empty()) continue;  // nothing to read, whatever the count says
-    const bool hasNormals = present[kNx] && present[kNy] && present[kNz];
-    const bool hasUv = present[kU] && present[kV];
-    const bool hasColor = present[kRed] && present[kGreen] && present[kBlue];
-
-    for (uint64_t e = 0; e < element.count; ++e) {
-      std::array<double, kRoleCount> values{};
-      values[kAlpha] = 1.0;
-      for (size_t p = 0; p < element.properties.size(); ++p) {
-        const Property& property = element.properties[p];
-        if (!property.isList) {
-          double value = 0.0;
-          if (!body.read(property.type, value, reason)) return bodyError(element, e);
-          if (roles[p] >= 0) values[static_cast<size_t>(roles[p])] = value;
-          continue;
-        }
-        double countValue = 0.0;
-        if (!body.read(property.countType, countValue, reason)) return bodyError(element, e);
-        const uint64_t itemBytes = encoding == Encoding::Ascii ? 2 : property.type.size;
-        if (!(countValue >= 0.0) || countValue != std::floor(countValue) ||
-            countValue > static_cast<double>((body.remaining() + 1) / itemBytes)) {
-          reason = "list length " + std::to_string(countValue) + " is invalid or exceeds the file";
-          return bodyError(element, e);
-        }
-        const uint64_t count = static_cast<uint64_t>(countValue);
-        const bool indices = isFace && static_cast<int>(p) == faceList;
-        if (indices) polygon.clear();
-        for (uint64_t k = 0; k < count; ++k) {
-          double value = 0.0;
-          if (!body.read(property.type, value, reason)) return bodyError(element, e);
-          if (indices) {
-            if (!(value >= 0.0) || value != std::floor(value) || value >= 4294967295.0) {
-              reason = "bad vertex index " + std::to_string(value);
-              return bodyError(element, e);
-            }
-            polygon.push_back(static_cast<uint32_t>(value));
-          }
-        }
-        if (indices) {
-          if (polygon.size() < 3) {
-            reason = "a face needs at least 3 corners";
-            return bodyError(element, e);
-          }
-          // A file may list its faces before its vertices: such a face has no positions yet and
-          // is fanned.
-          polygonPositions.clear();
-          for (uint32_t id : polygon) {
-            if (id < mesh.positions.size()) polygonPositions.push_back(mesh.positions[id]);
-          }
-          faces.append(polygon, polygonPositions, mesh.indices);
-        }
-      }
-      if (isVertex) {
-        mesh.positions.emplace_back(values[kX], values[kY], values[kZ]);
-        if (hasNormals) mesh.normals.emplace_back(values[kNx], values[kNy], values[kNz]);
-        if (hasUv) mesh.uv0.emplace_back(values[kU], values[kV]);
-        if (hasColor) {
-          mesh.colors.emplace_back(values[kRed] * colorScale[kRed], values[kGreen] * colorScale[kGreen],
-                                   values[kBlue] * colorScale[kBlue],
-                                   present[kAlpha] ? values[kAlpha] * colorScale[kAlpha] : 1.0);
-        }
-      }
-    }
-    if (isVertex) present = {};  // roles only apply to the vertex element
-  }
-  if (!haveVertices) return failure(name, "PLY file has no vertex element");
-  if (!haveFaces) return failure(name, "PLY file has no face element");
-  if (!mesh.normals.empty()) {
-    bool degenerate = false;
-    for (glm::vec3& n : mesh.normals) {
-      const float length = glm::length(n);
-      if (length > 0.f && std::isfinite(length)) n /= length;
-      else degenerate = true;
-    }
-    if (degenerate) {
-      mesh.normals.clear();
-      result.warnings.push_back(name + ": a normal has zero length or is not finite; normals dropped");
-    }
-  }
+  BodyReader body(bytes.subspan(bodyStart), header.encoding, scanner.lineNumber());
+  BodyElements elements(body, header.encoding, name);
+  if (std::optional<MeshReadResult> failed = elements.read(header.elements)) return *failed;
+  MeshReadResult& result = elements.result();
+  if (!result.mesh.normals.empty()) normalizeNormals(result, name);
   return finish(std::move(result), name);
 }
 

@@ -10,6 +10,8 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "cleave/assets/line_scanner.h"
+#include "cleave/assets/mesh_finish.h"
 #include "cleave/assets/mesh_reader.h"
 
 namespace cleave::assets::detail {

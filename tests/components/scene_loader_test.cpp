@@ -280,6 +280,76 @@ TEST(SceneLoaderErrors, UnknownPrimitiveNamesFileLineAndField) {
   EXPECT_EQ(c.bodiesLeft, 0u);
 }
 
+// Each primitive with every field left out is the geometry primitive with the loader's defaults:
+// its mass at the default density is 1000 kg/m^3 times that mesh's volume.
+TEST(SceneLoader, EveryPrimitiveUsesItsDefaults) {
+  namespace P = geometry::primitives;
+  const std::pair<const char*, geometry::MeshData> cases[] = {
+      {"box", P::box(glm::vec3(0.5f))},
+      {"sphere", P::uvSphere(0.5f, 32, 16)},
+      {"ellipsoid", P::ellipsoid(glm::vec3(0.5f, 0.35f, 0.35f), 32, 16)},
+      {"cylinder", P::cylinder(0.4f, 1.f, 32)},
+      {"torus", P::torus(0.5f, 0.2f, 48, 24)},
+      {"capsule", P::capsule(0.3f, 0.6f, 24, 12)},
+      {"comb", P::combPrism(2, 0.2f, 0.6f, 0.2f, 0.3f)},
+      {"star", P::starPrism(5, 1.f, 0.4f, 0.5f)},
+      {"tetrahedron", P::tetrahedron(0.5f)},
+      {"hollow_sphere", P::hollowSphere(0.5f, 0.4f, 32, 16)},
+  };
+  for (const auto& [name, mesh] : cases) {
+    SCOPED_TRACE(name);
+    Sim sim;
+    const std::string path =
+        write(std::string("default_") + name + ".json",
+              std::string(R"({"entities": [{"name": "p", "mesh": {"primitive": ")") + name +
+                  R"("}, "body": {}}]})");
+    ASSERT_TRUE(sim.load(path)) << sim.scene.error;
+    const double volume = geometry::computeMassProperties(mesh).volume;
+    ASSERT_GT(volume, 0.0);
+    EXPECT_NEAR(sim.world.get<MassInfo>(sim.scene.find("p")).mass, 1000.0 * volume, 1e-9 * volume);
+  }
+}
+
+TEST(SceneLoaderErrors, PrimitiveFieldsAreCheckedInOrder) {
+  struct Case {
+    const char* mesh;
+    const char* error;  // after "<file>:3: "
+  };
+  const Case cases[] = {
+      {R"({"primitive": "torus", "major_radius": 0.2, "minor_radius": 0.3})",
+       "/entities/0/mesh/minor_radius: minor_radius must be below major_radius"},
+      {R"({"primitive": "star", "inner_radius": 2})",
+       "/entities/0/mesh/inner_radius: inner_radius must be below outer_radius"},
+      {R"({"primitive": "hollow_sphere", "outer_radius": 0.3})",
+       "/entities/0/mesh/inner_radius: inner_radius must be below outer_radius"},
+      {R"({"primitive": "torus", "radius": 1})",
+       "/entities/0/mesh/radius: unknown field 'radius' (expected one of: primitive, major_radius, "
+       "minor_radius, segments, sides)"},
+      {R"({"primitive": "sphere", "segments": 2, "radius": -1})",
+       "/entities/0/mesh/radius: expected a number > 0, found -1"},
+      {R"({"primitive": "sphere", "rings": 1})",
+       "/entities/0/mesh/rings: expected a whole number in [2, 1024], found 1"},
+      {R"({"primitive": "comb", "teeth": 257})",
+       "/entities/0/mesh/teeth: expected a whole number in [1, 256], found 257"},
+      {R"({"primitive": "box", "half_extents": [1, 0, 1]})",
+       "/entities/0/mesh/half_extents: expected three numbers > 0"},
+      {R"({"primitive": "cube"})",
+       "/entities/0/mesh/primitive: unknown primitive 'cube' (expected one of: box, sphere, "
+       "ellipsoid, "
+       "cylinder, torus, capsule, comb, star, tetrahedron, hollow_sphere)"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.mesh);
+    const BadCase bad =
+        loadBad("bad_primitive_field.json",
+                std::string("{\n  \"entities\": [\n    {\"name\": \"p\", \"mesh\": ") + c.mesh +
+                    "}\n  ]\n}");
+    ASSERT_FALSE(bad.result.ok);
+    EXPECT_EQ(bad.result.error, bad.result.errorFile + ":3: " + c.error);
+    EXPECT_EQ(bad.entitiesLeft, 0u);
+  }
+}
+
 TEST(SceneLoaderErrors, MissingModelFileNamesFileLineAndField) {
   const BadCase c = loadBad("bad_model.json", R"({
   "entities": [
