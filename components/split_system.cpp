@@ -105,7 +105,6 @@ struct SplitSystem::Scratch {
   // Structural changes of the current batch; made for the world of the first call.
   std::unique_ptr<ecs::CommandBuffer> commands;
   ecs::World* commandsWorld = nullptr;
-  std::vector<ecs::Entity> doomed;  // entities the batch destroys: their resources go first
   uint32_t activationsThisTick = 0;
   // What is known of the meshes the system has cut or made, by mesh: its weld, and its collider
   // parts. A mesh cut again (every piece, and an authored mesh that many objects share) is neither
@@ -156,8 +155,6 @@ ecs::CommandBuffer& commandsFor(std::unique_ptr<ecs::CommandBuffer>& buffer, ecs
 }  // namespace
 
 void SplitSystem::flush(SplitWorld& w) {
-  for (ecs::Entity e : scratch_->doomed) releaseEntityResources(w, e);
-  scratch_->doomed.clear();
   if (scratch_->commands && scratch_->commandsWorld == &w.world) w.world.apply(*scratch_->commands);
 }
 
@@ -222,24 +219,6 @@ ecs::Entity createSplitter(SplitWorld& w, const std::string& name, const physics
   splitter.trigger = trigger.ok() ? trigger.value() : physics::TriggerId{};
   w.world.add<Splitter>(e, splitter);
   return e;
-}
-
-void releaseEntityResources(SplitWorld& w, ecs::Entity e) {
-  if (auto* ragdoll = w.world.tryGet<Ragdoll>(e)) releaseRagdoll(w.physics, *ragdoll);
-  if (auto* rb = w.world.tryGet<RigidBody>(e)) {
-    w.physics.destroyBody(rb->body);
-    w.physics.destroyShape(rb->shape);
-    rb->body = {};
-    rb->shape = {};
-  }
-  if (auto* mr = w.world.tryGet<MeshRenderer>(e)) {
-    if (w.renderer) w.renderer->destroyMesh(mr->gpu);
-    mr->gpu = {};
-  }
-  if (auto* sp = w.world.tryGet<Splitter>(e)) {
-    w.physics.destroyTrigger(sp->trigger);
-    sp->trigger = {};
-  }
 }
 
 physics::ShapeId createPlannedShape(physics::PhysicsWorld& physics, const std::vector<HullSpec>& hulls,
@@ -450,7 +429,6 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
     std::erase_if(splitter.passing, [&](uint64_t id) { return !w.world.alive(fromUserData(id)); });
     if (splitter.lifetime == SplitterLifetime::OneTick && w.physics.isTriggerSpent(splitter.trigger)) {
       commands.destroy(e);
-      scratch_->doomed.push_back(e);
     }
   }
   flush(w);
@@ -1008,15 +986,13 @@ void SplitSystem::commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome&
     std::erase(blade->passing, toUserData(target));
     for (ecs::Entity piece : ev.pieces) blade->passing.push_back(toUserData(piece));
   }
+  // The original goes (its subtree with it), and its hooks free what it held; the pieces carry
+  // copies of its parts.
   if (job.hierarchy()) {
-    // The original subtree goes with its GPU meshes; the pieces carry copies of its parts.
-    for (const HierarchyPartData& part : job.hierarchyParts)
-      if (part.entity != target) s.doomed.push_back(part.entity);
     c.commands.destroyRecursive(target);
   } else {
     c.commands.destroy(target);
   }
-  s.doomed.push_back(target);
   totalPieces_ += ev.pieces.size();
 }
 
@@ -1045,7 +1021,6 @@ void submitMeshes(SplitWorld& w) {
 
 void updateDebris(SplitWorld& w, float dt) {
   ecs::CommandBuffer commands(w.world);
-  std::vector<ecs::Entity> doomed;
   const glm::vec3 gravity = w.physics.gravity();
   for (auto [e, d, t] : w.world.view<Debris, ecs::Transform>()) {
     d.velocity += gravity * dt;
@@ -1053,12 +1028,8 @@ void updateDebris(SplitWorld& w, float dt) {
     const float angle = glm::length(d.angularVelocity) * dt;
     if (angle > 0.f) t.rotation = glm::normalize(glm::angleAxis(angle, glm::normalize(d.angularVelocity)) * t.rotation);
     d.secondsLeft -= dt;
-    if (d.secondsLeft <= 0.f || t.position.y < -50.f) {
-      commands.destroy(e);
-      doomed.push_back(e);
-    }
+    if (d.secondsLeft <= 0.f || t.position.y < -50.f) commands.destroy(e);
   }
-  for (ecs::Entity e : doomed) releaseEntityResources(w, e);
   w.world.apply(commands);
 }
 

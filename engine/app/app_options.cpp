@@ -44,6 +44,9 @@ std::string appOptionsUsage() {
          "  --dump-state FILE          write the entity state as JSON lines\n"
          "  --dump-every N             one state line every N ticks (default: last tick only)\n"
          "  --print-state-hash         print the final state hash\n"
+         "  --resource-report          after the run, destroy every entity and print the bodies,\n"
+         "                             shapes, joints, triggers and GPU meshes left, next to the\n"
+         "                             figures from before the game was set up (leak check)\n"
          "  --width W --height H       frame size in pixels (default 1280x720)\n"
          "  --seed N                   seed for the scene's random choices\n"
          "  --render-scale S|auto      draw the 3D scene at S x the frame size (0.25 to 1) and the\n"
@@ -84,6 +87,8 @@ ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
       out.headless = true;
     } else if (arg == "--print-state-hash") {
       out.printStateHash = true;
+    } else if (arg == "--resource-report") {
+      out.resourceReport = true;
     } else if (arg == "--replay") {
       if (!value(out.replayPath)) return fail("--replay needs a file name");
     } else if (arg == "--record") {

@@ -683,6 +683,8 @@ bool PhysicsWorld::isValid(JointId joint) const { return impl_->joint(joint) != 
 
 uint32_t PhysicsWorld::jointCount() const { return impl_->joints.size(); }
 
+uint32_t PhysicsWorld::triggerCount() const { return impl_->triggers.size(); }
+
 std::optional<JointState> PhysicsWorld::jointState(JointId joint) const {
   const JointRecord* record = impl_->joint(joint);
   if (record == nullptr) return std::nullopt;
