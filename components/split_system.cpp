@@ -437,14 +437,9 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
 void SplitSystem::activatePending(SplitWorld& w) {
   // Bodies woken here count against this tick's activations, so pieces created awake by this tick's
   // splits and the queued ones together stay within maxActivationsPerTick.
-  const std::vector<uint64_t> keys = budget_.takeActivations();
-  scratch_->activationsThisTick = uint32_t(keys.size());
-  for (uint64_t key : keys) {
-    physics::BodyId body;
-    body.index = uint32_t(key & 0xffffffffu);
-    body.generation = uint32_t(key >> 32);
-    w.physics.activate(body);
-  }
+  const std::vector<physics::BodyId> bodies = budget_.takeActivations();
+  scratch_->activationsThisTick = uint32_t(bodies.size());
+  for (physics::BodyId body : bodies) w.physics.activate(body);
 }
 
 namespace {
@@ -918,7 +913,7 @@ RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs
   if (awakeNow) {
     scratch_->activationsThisTick++;
   } else {
-    budget_.queueActivation((uint64_t(body.generation) << 32) | body.index);
+    budget_.queueActivation(body);
   }
   return RigidBody{body, shape};
 }
