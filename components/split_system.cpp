@@ -788,10 +788,15 @@ using detail::CommitContext;
 // joint matrices are relative to it. False (nothing created) when no bone could be made.
 bool attachRagdoll(CommitContext& c, const PieceSpec& spec, ecs::Entity e, ecs::Transform& transform,
                    MeshRenderer& renderer, RigidBody& rb) {
+  RagdollDef def;
+  def.motion = c.m.motion;
+  def.velocity = c.m.now.velocity;
+  def.angularVelocity = c.m.now.angularVelocity;
+  def.parentCentre = c.m.now.centre;
+  def.userData = toUserData(e);
+  def.collisionGroup = toUserData(e) | (1ull << 63);
   Ragdoll ragdoll;
-  if (!createRagdoll(c.w.physics, spec.ragdoll, c.m.motion, c.m.now.velocity, c.m.now.angularVelocity, c.m.now.centre,
-                     toUserData(e), toUserData(e) | (1ull << 63), ragdoll))
-    return false;
+  if (!createRagdoll(c.w.physics, spec.ragdoll, def, ragdoll)) return false;
   const RagdollBone& anchor = ragdoll.bones[ragdoll.anchor];
   const physics::BodyTransform at = *c.w.physics.bodyTransform(anchor.body);
   transform.position = at.position;
