@@ -1072,11 +1072,7 @@ struct Builder {
   }
 
   void rollback() {
-    SplitWorld sw = splitWorld();
-    for (ecs::Entity e : created) {
-      releaseEntityResources(sw, e);
-      ctx.world.destroy(e);
-    }
+    for (ecs::Entity e : created) ctx.world.destroy(e);  // its hooks free what it holds
     created.clear();
   }
 };
@@ -1226,7 +1222,6 @@ void SceneRunner::update(SplitWorld& w, uint64_t tick, double dt) {
     }
     if (!w.world.alive(s.entity)) continue;
     if (s.endTick && tick >= *s.endTick) {
-      releaseEntityResources(w, s.entity);
       w.world.destroy(s.entity);
       s.entity = {};
       continue;

@@ -14,9 +14,10 @@
 //
 // Units: metres, kilograms, seconds; angles in the file in degrees (Euler) or as a unit quaternion.
 //
-// Ownership: the entities, bodies, shapes, triggers and GPU meshes created belong to the World, the
-// PhysicsWorld and the Renderer of the context, as if the caller had made them; free them with
-// releaseEntityResources + World::destroy (or by dropping the worlds).
+// Ownership: each entity created owns its body, shape, trigger and GPU mesh through the world's
+// destroy hooks (resource_hooks.h; a Simulation installs them): World::destroy frees them, and so
+// does the rollback of a scene that fails while being created. Without the hooks they stay in the
+// PhysicsWorld and the Renderer until those go.
 //
 // Failure: loadScene never throws and never crashes on a bad file. The whole file is read and
 // checked before anything is created, so a bad scene creates nothing; an error while creating (a mesh

@@ -6,7 +6,7 @@
 namespace cleave::components {
 
 Simulation::Simulation(ecs::World& world, SplitBudgetSettings budget, render::Renderer* renderer)
-    : world_(world), splits_(budget), renderer_(renderer) {}
+    : world_(world), resources_(world, physics_, renderer), splits_(budget), renderer_(renderer) {}
 
 void Simulation::gather(uint64_t tick) {
   SplitWorld w = splitWorld();

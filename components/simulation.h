@@ -16,6 +16,7 @@
 
 #include <glm/glm.hpp>
 
+#include "cleave/components/resource_hooks.h"
 #include "cleave/components/split_system.h"
 #include "cleave/app/app.h"
 #include "cleave/ecs/world.h"
@@ -26,14 +27,19 @@ namespace cleave::components {
 
 class Simulation {
  public:
-  // `world` must outlive the simulation; the renderer may be null (no GPU meshes).
+  // `world` must outlive the simulation; the renderer may be null (no GPU meshes). While the
+  // simulation lives, the world's entities own their bodies, shapes, joints, triggers and GPU
+  // meshes (resource_hooks.h): destroying an entity frees them.
   explicit Simulation(ecs::World& world, SplitBudgetSettings budget = {}, render::Renderer* renderer = nullptr);
 
   ecs::World& world() { return world_; }
   physics::PhysicsWorld& physics() { return physics_; }
   SplitSystem& splits() { return splits_; }
   SplitWorld splitWorld() { return SplitWorld{world_, physics_, renderer_}; }
-  void setRenderer(render::Renderer* renderer) { renderer_ = renderer; }
+  void setRenderer(render::Renderer* renderer) {
+    renderer_ = renderer;
+    resources_.setRenderer(renderer);
+  }
 
   void gather(uint64_t tick);                             // Triggers
   void prepare(uint64_t tick, const glm::dvec3& camera);  // Split
@@ -47,6 +53,7 @@ class Simulation {
  private:
   ecs::World& world_;
   physics::PhysicsWorld physics_;
+  ResourceHooks resources_;  // after physics_: the hooks go before the bodies they free
   SplitSystem splits_;
   render::Renderer* renderer_ = nullptr;
 };

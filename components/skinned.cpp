@@ -348,10 +348,9 @@ bool planRagdoll(const geometry::MeshData& bindPiece, std::span<const glm::vec3>
   return true;
 }
 
-bool createRagdoll(physics::PhysicsWorld& physics, const RagdollSpec& spec, const glm::dmat4& motion,
-                   const glm::dvec3& v, const glm::dvec3& omega, const glm::dvec3& parentCentre,
-                   uint64_t userData, uint64_t group, Ragdoll& out) {
+bool createRagdoll(physics::PhysicsWorld& physics, const RagdollSpec& spec, const RagdollDef& def, Ragdoll& out) {
   out = Ragdoll{};
+  const glm::dmat4& motion = def.motion;
   const glm::dquat turn = glm::normalize(glm::quat_cast(glm::dmat3(motion)));
   std::vector<int32_t> created(spec.bones.size(), -1);
   for (size_t b = 0; b < spec.bones.size(); ++b) {
@@ -359,23 +358,21 @@ bool createRagdoll(physics::PhysicsWorld& physics, const RagdollSpec& spec, cons
     const auto shape = physics.createShape(physics::ShapeDef::capsule(s.radius, s.halfHeight));
     if (!shape.ok()) continue;
     const glm::dvec3 centre(motion * glm::dvec4(s.centre, 1.0));
-    physics::BodyDef def;
-    def.shape = shape.value();
-    def.mass = s.mass;
-    def.position = glm::vec3(centre);
-    def.rotation = glm::quat(glm::normalize(turn * s.rotation));
-    def.linearVelocity = glm::vec3(v + glm::cross(omega, centre - parentCentre));
-    def.angularVelocity = glm::vec3(omega);
-    def.userData = userData;
-    def.collisionGroup = group;
-    // Jointed capsules jitter against the floor and each other: more angular damping and higher
-    // sleep thresholds (the values of Bullet's ragdoll demo) let a fallen ragdoll come to rest.
-    def.linearDamping = 0.05f;
-    def.angularDamping = 0.85f;
-    def.sleepLinearSpeed = 1.6f;
-    def.sleepAngularSpeed = 2.5f;
-    def.friction = 0.8f;
-    const auto body = physics.createBody(def);
+    physics::BodyDef bone;
+    bone.shape = shape.value();
+    bone.mass = s.mass;
+    bone.position = glm::vec3(centre);
+    bone.rotation = glm::quat(glm::normalize(turn * s.rotation));
+    bone.linearVelocity = glm::vec3(def.velocity + glm::cross(def.angularVelocity, centre - def.parentCentre));
+    bone.angularVelocity = glm::vec3(def.angularVelocity);
+    bone.userData = def.userData;
+    bone.collisionGroup = def.collisionGroup;
+    bone.linearDamping = def.linearDamping;
+    bone.angularDamping = def.angularDamping;
+    bone.sleepLinearSpeed = def.sleepLinearSpeed;
+    bone.sleepAngularSpeed = def.sleepAngularSpeed;
+    bone.friction = def.friction;
+    const auto body = physics.createBody(bone);
     if (!body.ok()) {
       physics.destroyShape(shape.value());
       continue;
@@ -391,13 +388,13 @@ bool createRagdoll(physics::PhysicsWorld& physics, const RagdollSpec& spec, cons
   out.anchor = size_t(created[spec.anchor]);
   for (const RagdollJointSpec& j : spec.joints) {
     if (created[j.parentBone] < 0 || created[j.childBone] < 0) continue;
-    physics::JointDef def = j.def;
-    def.bodyA = out.bones[size_t(created[j.parentBone])].body;
-    def.bodyB = out.bones[size_t(created[j.childBone])].body;
-    const auto joint = physics.createJoint(def);
+    physics::JointDef jointDef = j.def;
+    jointDef.bodyA = out.bones[size_t(created[j.parentBone])].body;
+    jointDef.bodyB = out.bones[size_t(created[j.childBone])].body;
+    const auto joint = physics.createJoint(jointDef);
     if (!joint.ok()) continue;
     out.joints.push_back(RagdollJoint{joint.value(), uint16_t(created[j.parentBone]),
-                                      uint16_t(created[j.childBone]), j.skeletonJoint, def.type});
+                                      uint16_t(created[j.childBone]), j.skeletonJoint, jointDef.type});
   }
   out.carrier.resize(spec.carrier.size());
   out.carried = spec.carried;

@@ -114,13 +114,32 @@ bool planRagdoll(const geometry::MeshData& bindPiece, std::span<const glm::vec3>
                  std::span<const uint16_t> keptJoints, const anim::Skeleton& skeleton,
                  std::span<const glm::dmat4> globals, double mass, RagdollSpec& out, std::string* error);
 
-// Creates a planned ragdoll: bodies at `motion` x their planned poses (`motion` is the rigid motion
-// of the parent since the plan, identity if it did not move), each with the velocity of the point it
-// occupies, v + omega x (c - parentCentre), carrying `userData` in collision group `group`; then the
-// joints. Returns false (and creates nothing) if the anchor bone cannot be created.
-bool createRagdoll(physics::PhysicsWorld& physics, const RagdollSpec& spec, const glm::dmat4& motion,
-                   const glm::dvec3& v, const glm::dvec3& omega, const glm::dvec3& parentCentre,
-                   uint64_t userData, uint64_t group, Ragdoll& out);
+// Where and how a planned ragdoll (RagdollSpec) is made at commit. Units: metres, seconds, radians.
+struct RagdollDef {
+  // The rigid motion of the parent since the plan (identity if it did not move): the bones are made
+  // at motion x their planned poses.
+  glm::dmat4 motion{1.0};
+  // The parent's motion now: each bone gets the velocity of the point it occupies,
+  // velocity + angularVelocity x (centre - parentCentre), and the angular velocity.
+  glm::dvec3 velocity{0.0};         // m/s, world
+  glm::dvec3 angularVelocity{0.0};  // rad/s, world
+  glm::dvec3 parentCentre{0.0};     // m, world
+  uint64_t userData = 0;            // on every bone body (the entity id)
+  uint64_t collisionGroup = 0;      // shared by the bones, which then never collide with each other
+  // Jointed capsules jitter against the floor and each other: more angular damping and higher
+  // sleep thresholds than a plain body (the values of Bullet's ragdoll demo) let a fallen ragdoll
+  // come to rest. See physics::BodyDef for the ranges.
+  float linearDamping = 0.05f;
+  float angularDamping = 0.85f;
+  float sleepLinearSpeed = 1.6f;   // m/s
+  float sleepAngularSpeed = 2.5f;  // rad/s
+  float friction = 0.8f;
+};
+
+// Creates the ragdoll `spec` plans as `def` says: the bone bodies, then the joints between the
+// bones that were made. Returns false (and creates nothing) if the anchor bone cannot be created;
+// a bone the bridge refuses is left out and its joints with it.
+bool createRagdoll(physics::PhysicsWorld& physics, const RagdollSpec& spec, const RagdollDef& def, Ragdoll& out);
 
 // Joint matrices of a ragdoll now, relative to its anchor body's frame (the entity frame).
 void ragdollJointMatrices(const physics::PhysicsWorld& physics, const Ragdoll& ragdoll,

@@ -22,9 +22,9 @@ void SplitBudget::clear() {
   stats_ = {};
 }
 
-std::vector<uint64_t> SplitBudget::takeActivations() {
+std::vector<physics::BodyId> SplitBudget::takeActivations() {
   const size_t n = std::min<size_t>(activations_.size(), settings_.maxActivationsPerTick);
-  std::vector<uint64_t> taken(activations_.begin(), activations_.begin() + n);
+  std::vector<physics::BodyId> taken(activations_.begin(), activations_.begin() + n);
   activations_.erase(activations_.begin(), activations_.begin() + n);
   stats_.pendingActivations = uint32_t(activations_.size());
   return taken;

@@ -17,6 +17,7 @@
 
 #include "cleave/components/shatter.h"
 #include "cleave/ecs/entity.h"
+#include "cleave/physics/physics_ids.h"
 
 namespace cleave::components {
 
@@ -128,9 +129,10 @@ class SplitBudget {
   void setBusyCheck(std::function<bool(ecs::Entity)> busy) { busy_ = std::move(busy); }
 
   // Bodies created by splits wait here and are activated by takeActivations, a few per tick.
-  void queueActivation(uint64_t bodyKey) { activations_.push_back(bodyKey); }
-  // Returns up to maxActivationsPerTick keys in creation order and removes them from the queue.
-  std::vector<uint64_t> takeActivations();
+  void queueActivation(physics::BodyId body) { activations_.push_back(body); }
+  // Returns up to maxActivationsPerTick bodies in creation order and removes them from the queue
+  // (a body destroyed meanwhile comes back as a stale handle, which activation ignores).
+  std::vector<physics::BodyId> takeActivations();
 
   // A split that was executed (prepared) but failed later, at commit: counted in this tick's stats.
   void recordFailure() { stats_.failed++; }
@@ -143,7 +145,7 @@ class SplitBudget {
   SplitBudgetSettings settings_;
   SplitBudgetStats stats_;
   std::vector<SplitRequest> queue_;
-  std::vector<uint64_t> activations_;
+  std::vector<physics::BodyId> activations_;
   uint64_t nextSequence_ = 0;
   std::function<SplitCost(const SplitRequest&)> estimator_;
   std::function<bool(ecs::Entity)> busy_;

@@ -105,7 +105,6 @@ struct SplitSystem::Scratch {
   // Structural changes of the current batch; made for the world of the first call.
   std::unique_ptr<ecs::CommandBuffer> commands;
   ecs::World* commandsWorld = nullptr;
-  std::vector<ecs::Entity> doomed;  // entities the batch destroys: their resources go first
   uint32_t activationsThisTick = 0;
   // What is known of the meshes the system has cut or made, by mesh: its weld, and its collider
   // parts. A mesh cut again (every piece, and an authored mesh that many objects share) is neither
@@ -156,8 +155,6 @@ ecs::CommandBuffer& commandsFor(std::unique_ptr<ecs::CommandBuffer>& buffer, ecs
 }  // namespace
 
 void SplitSystem::flush(SplitWorld& w) {
-  for (ecs::Entity e : scratch_->doomed) releaseEntityResources(w, e);
-  scratch_->doomed.clear();
   if (scratch_->commands && scratch_->commandsWorld == &w.world) w.world.apply(*scratch_->commands);
 }
 
@@ -222,24 +219,6 @@ ecs::Entity createSplitter(SplitWorld& w, const std::string& name, const physics
   splitter.trigger = trigger.ok() ? trigger.value() : physics::TriggerId{};
   w.world.add<Splitter>(e, splitter);
   return e;
-}
-
-void releaseEntityResources(SplitWorld& w, ecs::Entity e) {
-  if (auto* ragdoll = w.world.tryGet<Ragdoll>(e)) releaseRagdoll(w.physics, *ragdoll);
-  if (auto* rb = w.world.tryGet<RigidBody>(e)) {
-    w.physics.destroyBody(rb->body);
-    w.physics.destroyShape(rb->shape);
-    rb->body = {};
-    rb->shape = {};
-  }
-  if (auto* mr = w.world.tryGet<MeshRenderer>(e)) {
-    if (w.renderer) w.renderer->destroyMesh(mr->gpu);
-    mr->gpu = {};
-  }
-  if (auto* sp = w.world.tryGet<Splitter>(e)) {
-    w.physics.destroyTrigger(sp->trigger);
-    sp->trigger = {};
-  }
 }
 
 physics::ShapeId createPlannedShape(physics::PhysicsWorld& physics, const std::vector<HullSpec>& hulls,
@@ -450,7 +429,6 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
     std::erase_if(splitter.passing, [&](uint64_t id) { return !w.world.alive(fromUserData(id)); });
     if (splitter.lifetime == SplitterLifetime::OneTick && w.physics.isTriggerSpent(splitter.trigger)) {
       commands.destroy(e);
-      scratch_->doomed.push_back(e);
     }
   }
   flush(w);
@@ -459,14 +437,9 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
 void SplitSystem::activatePending(SplitWorld& w) {
   // Bodies woken here count against this tick's activations, so pieces created awake by this tick's
   // splits and the queued ones together stay within maxActivationsPerTick.
-  const std::vector<uint64_t> keys = budget_.takeActivations();
-  scratch_->activationsThisTick = uint32_t(keys.size());
-  for (uint64_t key : keys) {
-    physics::BodyId body;
-    body.index = uint32_t(key & 0xffffffffu);
-    body.generation = uint32_t(key >> 32);
-    w.physics.activate(body);
-  }
+  const std::vector<physics::BodyId> bodies = budget_.takeActivations();
+  scratch_->activationsThisTick = uint32_t(bodies.size());
+  for (physics::BodyId body : bodies) w.physics.activate(body);
 }
 
 namespace {
@@ -815,10 +788,15 @@ using detail::CommitContext;
 // joint matrices are relative to it. False (nothing created) when no bone could be made.
 bool attachRagdoll(CommitContext& c, const PieceSpec& spec, ecs::Entity e, ecs::Transform& transform,
                    MeshRenderer& renderer, RigidBody& rb) {
+  RagdollDef def;
+  def.motion = c.m.motion;
+  def.velocity = c.m.now.velocity;
+  def.angularVelocity = c.m.now.angularVelocity;
+  def.parentCentre = c.m.now.centre;
+  def.userData = toUserData(e);
+  def.collisionGroup = toUserData(e) | (1ull << 63);
   Ragdoll ragdoll;
-  if (!createRagdoll(c.w.physics, spec.ragdoll, c.m.motion, c.m.now.velocity, c.m.now.angularVelocity, c.m.now.centre,
-                     toUserData(e), toUserData(e) | (1ull << 63), ragdoll))
-    return false;
+  if (!createRagdoll(c.w.physics, spec.ragdoll, def, ragdoll)) return false;
   const RagdollBone& anchor = ragdoll.bones[ragdoll.anchor];
   const physics::BodyTransform at = *c.w.physics.bodyTransform(anchor.body);
   transform.position = at.position;
@@ -940,7 +918,7 @@ RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs
   if (awakeNow) {
     scratch_->activationsThisTick++;
   } else {
-    budget_.queueActivation((uint64_t(body.generation) << 32) | body.index);
+    budget_.queueActivation(body);
   }
   return RigidBody{body, shape};
 }
@@ -1011,15 +989,13 @@ void SplitSystem::commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome&
     std::erase(blade->passing, toUserData(target));
     for (ecs::Entity piece : ev.pieces) blade->passing.push_back(toUserData(piece));
   }
+  // The original goes (its subtree with it), and its hooks free what it held; the pieces carry
+  // copies of its parts.
   if (job.hierarchy()) {
-    // The original subtree goes with its GPU meshes; the pieces carry copies of its parts.
-    for (const HierarchyPartData& part : job.hierarchyParts)
-      if (part.entity != target) s.doomed.push_back(part.entity);
     c.commands.destroyRecursive(target);
   } else {
     c.commands.destroy(target);
   }
-  s.doomed.push_back(target);
   totalPieces_ += ev.pieces.size();
 }
 
@@ -1048,7 +1024,6 @@ void submitMeshes(SplitWorld& w) {
 
 void updateDebris(SplitWorld& w, float dt) {
   ecs::CommandBuffer commands(w.world);
-  std::vector<ecs::Entity> doomed;
   const glm::vec3 gravity = w.physics.gravity();
   for (auto [e, d, t] : w.world.view<Debris, ecs::Transform>()) {
     d.velocity += gravity * dt;
@@ -1056,12 +1031,8 @@ void updateDebris(SplitWorld& w, float dt) {
     const float angle = glm::length(d.angularVelocity) * dt;
     if (angle > 0.f) t.rotation = glm::normalize(glm::angleAxis(angle, glm::normalize(d.angularVelocity)) * t.rotation);
     d.secondsLeft -= dt;
-    if (d.secondsLeft <= 0.f || t.position.y < -50.f) {
-      commands.destroy(e);
-      doomed.push_back(e);
-    }
+    if (d.secondsLeft <= 0.f || t.position.y < -50.f) commands.destroy(e);
   }
-  for (ecs::Entity e : doomed) releaseEntityResources(w, e);
   w.world.apply(commands);
 }
 

@@ -161,7 +161,7 @@ class SplitSystem {
   RigidBody createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform,
                             const glm::dvec3& velocity, const glm::dvec3& angularVelocity);
   SplitWorkers& workers();
-  // Frees the resources of the entities the batch destroys, then applies the batch.
+  // Applies the batch (the destroyed entities' hooks free what they held, resource_hooks.h).
   void flush(SplitWorld& w);
   SplitBudget budget_;
   std::map<std::string, SplitHandler> handlers_;
@@ -186,9 +186,6 @@ ecs::Entity fromUserData(uint64_t v);
 // Returns kNullEntity, creating nothing, when the shape cannot be built.
 ecs::Entity createSplitter(SplitWorld& w, const std::string& name, const physics::ShapeDef& shape,
                            const glm::vec3& position, const glm::quat& rotation, Splitter splitter);
-
-// Frees the GPU mesh and the physics body of an entity (to be followed by destroying the entity).
-void releaseEntityResources(SplitWorld& w, ecs::Entity e);
 
 // Creates the rigid body and collider for an authored object with a MeshRenderer, from its mesh's
 // exact mass properties (density from its Splitable, or `density`). Sets RigidBody, MassInfo and the

@@ -45,6 +45,9 @@ std::string appOptionsUsage() {
          "  --dump-state FILE          write the entity state as JSON lines\n"
          "  --dump-every N             one state line every N ticks (default: last tick only)\n"
          "  --print-state-hash         print the final state hash\n"
+         "  --resource-report          after the run, destroy every entity and print the bodies,\n"
+         "                             shapes, joints, triggers and GPU meshes left, next to the\n"
+         "                             figures from before the game was set up (leak check)\n"
          "  --width W --height H       frame size in pixels (default 1280x720)\n"
          "  --seed N                   seed for the scene's random choices\n"
          "  --render-scale S|auto      draw the 3D scene at S x the frame size (0.25 to 1) and the\n"
@@ -81,6 +84,8 @@ const OptionSpec kOptions[] = {
     {"--inspector", false, "", [](const std::string&, AppOptions& o, ParseResult&) { return o.inspector = true; }},
     {"--print-state-hash", false, "",
      [](const std::string&, AppOptions& o, ParseResult&) { return o.printStateHash = true; }},
+    {"--resource-report", false, "",
+     [](const std::string&, AppOptions& o, ParseResult&) { return o.resourceReport = true; }},
     {"--replay", true, "--replay needs a file name",
      [](const std::string& v, AppOptions& o, ParseResult&) { return o.replayPath = v, true; }},
     {"--record", true, "--record needs a file name",

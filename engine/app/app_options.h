@@ -20,6 +20,8 @@ struct AppOptions {
   std::string dumpStatePath;       // --dump-state FILE: JSON lines of the entity state
   int64_t dumpEvery = 0;           // --dump-every N: a line every N ticks (0: only the last tick)
   bool printStateHash = false;     // --print-state-hash: print the final state hash
+  bool resourceReport = false;     // --resource-report: after the run, destroy every entity and print
+                                   // what physics and the renderer hold, before setup and after
   int width = 1280;                // --width, --height: window or offscreen size in pixels
   int height = 720;
   uint64_t seed = 1;               // --seed N: for anything random in the scene

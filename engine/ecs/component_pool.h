@@ -13,11 +13,18 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <utility>
 #include <vector>
 
 #include "cleave/ecs/entity.h"
+
+namespace cleave::ecs {
+class World;
+// Names a destroy hook (World::onDestroy) so that it can be removed; 0 is never handed out.
+using HookId = uint32_t;
+}  // namespace cleave::ecs
 
 namespace cleave::ecs::detail {
 
@@ -42,6 +49,11 @@ class PoolBase {
   virtual bool contains(Entity entity) const = 0;
   // Removes the entity's component; false when it had none.
   virtual bool erase(Entity entity) = 0;
+  // Removes the entity's component and then runs the type's destroy hooks on its last value (taken
+  // out of the pool first, so a hook never sees it stored and cannot free it twice); false when
+  // the entity had none.
+  virtual bool release(World& world, Entity entity) = 0;
+  virtual bool removeHook(HookId id) = 0;
   // Entities holding the component, in dense order.
   const std::vector<Entity>& entities() const { return dense_; }
   size_t size() const { return dense_.size(); }
@@ -88,6 +100,23 @@ class ComponentPool final : public PoolBase {
     return components_.back();
   }
 
+  using Hook = std::function<void(World&, Entity, T&)>;
+
+  void addHook(HookId id, Hook hook) { hooks_.emplace_back(id, std::move(hook)); }
+  bool removeHook(HookId id) override {
+    return std::erase_if(hooks_, [id](const auto& h) { return h.first == id; }) > 0;
+  }
+
+  bool release(World& world, Entity entity) override {
+    T* component = tryGet(entity);
+    if (component == nullptr) return false;
+    if (hooks_.empty()) return erase(entity);
+    T last = std::move(*component);
+    erase(entity);
+    for (auto& [id, hook] : hooks_) hook(world, entity, last);
+    return true;
+  }
+
   bool erase(Entity entity) override {
     const uint32_t slot = find(entity);
     if (slot == kAbsent) return false;
@@ -112,6 +141,7 @@ class ComponentPool final : public PoolBase {
 
  private:
   std::vector<T> components_;
+  std::vector<std::pair<HookId, Hook>> hooks_;  // in registration order
   T scratch_{};
 };
 

@@ -40,25 +40,55 @@ Entity World::create() {
 bool World::destroy(Entity entity) {
   assert(structuralChangesAllowed() && "structural change during iteration; use a CommandBuffer");
   if (!alive(entity) || lock_ != 0) return false;
-  for (const auto& pool : pools_) {
-    if (pool) pool->erase(entity);
+  if (slots_[entity.index].state == SlotState::Dying) return false;
+  slots_[entity.index].state = SlotState::Dying;
+  // By index: a hook may make new pools (a first add of some type), which moves pools_.
+  ++hookDepth_;
+  for (size_t i = 0; i < hookOrder_.size(); ++i) pools_[hookOrder_[i]]->release(*this, entity);
+  --hookDepth_;
+  for (size_t i = 0; i < pools_.size(); ++i) {
+    if (pools_[i]) pools_[i]->erase(entity);
   }
   freeSlot(entity.index);
   --aliveCount_;
   return true;
 }
 
+size_t World::clear() {
+  assert(structuralChangesAllowed() && "clear during iteration");
+  size_t destroyed = 0;
+  for (int pass = 0; pass < 64 && aliveCount_ > 0 && lock_ == 0; ++pass) {
+    for (const Entity entity : entities()) destroyed += destroy(entity) ? 1 : 0;
+  }
+  return destroyed;
+}
+
+bool World::removeHook(HookId id) {
+  assert(hookDepth_ == 0 && "destroy hooks are removed outside hooks");
+  if (hookDepth_ != 0) return false;
+  const auto it = std::find_if(hookTypes_.begin(), hookTypes_.end(), [id](const auto& h) { return h.first == id; });
+  if (it == hookTypes_.end()) return false;
+  const detail::ComponentTypeId type = it->second;
+  hookTypes_.erase(it);
+  pools_[type]->removeHook(id);
+  // A type without hooks left gives up its place in the order (a later first hook puts it last).
+  const bool typeHasHooks = std::any_of(hookTypes_.begin(), hookTypes_.end(), [type](const auto& h) { return h.second == type; });
+  if (!typeHasHooks) std::erase(hookOrder_, type);
+  return true;
+}
+
 bool World::alive(Entity entity) const {
   if (entity.isNull() || entity.index >= slots_.size()) return false;
   const Slot& slot = slots_[entity.index];
-  return slot.state == SlotState::Alive && slot.generation == entity.generation;
+  return (slot.state == SlotState::Alive || slot.state == SlotState::Dying) && slot.generation == entity.generation;
 }
 
 std::vector<Entity> World::entities() const {
   std::vector<Entity> result;
   result.reserve(aliveCount_);
   for (uint32_t i = 0; i < slots_.size(); ++i) {
-    if (slots_[i].state == SlotState::Alive) result.push_back(Entity{i, slots_[i].generation});
+    if (slots_[i].state == SlotState::Alive || slots_[i].state == SlotState::Dying)
+      result.push_back(Entity{i, slots_[i].generation});
   }
   return result;
 }

@@ -13,12 +13,21 @@
 //
 // Determinism: ids are reused from a FIFO free list, so the same sequence of calls gives the same
 // ids; entities() is ascending by index; views follow the documented dense order. Not thread-safe.
+//
+// Destroy hooks (onDestroy): a callback registered for a component type runs whenever a component
+// of that type goes away with remove<T>, destroy, clear, or a CommandBuffer's destroy or remove at
+// apply time; this is how an entity owns what its components hold (a physics body, a GPU mesh):
+// nobody has to remember to free it. Overwriting a component with add<T> is not a removal and runs
+// no hook (the caller replaces the value and owns what the old one held). Dropping the World runs
+// no hook either: what the components refer to may be gone by then (call clear() first to free it).
 #pragma once
 
+#include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -50,10 +59,38 @@ class World {
   // Precondition: no View exists.
   Entity create();
 
-  // Removes the entity and all its components; false (and no change) if it is not alive.
-  // Does not touch other entities (see hierarchy.h destroyRecursive for subtrees).
-  // Precondition: no View exists.
+  // Removes the entity and all its components; false (and no change) if it is not alive or is
+  // being destroyed already (a hook destroying its own entity). The destroy hooks run first, type
+  // by type in the order the types got their first hook; while they run the entity is still alive
+  // and keeps the components whose hooks have not run yet (components a hook adds to it are
+  // dropped with it). Does not touch other entities (see hierarchy.h destroyRecursive for subtrees)
+  // unless a hook does. Precondition: no View exists.
   bool destroy(Entity entity);
+
+  // Destroys every live entity, ascending by index, with their hooks; entities a hook creates
+  // meanwhile are destroyed too (up to 64 passes). Ids stay stale as after destroy. Returns the
+  // number destroyed. Precondition: no View exists.
+  size_t clear();
+
+  // Registers `hook`, run with the component's last value (no longer stored: has<T> is false) each
+  // time a T leaves an entity (see the header comment). Hooks of one type run in registration
+  // order. Returns an id for removeHook; 0 (nothing registered) for an empty function or when
+  // called from inside a hook. A hook may destroy or change other entities and remove other
+  // components of its own entity; it must not register or remove hooks.
+  template <class T>
+  HookId onDestroy(std::function<void(World&, Entity, T&)> hook) {
+    assert(hookDepth_ == 0 && "destroy hooks are registered outside hooks");
+    if (hookDepth_ != 0 || !hook) return 0;
+    const HookId id = ++lastHookId_;
+    const detail::ComponentTypeId type = detail::componentTypeId<T>();
+    poolFor<T>().addHook(id, std::move(hook));
+    if (std::find(hookOrder_.begin(), hookOrder_.end(), type) == hookOrder_.end()) hookOrder_.push_back(type);
+    hookTypes_.emplace_back(id, type);
+    return id;
+  }
+
+  // Removes a hook; false for an id that is not registered (or when called from inside a hook).
+  bool removeHook(HookId id);
 
   // True for an entity created by this World and not destroyed since. False for kNullEntity, stale
   // ids, and ids reserved by a CommandBuffer that has not been applied yet.
@@ -110,13 +147,17 @@ class World {
     return tryGet<T>(entity) != nullptr;
   }
 
-  // Removes the component; false if the entity had none. Precondition: no View exists.
+  // Removes the component, then runs its type's destroy hooks on it; false if the entity had none.
+  // Precondition: no View exists.
   template <class T>
   bool remove(Entity entity) {
     assert(structuralChangesAllowed() && "structural change during iteration; use a CommandBuffer");
     detail::ComponentPool<T>* pool = findPool<T>();
     if (pool == nullptr || lock_ != 0) return false;
-    return pool->erase(entity);
+    ++hookDepth_;
+    const bool removed = pool->release(*this, entity);
+    --hookDepth_;
+    return removed;
   }
 
   // Number of entities that have a T.
@@ -142,7 +183,8 @@ class World {
  private:
   friend class CommandBuffer;
 
-  enum class SlotState : uint8_t { Free, Reserved, Alive };
+  // Dying: alive while its destroy hooks run.
+  enum class SlotState : uint8_t { Free, Reserved, Alive, Dying };
   struct Slot {
     uint32_t generation = 1;
     SlotState state = SlotState::Free;
@@ -175,6 +217,10 @@ class World {
   std::vector<std::unique_ptr<detail::PoolBase>> pools_;  // by component type id
   size_t aliveCount_ = 0;
   int lock_ = 0;  // number of live views
+  std::vector<detail::ComponentTypeId> hookOrder_;  // types with hooks, by their first hook
+  std::vector<std::pair<HookId, detail::ComponentTypeId>> hookTypes_;  // every hook's type
+  HookId lastHookId_ = 0;
+  int hookDepth_ = 0;  // > 0 while hooks run (nested when a hook removes or destroys)
 };
 
 }  // namespace cleave::ecs

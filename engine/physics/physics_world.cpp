@@ -155,6 +155,26 @@ struct PhysicsWorld::Impl {
     });
   }
 
+  // Enters a new body in the Bullet world with its kind's filters and activation state.
+  void addBody(btRigidBody& body, const BodyDef& def, bool dynamic) {
+    if (def.kinematic) {
+      body.setCollisionFlags(body.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+      body.setActivationState(DISABLE_DEACTIVATION);
+      // Not in the static group, so triggers (which skip static bodies) see it; it pairs with
+      // dynamic bodies and triggers only.
+      world.addRigidBody(&body, btBroadphaseProxy::KinematicFilter,
+                         btBroadphaseProxy::AllFilter & ~btBroadphaseProxy::StaticFilter &
+                             ~btBroadphaseProxy::KinematicFilter);
+    } else {
+      world.addRigidBody(&body);
+    }
+    if (dynamic && !def.allowSleep) {
+      body.setActivationState(DISABLE_DEACTIVATION);
+    } else if (dynamic && !def.startAwake) {
+      body.setActivationState(ISLAND_SLEEPING);
+    }
+  }
+
   ShapeRecord* liveShape(ShapeId id) {
     ShapeRecord* record = shapes.get(id.index, id.generation);
     return record && !record->handleReleased ? record : nullptr;
@@ -371,73 +391,82 @@ uint32_t PhysicsWorld::liveShapeCount() const { return impl_->shapes.size(); }
 
 // ---- bodies ----
 
-Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
-  using R = Result<BodyId>;
-  Impl& w = *impl_;
-  ShapeRecord* shape = w.liveShape(def.shape);
-  if (shape == nullptr) {
-    return R::failure(PhysicsStatus::StaleHandle,
-                      "createBody: the shape handle is null or destroyed");
+// createBody in three steps: validate the def (every field, before anything is built), work out
+// the inertia from the shape, build the Bullet body and enter it in the world.
+namespace {
+
+// What validation learnt about a def that building needs.
+struct CheckedBody {
+  bool dynamic = false;
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // normalised
+};
+
+// "createBody: BodyDef::<field> <reason>", as an InvalidArgument unless told otherwise.
+Result<CheckedBody> refuse(const char* field, const std::string& reason,
+                           PhysicsStatus status = PhysicsStatus::InvalidArgument) {
+  return Result<CheckedBody>::failure(status, std::string("createBody: BodyDef::") + field + " " + reason);
+}
+
+bool finiteAtLeastZero(float v) { return std::isfinite(v) && v >= 0.0f; }
+bool unitInterval(float v) { return v >= 0.0f && v <= 1.0f; }  // false for NaN
+
+// Mass, kind and shape type together: what kind of body the def asks for.
+Result<CheckedBody> checkKind(const BodyDef& def, ShapeType shapeType) {
+  if (!finiteAtLeastZero(def.mass)) return refuse("mass", "must be finite and >= 0 (0 = static)");
+  CheckedBody checked;
+  checked.dynamic = def.mass > 0.0f;
+  if (def.kinematic && checked.dynamic)
+    return refuse("kinematic", "needs mass 0: a kinematic body is moved, not pushed");
+  if (checked.dynamic && shapeType == ShapeType::StaticMesh) {
+    return refuse("shape",
+                  "is a static mesh, which cannot have mass; use a concave mesh (GImpact), a convex hull "
+                  "or a compound for dynamic bodies",
+                  PhysicsStatus::UnsupportedCombination);
   }
-  if (!std::isfinite(def.mass) || def.mass < 0.0f) {
-    return R::failure(PhysicsStatus::InvalidArgument,
-                      "createBody: mass must be finite and >= 0 (0 = static)");
-  }
-  const bool dynamic = def.mass > 0.0f;
-  if (def.kinematic && dynamic) {
-    return R::failure(PhysicsStatus::InvalidArgument,
-                      "createBody: a kinematic body must have mass 0 (it is moved, not pushed)");
-  }
-  if (dynamic && shape->built.type == ShapeType::StaticMesh) {
-    return R::failure(PhysicsStatus::UnsupportedCombination,
-                      "createBody: a static mesh shape cannot have mass; use a concave mesh "
-                      "(GImpact), a convex hull or a compound for dynamic bodies");
-  }
-  const std::optional<glm::quat> rotation = normalisedRotation(def.rotation);
-  if (!finite(def.position) || !rotation) {
-    return R::failure(PhysicsStatus::InvalidArgument,
-                      "createBody: position must be finite and rotation a finite, non-zero "
-                      "quaternion");
-  }
-  if (!finite(def.linearVelocity) || !finite(def.angularVelocity)) {
-    return R::failure(PhysicsStatus::InvalidArgument, "createBody: velocities must be finite");
-  }
-  if (!std::isfinite(def.friction) || def.friction < 0.0f) {
-    return R::failure(PhysicsStatus::InvalidArgument,
-                      "createBody: friction must be finite and >= 0");
-  }
-  if (!(def.restitution >= 0.0f && def.restitution <= 1.0f) ||
-      !(def.linearDamping >= 0.0f && def.linearDamping <= 1.0f) ||
-      !(def.angularDamping >= 0.0f && def.angularDamping <= 1.0f)) {
-    return R::failure(PhysicsStatus::InvalidArgument,
-                      "createBody: restitution and damping must be in [0, 1]");
-  }
-  if (!(def.ccdRadius >= 0.0f && std::isfinite(def.ccdRadius))) {
-    return R::failure(PhysicsStatus::InvalidArgument, "createBody: ccdRadius must be finite and >= 0");
-  }
-  if (!(def.sleepLinearSpeed >= 0.0f && std::isfinite(def.sleepLinearSpeed)) ||
-      !(def.sleepAngularSpeed >= 0.0f && std::isfinite(def.sleepAngularSpeed))) {
-    return R::failure(PhysicsStatus::InvalidArgument, "createBody: sleep thresholds must be finite and >= 0");
-  }
-  btVector3 inertia(0, 0, 0);
   if (def.localInertia) {
     const glm::vec3 i = *def.localInertia;
-    if (!dynamic) {
-      return R::failure(PhysicsStatus::InvalidArgument,
-                        "createBody: an inertia override needs mass > 0 (static bodies have none)");
-    }
-    if (!finite(i) || i.x <= 0.0f || i.y <= 0.0f || i.z <= 0.0f) {
-      return R::failure(PhysicsStatus::InvalidArgument,
-                        "createBody: inertia moments must be finite and > 0");
-    }
-    inertia = toBt(i);
-  } else if (dynamic) {
-    shape->built.shape->calculateLocalInertia(def.mass, inertia);
+    if (!checked.dynamic) return refuse("localInertia", "needs mass > 0 (static and kinematic bodies have none)");
+    if (!finite(i) || !(i.x > 0.0f && i.y > 0.0f && i.z > 0.0f))
+      return refuse("localInertia", "moments must be finite and > 0");
   }
+  return Result<CheckedBody>::success(checked);
+}
 
-  btRigidBody::btRigidBodyConstructionInfo info(def.mass, nullptr, shape->built.shape.get(),
-                                                inertia);
-  info.m_startWorldTransform = detail::toBt(def.position, *rotation);
+// Pose, velocities, surface, damping, sleep and continuous collision values.
+Result<CheckedBody> checkValues(const BodyDef& def, CheckedBody checked) {
+  if (!finite(def.position)) return refuse("position", "must be finite");
+  const std::optional<glm::quat> rotation = normalisedRotation(def.rotation);
+  if (!rotation) return refuse("rotation", "must be a finite, non-zero quaternion");
+  checked.rotation = *rotation;
+  if (!finite(def.linearVelocity)) return refuse("linearVelocity", "must be finite");
+  if (!finite(def.angularVelocity)) return refuse("angularVelocity", "must be finite");
+  if (!finiteAtLeastZero(def.friction)) return refuse("friction", "must be finite and >= 0");
+  if (!unitInterval(def.restitution)) return refuse("restitution", "must be in [0, 1]");
+  if (!unitInterval(def.linearDamping)) return refuse("linearDamping", "must be in [0, 1]");
+  if (!unitInterval(def.angularDamping)) return refuse("angularDamping", "must be in [0, 1]");
+  if (!finiteAtLeastZero(def.ccdRadius)) return refuse("ccdRadius", "must be finite and >= 0");
+  if (!finiteAtLeastZero(def.sleepLinearSpeed)) return refuse("sleepLinearSpeed", "must be finite and >= 0");
+  if (!finiteAtLeastZero(def.sleepAngularSpeed)) return refuse("sleepAngularSpeed", "must be finite and >= 0");
+  return Result<CheckedBody>::success(checked);
+}
+
+Result<CheckedBody> validateBodyDef(const BodyDef& def, ShapeType shapeType) {
+  const Result<CheckedBody> kind = checkKind(def, shapeType);
+  return kind.ok() ? checkValues(def, kind.value()) : kind;
+}
+
+// Principal moments: the def's, Bullet's for the shape, or none for a static body.
+btVector3 bodyInertia(const BodyDef& def, bool dynamic, const btCollisionShape& shape) {
+  btVector3 inertia(0, 0, 0);
+  if (def.localInertia) return toBt(*def.localInertia);
+  if (dynamic) shape.calculateLocalInertia(def.mass, inertia);
+  return inertia;
+}
+
+std::unique_ptr<btRigidBody> makeRigidBody(const BodyDef& def, const CheckedBody& checked,
+                                           btCollisionShape* shape, const btVector3& inertia) {
+  btRigidBody::btRigidBodyConstructionInfo info(def.mass, nullptr, shape, inertia);
+  info.m_startWorldTransform = detail::toBt(def.position, checked.rotation);
   info.m_friction = def.friction;
   info.m_restitution = def.restitution;
   info.m_linearDamping = def.linearDamping;
@@ -445,14 +474,29 @@ Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
   info.m_linearSleepingThreshold = def.sleepLinearSpeed;
   info.m_angularSleepingThreshold = def.sleepAngularSpeed;
   auto body = std::make_unique<btRigidBody>(info);
-  if (dynamic && def.ccdRadius > 0.0f) {
+  if (checked.dynamic && def.ccdRadius > 0.0f) {
     body->setCcdMotionThreshold(def.ccdRadius);
     body->setCcdSweptSphereRadius(def.ccdRadius);
   }
-  if (dynamic) {
+  if (checked.dynamic) {
     body->setLinearVelocity(toBt(def.linearVelocity));
     body->setAngularVelocity(toBt(def.angularVelocity));
   }
+  return body;
+}
+
+}  // namespace
+
+Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
+  Impl& w = *impl_;
+  ShapeRecord* shape = w.liveShape(def.shape);
+  if (shape == nullptr)
+    return Result<BodyId>::failure(PhysicsStatus::StaleHandle, "createBody: BodyDef::shape is null or destroyed");
+  const Result<CheckedBody> checked = validateBodyDef(def, shape->built.type);
+  if (!checked.ok()) return Result<BodyId>::failure(checked.status(), checked.reason());
+  const bool dynamic = checked.value().dynamic;
+  std::unique_ptr<btRigidBody> body = makeRigidBody(def, checked.value(), shape->built.shape.get(),
+                                                    bodyInertia(def, dynamic, *shape->built.shape));
   btRigidBody* raw = body.get();
   BodyRecord record;
   record.body = std::move(body);
@@ -464,24 +508,9 @@ Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
   const auto key = w.bodies.insert(std::move(record));
   raw->setUserIndex(int(key.index));
   raw->setUserIndex2(kKindBody);
-  if (def.kinematic) {
-    raw->setCollisionFlags(raw->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
-    raw->setActivationState(DISABLE_DEACTIVATION);
-    // Not in the static group, so triggers (which skip static bodies) see it; it pairs with
-    // dynamic bodies and triggers only.
-    w.world.addRigidBody(raw, btBroadphaseProxy::KinematicFilter,
-                         btBroadphaseProxy::AllFilter & ~btBroadphaseProxy::StaticFilter &
-                             ~btBroadphaseProxy::KinematicFilter);
-  } else {
-    w.world.addRigidBody(raw);
-  }
-  if (dynamic && !def.allowSleep) {
-    raw->setActivationState(DISABLE_DEACTIVATION);
-  } else if (dynamic && !def.startAwake) {
-    raw->setActivationState(ISLAND_SLEEPING);
-  }
+  w.addBody(*raw, def, dynamic);
   ++shape->users;
-  return R::success(BodyId{key.index, key.generation});
+  return Result<BodyId>::success(BodyId{key.index, key.generation});
 }
 
 bool PhysicsWorld::destroyBody(BodyId body) {
@@ -682,6 +711,8 @@ bool PhysicsWorld::destroyJoint(JointId joint) {
 bool PhysicsWorld::isValid(JointId joint) const { return impl_->joint(joint) != nullptr; }
 
 uint32_t PhysicsWorld::jointCount() const { return impl_->joints.size(); }
+
+uint32_t PhysicsWorld::triggerCount() const { return impl_->triggers.size(); }
 
 std::optional<JointState> PhysicsWorld::jointState(JointId joint) const {
   const JointRecord* record = impl_->joint(joint);

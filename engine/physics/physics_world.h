@@ -133,6 +133,7 @@ class PhysicsWorld {
   Result<TriggerId> createTrigger(const TriggerDef& def);
   bool destroyTrigger(TriggerId trigger);
   bool isValid(TriggerId trigger) const;
+  uint32_t triggerCount() const;  // triggers not destroyed yet (spent one-shot triggers included)
   // Moves the trigger (e.g. a blade); the new pose is used by the next step.
   bool setTriggerTransform(TriggerId trigger, const BodyTransform& transform);
   std::optional<BodyTransform> triggerTransform(TriggerId trigger) const;

@@ -472,12 +472,27 @@ ecs::Entity ArenaGame::makeSplitter(const std::string& name, const physics::Shap
   return e;
 }
 
+components::ResourceCounts ArenaGame::resources() const {
+  return components::countResources(physics_, app_ ? &app_->renderer() : nullptr);
+}
+
+void ArenaGame::releaseAll() {
+  if (!app_) return;
+  app_->world().clear();
+  for (physics::BodyId body : staticBodies_) physics_->destroyBody(body);
+  for (physics::ShapeId shape : staticShapes_) physics_->destroyShape(shape);
+  staticBodies_.clear();
+  staticShapes_.clear();
+  for (render::MeshHandle* mesh : {&characterMesh_, &bladeMesh_, &discMesh_, &hammerMesh_}) {
+    app_->renderer().destroyMesh(*mesh);
+    *mesh = {};
+  }
+}
+
 void ArenaGame::removeEntity(ecs::Entity e) {
   ecs::World& world = app_->world();
   if (!world.alive(e)) return;
-  components::SplitWorld sw = splitWorld();
-  components::releaseEntityResources(sw, e);
-  world.destroy(e);
+  world.destroy(e);  // its hooks free its body, bones, GPU mesh or trigger
   // A ragdoll piece goes with every bone body: count it, and any bone body still alive afterwards.
   if (auto it = ragdollBones_.find(e); it != ragdollBones_.end()) {
     ++ragdollPiecesRemoved_;

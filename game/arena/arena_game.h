@@ -22,6 +22,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include "cleave/components/resource_hooks.h"
 #include "cleave/components/split_log.h"
 #include "cleave/components/simulation.h"
 #include "cleave/components/split_system.h"
@@ -70,6 +71,13 @@ class ArenaGame {
 
   // The numbers the match plays by (arena_tuning.h); change them before setup.
   ArenaTuning& tuning() { return tuning_; }
+
+  // What the physics world and the renderer hold now (physics 0 before setup).
+  components::ResourceCounts resources() const;
+  // Destroys every entity (their hooks free what they hold), then the level's colliders and the
+  // player's, the blade's and the disc's GPU meshes, which no entity holds: the counts are then
+  // those from before setup. For the --resource-report leak check, after the run.
+  void releaseAll();
 
  private:
   struct Disc {

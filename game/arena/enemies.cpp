@@ -67,7 +67,6 @@ Enemy spawnGladiator(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 posit
   // The living figure is moved by the game: its convex hull is collider enough (cheap to build).
   if (!components::makeDynamicBody(sw, e, splitable.density, components::ColliderMode::ConvexHull, &error)) {
     std::fprintf(stderr, "arena: gladiator has no body: %s\n", error.c_str());
-    components::releaseEntityResources(sw, e);
     world.destroy(e);
     return enemy;
   }
@@ -115,7 +114,6 @@ Enemy spawnSkinned(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 positio
   std::string error;
   if (!components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true, &error)) {
     std::fprintf(stderr, "arena: skinned enemy has no body: %s\n", error.c_str());
-    components::releaseEntityResources(sw, e);
     world.destroy(e);
     return enemy;
   }

@@ -34,9 +34,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   cleave::arena::ArenaGame game;
+  // Before setup: the game's physics world does not exist yet (a new one holds nothing).
+  const cleave::components::ResourceCounts before = cleave::components::countResources(nullptr, &app.renderer());
   if (!game.setup(app, &error)) {
     std::fprintf(stderr, "cleave-arena: %s\n", error.c_str());
     return 1;
   }
-  return app.run();
+  const int code = app.run();
+  if (options.resourceReport) {
+    // Every entity goes, and with it (through its destroy hooks) what it held: what is left leaked.
+    game.releaseAll();
+    std::printf("resources-before: %s\nresources-after: %s\n", cleave::components::toString(before).c_str(),
+                cleave::components::toString(game.resources()).c_str());
+  }
+  return code;
 }

@@ -79,14 +79,8 @@ void DemoGame::benchmarkSplits(int repeats, bool json) {
       run.colliderMs.push_back(ev.colliderMilliseconds + ev.shapeMilliseconds);
       run.fit.push_back(ev.colliderFit.empty() ? 0.0 : *std::max_element(ev.colliderFit.begin(), ev.colliderFit.end()));
       run.pieces = ev.pieces.size();
-      for (ecs::Entity piece : ev.pieces) {
-        components::releaseEntityResources(sw, piece);
-        world.destroy(piece);
-      }
-      if (world.alive(e)) {
-        components::releaseEntityResources(sw, e);
-        world.destroy(e);
-      }
+      for (ecs::Entity piece : ev.pieces) world.destroy(piece);
+      world.destroy(e);
     }
     runs.push_back(std::move(run));
   }

@@ -161,6 +161,14 @@ void DemoGame::createMaterials() {
   floorMaterial_.specular = 0.1f;
 }
 
+components::ResourceCounts DemoGame::resources() const {
+  return components::countResources(physics_, app_ ? &app_->renderer() : nullptr);
+}
+
+void DemoGame::releaseAll() {
+  if (app_) app_->world().clear();
+}
+
 void DemoGame::createFloor() {
   ecs::World& world = app_->world();
   const ecs::Entity floor = world.create();

@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "cleave/components/resource_hooks.h"
 #include "cleave/components/scene_loader.h"
 #include "cleave/components/skinned.h"
 #include "cleave/components/split_log.h"
@@ -59,6 +60,12 @@ class DemoGame {
   // split time in any tick, as a table or JSON.
   void benchmarkBurst(bool json);
   physics::PhysicsWorld& physics() { return *physics_; }
+
+  // What the physics world and the renderer hold now (physics 0 before setup).
+  components::ResourceCounts resources() const;
+  // Destroys every entity (their hooks free what they hold). The demo holds nothing else, so the
+  // counts are then those from before setup. For the --resource-report leak check, after the run.
+  void releaseAll();
 
  private:
   void createMaterials();

@@ -39,6 +39,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   cleave::demo::DemoGame game;
+  // Before setup: the game's physics world does not exist yet (a new one holds nothing).
+  const cleave::components::ResourceCounts before = cleave::components::countResources(nullptr, &app.renderer());
   if (!game.setup(app, &error)) {
     std::fprintf(stderr, "cleave-demo: %s\n", error.c_str());
     return 1;
@@ -61,5 +63,12 @@ int main(int argc, char** argv) {
   }
   // Mouse look from the start (the game frees the cursor for split mode, Escape and the inspector).
   if (!app.platform().headless()) app.platform().setCursorMode(cleave::app::CursorMode::Captured);
-  return app.run();
+  const int code = app.run();
+  if (options.resourceReport) {
+    // Every entity goes, and with it (through its destroy hooks) what it held: what is left leaked.
+    game.releaseAll();
+    std::printf("resources-before: %s\nresources-after: %s\n", cleave::components::toString(before).c_str(),
+                cleave::components::toString(game.resources()).c_str());
+  }
+  return code;
 }

@@ -25,7 +25,7 @@ Parsed parse(std::vector<const char*> args, const std::vector<std::pair<std::str
 }
 
 TEST(AppOptions, EveryOptionSetsWhatItNames) {
-  const Parsed p = parse({"--headless", "--inspector", "--print-state-hash", "--replay", "r.replay", "--record",
+  const Parsed p = parse({"--headless", "--inspector", "--print-state-hash", "--resource-report", "--replay", "r.replay", "--record",
                           "out.replay", "--scene", "s.json", "--screenshot-dir", "shots", "--dump-state", "d.jsonl",
                           "--ticks", "120", "--screenshot-every", "30", "--dump-every", "10", "--width", "640",
                           "--height", "360", "--seed", "7", "--render-scale", "0.5", "--split-threads", "0"});
@@ -34,6 +34,7 @@ TEST(AppOptions, EveryOptionSetsWhatItNames) {
   EXPECT_TRUE(o.headless);
   EXPECT_TRUE(o.inspector);
   EXPECT_TRUE(o.printStateHash);
+  EXPECT_TRUE(o.resourceReport);
   EXPECT_EQ(o.replayPath, "r.replay");
   EXPECT_EQ(o.recordPath, "out.replay");
   EXPECT_EQ(o.scenePath, "s.json");

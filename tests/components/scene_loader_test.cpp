@@ -204,6 +204,7 @@ BadCase loadBad(const std::string& name, const std::string& text) {
   const std::string path = write(name, text);
   ecs::World world;
   physics::PhysicsWorld physics;
+  ResourceHooks hooks(world, physics, nullptr);  // the rollback frees what it made through them
   SceneContext ctx{world, physics, nullptr, nullptr, {}};
   BadCase c;
   c.result = loadScene(path, ctx);

@@ -242,12 +242,14 @@ TEST(SkinnedSplit, RagdollPiecesHaveBonesOnlyForTheirJointsAndHoldTogether) {
     for (const glm::mat4& m : sim.world.get<SkinnedMesh>(piece).jointMatrices)
       for (int k = 0; k < 4; ++k) EXPECT_TRUE(std::isfinite(m[3][k]));
   }
-  // Destroying a piece frees its bones and their joints.
+  // Destroying a piece frees its bones, their shapes and their joints (its destroy hooks).
   const uint32_t bodiesBefore = sim.physics.bodyCount();
+  const uint32_t shapesBefore = sim.physics.liveShapeCount();
   const size_t bones = sim.world.get<Ragdoll>(ev.pieces[0]).bones.size();
-  SplitWorld w = sim.sw();
-  releaseEntityResources(w, ev.pieces[0]);
+  ASSERT_GT(bones, 1u);
+  EXPECT_TRUE(sim.world.destroy(ev.pieces[0]));
   EXPECT_EQ(sim.physics.bodyCount(), bodiesBefore - bones);
+  EXPECT_EQ(sim.physics.liveShapeCount(), shapesBefore - bones);
   EXPECT_EQ(sim.physics.jointCount(), sim.world.get<Ragdoll>(ev.pieces[1]).joints.size());
 }
 

@@ -168,16 +168,16 @@ TEST(SplitBudget, ActivationsAtMostNPerTickInCreationOrder) {
   SplitBudgetSettings s;
   s.maxActivationsPerTick = 16;
   SplitBudget budget(s);
-  for (uint64_t k = 0; k < 40; ++k) budget.queueActivation(k);
+  for (uint32_t k = 0; k < 40; ++k) budget.queueActivation(physics::BodyId{k, 1});
   const auto first = budget.takeActivations();
   const auto second = budget.takeActivations();
   const auto third = budget.takeActivations();
   ASSERT_EQ(first.size(), 16u);
   ASSERT_EQ(second.size(), 16u);
   ASSERT_EQ(third.size(), 8u);
-  EXPECT_EQ(first.front(), 0u);
-  EXPECT_EQ(second.front(), 16u);
-  EXPECT_EQ(third.back(), 39u);
+  EXPECT_EQ(first.front(), (physics::BodyId{0, 1}));
+  EXPECT_EQ(second.front(), (physics::BodyId{16, 1}));
+  EXPECT_EQ(third.back(), (physics::BodyId{39, 1}));
   EXPECT_TRUE(budget.takeActivations().empty());
 }
 

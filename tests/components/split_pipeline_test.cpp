@@ -96,8 +96,6 @@ TEST(SplitPipeline, TargetGoneBeforeItsCommitLeavesNothingBehind) {
   while (sim.splits.jobsInFlight() == 0 && sim.tick < 60) sim.step();
   ASSERT_EQ(sim.splits.jobsInFlight(), 1u);
   // Gameplay destroys the object while its split computes.
-  SplitWorld w = sim.sw();
-  releaseEntityResources(w, torus);
   sim.world.destroy(torus);
   const size_t entities = sim.world.entities().size();
   std::vector<SplitEvent> events = sim.runUntil(sim.tick + 3);

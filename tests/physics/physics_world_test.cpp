@@ -166,5 +166,57 @@ TEST(PhysicsWorld, NoContactEventsWithoutTouch) {
   EXPECT_TRUE(world.contactEvents().empty());
 }
 
+// createBody checks the whole def before building anything: each bad field is refused with its
+// name and the reason, and no body (or shape user) is left behind.
+TEST(PhysicsWorld, CreateBodyNamesTheBadFieldAndBuildsNothing) {
+  PhysicsWorld world;
+  const ShapeId box = world.createShape(ShapeDef::box(glm::vec3(0.5f))).value();
+  const std::vector<glm::vec3> corners = testing::boxCorners(glm::vec3(1.0f));
+  const std::vector<uint32_t> square = {0, 1, 3, 0, 3, 2};
+  const ShapeId mesh = world.createShape(ShapeDef::staticMesh(corners, square)).value();
+  struct Case {
+    const char* field;
+    PhysicsStatus status;
+    void (*spoil)(BodyDef&);
+  };
+  const Case cases[] = {
+      {"BodyDef::mass", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.mass = -1.0f; }},
+      {"BodyDef::kinematic", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.kinematic = true; }},
+      {"BodyDef::localInertia", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.localInertia = glm::vec3(1, 0, 1); }},
+      {"BodyDef::position", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.position.y = NAN; }},
+      {"BodyDef::rotation", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.rotation = glm::quat(0, 0, 0, 0); }},
+      {"BodyDef::linearVelocity", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.linearVelocity.x = INFINITY; }},
+      {"BodyDef::angularVelocity", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.angularVelocity.z = NAN; }},
+      {"BodyDef::friction", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.friction = -0.1f; }},
+      {"BodyDef::restitution", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.restitution = 1.5f; }},
+      {"BodyDef::linearDamping", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.linearDamping = NAN; }},
+      {"BodyDef::angularDamping", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.angularDamping = -1.0f; }},
+      {"BodyDef::ccdRadius", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.ccdRadius = -0.01f; }},
+      {"BodyDef::sleepLinearSpeed", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.sleepLinearSpeed = NAN; }},
+      {"BodyDef::sleepAngularSpeed", PhysicsStatus::InvalidArgument, [](BodyDef& d) { d.sleepAngularSpeed = -2.0f; }},
+  };
+  for (const Case& c : cases) {
+    BodyDef def;
+    def.shape = box;
+    def.mass = 1.0f;
+    c.spoil(def);
+    const Result<BodyId> body = world.createBody(def);
+    EXPECT_EQ(body.status(), c.status) << c.field;
+    EXPECT_NE(body.reason().find(c.field), std::string::npos) << body.reason();
+    EXPECT_EQ(body.reason().rfind("createBody: ", 0), 0u) << body.reason();
+  }
+  BodyDef heavyMesh;
+  heavyMesh.shape = mesh;
+  heavyMesh.mass = 2.0f;
+  const Result<BodyId> refused = world.createBody(heavyMesh);
+  EXPECT_EQ(refused.status(), PhysicsStatus::UnsupportedCombination);
+  EXPECT_NE(refused.reason().find("BodyDef::shape"), std::string::npos) << refused.reason();
+  EXPECT_EQ(world.bodyCount(), 0u);
+  // Nothing holds the shapes: dropping their handles frees them.
+  world.destroyShape(box);
+  world.destroyShape(mesh);
+  EXPECT_EQ(world.liveShapeCount(), 0u);
+}
+
 }  // namespace
 }  // namespace cleave::physics

@@ -270,10 +270,7 @@ void BM_SkinnedCharacterSplitSystem(benchmark::State& state) {
       return;
     }
     pieces = ev.pieces.size();
-    for (ecs::Entity piece : ev.pieces) {
-      releaseEntityResources(w, piece);
-      world.destroy(piece);
-    }
+    for (ecs::Entity piece : ev.pieces) world.destroy(piece);
     state.ResumeTiming();
   }
   state.counters["triangles"] = double(character.mesh.triangleCount());
