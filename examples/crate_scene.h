@@ -12,6 +12,7 @@
 #include <cleave/components/scene_components.h>
 #include <cleave/components/simulation.h>
 #include <cleave/components/split_system.h>
+#include <cleave/components/splitable_object.h>
 #include <cleave/app/app.h>
 #include <cleave/ecs/hierarchy.h>
 #include <cleave/geometry/primitives.h>
@@ -70,25 +71,18 @@ struct CrateScene {
 
   // A 1 m wooden crate (600 kg/m^3) resting on the floor, centre at y = 0.5.
   bool addCrate() {
-    ecs::World& world = app.world();
-    crate = world.create();
-    world.add<ecs::Name>(crate, ecs::Name{"crate"});
-    ecs::Transform t;
-    t.position = glm::vec3(0.f, 0.5f, 0.f);
-    world.add<ecs::Transform>(crate, t);
-    world.add<ecs::WorldTransform>(crate, ecs::WorldTransform{ecs::localMatrix(t)});
-    components::MeshRenderer mr;
-    mr.source = std::make_shared<geometry::MeshData>(geometry::primitives::box(glm::vec3(0.5f)));
-    mr.gpu = app.renderer().uploadMesh(*mr.source);
-    mr.materials = {render::Material{}, render::Material{}};  // outside, cap
-    world.add<components::MeshRenderer>(crate, std::move(mr));
-    components::Splitable splitable;
-    splitable.density = 600.0;
-    splitable.capMaterialId = 1;
-    world.add<components::Splitable>(crate, splitable);
+    components::SplitableObject object;
+    object.name = "crate";
+    object.transform.position = glm::vec3(0.f, 0.5f, 0.f);
+    object.mesh = std::make_shared<geometry::MeshData>(geometry::primitives::box(glm::vec3(0.5f)));
+    object.materials = {render::Material{}, render::Material{}};  // outside, cap
+    object.splitable.density = 600.0;
+    object.splitable.capMaterialId = 1;
     components::SplitWorld sw = sim->splitWorld();
+    crate = components::createSplitableObject(sw, object);
     std::string error;
-    if (!components::makeDynamicBody(sw, crate, splitable.density, splitable.collider, &error, &sim->splits()))
+    if (!components::makeDynamicBody(sw, crate, object.splitable.density, object.splitable.collider, &error,
+                                     &sim->splits()))
       return fail(error);
     return true;
   }

@@ -13,6 +13,7 @@
 #include "cleave/components/scene_components.h"
 #include "cleave/components/skinned.h"
 #include "cleave/components/splitable.h"
+#include "cleave/components/splitable_object.h"
 #include "cleave/ecs/hierarchy.h"
 #include "cleave/log/log.h"
 #include "cleave/geometry/primitives.h"
@@ -227,22 +228,16 @@ ecs::Entity ArenaGame::spawnDynamic(const std::string& name, geometry::MeshData 
                                     const components::Splitable& splitable, glm::vec3 position,
                                     glm::quat rotation, ArenaTag::Kind kind) {
   ecs::World& world = app_->world();
-  const ecs::Entity e = world.create();
-  world.add<ecs::Name>(e, ecs::Name{name});
-  ecs::Transform t;
-  t.position = position;
-  t.rotation = rotation;
-  world.add<ecs::Transform>(e, t);
-  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
-  world.add<ArenaTag>(e, ArenaTag{kind});
-  auto source = std::make_shared<geometry::MeshData>(std::move(mesh));
-  components::MeshRenderer mr;
-  mr.source = source;
-  mr.gpu = app_->renderer().uploadMesh(*source);
-  mr.materials = std::move(materials);
-  world.add<components::MeshRenderer>(e, std::move(mr));
-  world.add<components::Splitable>(e, splitable);
+  components::SplitableObject object;
+  object.name = name;
+  object.transform.position = position;
+  object.transform.rotation = rotation;
+  object.mesh = std::make_shared<geometry::MeshData>(std::move(mesh));
+  object.materials = std::move(materials);
+  object.splitable = splitable;
   components::SplitWorld sw = splitWorld();
+  const ecs::Entity e = components::createSplitableObject(sw, std::move(object));
+  world.add<ArenaTag>(e, ArenaTag{kind});
   std::string error;
   if (!components::makeDynamicBody(sw, e, splitable.density, splitable.collider, &error, splits_)) {
     std::fprintf(stderr, "arena: %s has no body: %s\n", name.c_str(), error.c_str());

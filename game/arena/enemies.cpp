@@ -7,6 +7,7 @@
 
 #include "cleave/components/scene_components.h"
 #include "cleave/components/split_system.h"
+#include "cleave/components/splitable_object.h"
 #include "cleave/components/splitable.h"
 #include "cleave/ecs/hierarchy.h"
 #include "game/arena/arena_layout.h"
@@ -39,18 +40,7 @@ Enemy spawnGladiator(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 posit
   Enemy enemy;
   enemy.kind = EnemyKind::Gladiator;
   ecs::World& world = c.world;
-  const ecs::Entity e = world.create();
-  world.add<ecs::Name>(e, ecs::Name{"gladiator"});
-  // Built at the origin so the body frame found by makeDynamicBody is the one in the enemy's frame.
-  ecs::Transform t;
-  world.add<ecs::Transform>(e, t);
-  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
-  components::MeshRenderer mr;
-  mr.source = meshes.gladiator;
-  if (c.renderer) mr.gpu = c.renderer->uploadMesh(*meshes.gladiator);
   const ArenaMaterials& m = c.materials;
-  mr.materials = {m.armour, m.flesh, m.skin, m.cloth};
-  world.add<components::MeshRenderer>(e, std::move(mr));
   components::Splitable splitable;
   splitable.density = 1000.0;
   splitable.capMaterial = m.flesh;
@@ -61,8 +51,10 @@ Enemy spawnGladiator(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 posit
   // Every island of a cut is a piece of one convex part, so its hull is exact: no convexity test.
   splitable.collider = components::ColliderMode::ConvexHull;
   splitable.maxDepth = 4;
-  world.add<components::Splitable>(e, splitable);
   components::SplitWorld sw{world, c.physics, c.renderer};
+  // Built at the origin so the body frame found by makeDynamicBody is the one in the enemy's frame.
+  const ecs::Entity e = components::createSplitableObject(
+      sw, {"gladiator", ecs::Transform{}, meshes.gladiator, {m.armour, m.flesh, m.skin, m.cloth}, splitable});
   std::string error;
   // The living figure is moved by the game: its convex hull is collider enough (cheap to build).
   if (!components::makeDynamicBody(sw, e, splitable.density, components::ColliderMode::ConvexHull, &error)) {
@@ -87,20 +79,6 @@ Enemy spawnSkinned(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 positio
   Enemy enemy;
   enemy.kind = EnemyKind::Skinned;
   ecs::World& world = c.world;
-  const ecs::Entity e = world.create();
-  world.add<ecs::Name>(e, ecs::Name{"skinned warrior"});
-  // Built at the origin, facing +z, so the body frame is the one in the enemy's own frame.
-  ecs::Transform t;
-  world.add<ecs::Transform>(e, t);
-  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
-  components::MeshRenderer mr;
-  mr.source = meshes.skinned;
-  if (c.renderer) mr.gpu = c.renderer->uploadMesh(*meshes.skinned);
-  mr.materials = c.materials.skinnedEnemy;
-  world.add<components::MeshRenderer>(e, std::move(mr));
-  // Each one starts its stride somewhere else (from its spawn point: deterministic).
-  const float start = std::fmod(std::abs(position.x * 0.37f + position.y * 0.61f), 1.f);
-  world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(meshes.skinnedAsset, "walk", start));
   components::Splitable splitable;
   splitable.density = 1000.0;  // the body's mass; the halves share it by posed volume
   splitable.capMaterial = c.materials.flesh;
@@ -109,8 +87,13 @@ Enemy spawnSkinned(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 positio
   splitable.handler = "arena.gladiator";  // see ArenaGame::setup
   splitable.splitImpulse = 0.6;
   splitable.maxDepth = 3;
-  world.add<components::Splitable>(e, splitable);
   components::SplitWorld sw{world, c.physics, c.renderer};
+  // Built at the origin, facing +z, so the body frame is the one in the enemy's own frame.
+  const ecs::Entity e = components::createSplitableObject(
+      sw, {"skinned warrior", ecs::Transform{}, meshes.skinned, c.materials.skinnedEnemy, splitable});
+  // Each one starts its stride somewhere else (from its spawn point: deterministic).
+  const float start = std::fmod(std::abs(position.x * 0.37f + position.y * 0.61f), 1.f);
+  world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(meshes.skinnedAsset, "walk", start));
   std::string error;
   if (!components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true, &error)) {
     std::fprintf(stderr, "arena: skinned enemy has no body: %s\n", error.c_str());

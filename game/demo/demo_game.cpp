@@ -14,6 +14,7 @@
 #include "cleave/components/scene_loader.h"
 #include "cleave/components/split_log.h"
 #include "cleave/components/splitable.h"
+#include "cleave/components/splitable_object.h"
 #include "cleave/assets/procedural_character.h"
 #include "cleave/assets/procedural_textures.h"
 #include "cleave/ecs/hierarchy.h"
@@ -257,22 +258,16 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
   splitable.capMaterial = capLooks_[size_t(look)];
   splitable.capMaterialId = 1;
 
-  const ecs::Entity e = world.create();
-  world.add<ecs::Name>(e, ecs::Name{name});
-  ecs::Transform t;
-  t.position = position;
-  t.rotation = rotation;
-  world.add<ecs::Transform>(e, t);
-  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
-  auto source = std::make_shared<geometry::MeshData>(std::move(mesh));
-  components::MeshRenderer mr;
-  mr.source = source;
-  mr.gpu = app_->renderer().uploadMesh(*source);
-  mr.materials = {looks_[size_t(look)], capLooks_[size_t(look)]};
-  world.add<components::MeshRenderer>(e, std::move(mr));
-  world.add<components::MaterialChoice>(e, components::MaterialChoice{look});
-  world.add<components::Splitable>(e, splitable);
+  components::SplitableObject object;
+  object.name = name;
+  object.transform.position = position;
+  object.transform.rotation = rotation;
+  object.mesh = std::make_shared<geometry::MeshData>(std::move(mesh));
+  object.materials = {looks_[size_t(look)], capLooks_[size_t(look)]};
+  object.splitable = splitable;
   components::SplitWorld sw = splitWorld();
+  const ecs::Entity e = components::createSplitableObject(sw, std::move(object));
+  world.add<components::MaterialChoice>(e, components::MaterialChoice{look});
   std::string error;
   if (!components::makeDynamicBody(sw, e, splitable.density, splitable.collider, &error, splits_))
     std::fprintf(stderr, "demo: %s has no body: %s\n", name.c_str(), error.c_str());
@@ -335,31 +330,22 @@ ecs::Entity DemoGame::spawnInFront(ObjectKind kind, const glm::vec3& forward) {
 
 ecs::Entity DemoGame::spawnCharacter(const glm::vec3& position, const glm::quat& rotation) {
   ecs::World& world = app_->world();
-  const ecs::Entity e = world.create();
-  world.add<ecs::Name>(e, ecs::Name{"skinned character"});
   // The feet stand on the floor (y = 0) below `position`, facing along the circle.
   Walker walker;
   walker.centre = glm::vec3(position.x, 0.f, position.z) - kWalkRadius * glm::vec3(0.f, 0.f, 1.f);
   (void)rotation;
   const glm::mat4 root = walkerRoot(walker);
-  ecs::Transform t;
-  t.position = glm::vec3(root[3]);
-  t.rotation = glm::quat_cast(glm::mat3(root));
-  world.add<ecs::Transform>(e, t);
-  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
-  components::MeshRenderer mr;
-  mr.source = characterMesh_;
-  mr.gpu = app_->renderer().uploadMesh(*characterMesh_);
-  mr.materials = characterMaterials_;
-  world.add<components::MeshRenderer>(e, std::move(mr));
-  world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(characterAsset_, "walk"));
-  components::Splitable splitable;
-  splitable.density = 1000.0;  // the body's mass; pieces share it by posed volume
-  splitable.capMaterialId = 1;
-  splitable.capMaterial = characterMaterials_[1];
-  splitable.skinnedPieces = components::SkinnedPieceMode::Ragdoll;
-  world.add<components::Splitable>(e, splitable);
+  components::SplitableObject object{"skinned character", {}, characterMesh_, characterMaterials_, {}};
+  object.transform.position = glm::vec3(root[3]);
+  object.transform.rotation = glm::quat_cast(glm::mat3(root));
+  object.splitable.density = 1000.0;  // the body's mass; pieces share it by posed volume
+  object.splitable.capMaterialId = 1;
+  object.splitable.capMaterial = characterMaterials_[1];
+  object.splitable.skinnedPieces = components::SkinnedPieceMode::Ragdoll;
+  const components::Splitable splitable = object.splitable;
   components::SplitWorld sw = splitWorld();
+  const ecs::Entity e = components::createSplitableObject(sw, std::move(object));
+  world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(characterAsset_, "walk"));
   std::string error;
   if (!components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true, &error)) {
     std::fprintf(stderr, "demo: the character has no body: %s\n", error.c_str());
@@ -375,28 +361,19 @@ ecs::Entity DemoGame::spawnCharacter(const glm::vec3& position, const glm::quat&
 
 ecs::Entity DemoGame::spawnFigure(const glm::vec3& position, const glm::quat& rotation) {
   ecs::World& world = app_->world();
-  const ecs::Entity e = world.create();
-  world.add<ecs::Name>(e, ecs::Name{"figure"});
-  ecs::Transform t;
-  t.position = glm::vec3(position.x, 0.f, position.z);  // feet on the floor
-  t.rotation = rotation;
-  world.add<ecs::Transform>(e, t);
-  world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(t)});
-  components::MeshRenderer mr;
-  mr.source = figureMesh_;
-  mr.gpu = app_->renderer().uploadMesh(*figureMesh_);
-  mr.materials = characterMaterials_;
-  world.add<components::MeshRenderer>(e, std::move(mr));
+  components::SplitableObject object{"figure", {}, figureMesh_, characterMaterials_, {}};
+  object.transform.position = glm::vec3(position.x, 0.f, position.z);  // feet on the floor
+  object.transform.rotation = rotation;
+  object.splitable.density = 1000.0;
+  object.splitable.capMaterialId = 1;
+  object.splitable.capMaterial = capLooks_[5];
+  object.splitable.skinnedPieces = components::SkinnedPieceMode::Bake;
+  object.splitable.separateIslands = false;  // each side of a cut stays one figure piece
+  const components::Splitable splitable = object.splitable;
+  components::SplitWorld sw = splitWorld();
+  const ecs::Entity e = components::createSplitableObject(sw, std::move(object));
   world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(characterAsset_, "idle"));
   world.add<components::MaterialChoice>(e, components::MaterialChoice{5});
-  components::Splitable splitable;
-  splitable.density = 1000.0;
-  splitable.capMaterialId = 1;
-  splitable.capMaterial = capLooks_[5];
-  splitable.skinnedPieces = components::SkinnedPieceMode::Bake;
-  splitable.separateIslands = false;  // each side of a cut stays one figure piece
-  world.add<components::Splitable>(e, splitable);
-  components::SplitWorld sw = splitWorld();
   std::string error;
   if (!components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true, &error))
     std::fprintf(stderr, "demo: the figure has no body: %s\n", error.c_str());
