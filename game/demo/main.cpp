@@ -4,40 +4,30 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
-#include "cleave_version.h"
 #include "cleave/app/app.h"
+#include "cleave/app/app_start.h"
 #include "game/demo/demo_game.h"
 
 int main(int argc, char** argv) {
+  cleave::app::AppStart start;
+  start.program = "cleave-demo";
+  start.title = "Cleave tech demo";
+  start.scene = "demo";
+  start.gameOptions = {{"--bench-splits", 1}, {"--bench-burst", 0}, {"--json", 0}};
+  start.gameHelp =
+      "demo options:\n"
+      "  --bench-splits N           cut each demo object N times, print median stage times\n"
+      "  --bench-burst              cut 50 cubes, then 100 characters, each lot in one tick\n"
+      "  --json                     benchmarks print JSON instead of a table\n\n"
+      "keys: WASD move, mouse look, hold Space and drag to cut, right button push, F shatter,\n"
+      "  1-8 spawn, Q/E material, H help, F1 inspector, Esc free the mouse (twice: quit)\n";
   cleave::app::AppOptions options;
-  options.sceneName = "demo";
-  const auto parsed = cleave::app::parseAppOptions(argc, argv, options, {{"--bench-splits", 1}, {"--bench-burst", 0}, {"--json", 0}});
-  if (!parsed.ok) {
-    std::fprintf(stderr, "cleave-demo: %s\n", parsed.error.c_str());
-    return 2;
-  }
-  if (parsed.versionRequested) {
-    std::printf("cleave-demo %s\n", cleave::kVersion);
-    return 0;
-  }
-  if (parsed.helpRequested) {
-    std::printf("usage: cleave-demo [options]\n\n%s", cleave::app::appOptionsUsage().c_str());
-    std::printf("demo options:\n"
-                "  --bench-splits N           cut each demo object N times, print median stage times\n"
-                "  --bench-burst              cut 50 cubes, then 100 characters, each lot in one tick\n"
-                "  --json                     benchmarks print JSON instead of a table\n\n"
-                "keys: WASD move, mouse look, hold Space and drag to cut, right button push, F shatter,\n"
-                "  1-8 spawn, Q/E material, H help, F1 inspector, Esc free the mouse (twice: quit)\n");
-    return 0;
-  }
   cleave::app::App app;
+  if (const std::optional<int> code = cleave::app::startApp(argc, argv, start, options, app)) return *code;
   std::string error;
-  if (!app.init(options, "Cleave tech demo", &error)) {
-    std::fprintf(stderr, "cleave-demo: %s\n", error.c_str());
-    return 1;
-  }
   cleave::demo::DemoGame game;
   // Before setup: the game's physics world does not exist yet (a new one holds nothing).
   const cleave::components::ResourceCounts before = cleave::components::countResources(nullptr, &app.renderer());
