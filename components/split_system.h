@@ -102,6 +102,7 @@ class SplitSystem {
   // The budget and its settings (threads and commitDelayTicks among them; a change of threads takes
   // effect at the next prepare, after the jobs in flight are done).
   SplitBudget& budget() { return budget_; }
+  const SplitBudget& budget() const { return budget_; }
   void registerHandler(const std::string& name, SplitHandler handler);
   // Runs compute tasks on the host's task system instead of our threads (empty: our own).
   void setTaskExecutor(SplitTaskExecutor executor);

@@ -123,13 +123,13 @@ void ArenaGame::dumpFrame(nlohmann::json& line) {
   splitLog_.writeJson(splits);
   line["splits"] = std::move(splits);
   const auto& stats = splits_->budget().stats();
-  line["budget"] = {{"deferred_total", deferredTotal_},
-                    {"max_queue", maxQueue_},
+  line["budget"] = {{"deferred_total", splitStats_.deferredTotal},
+                    {"max_queue", splitStats_.maxQueue},
                     {"max_split_ms", stats.maxSplitMilliseconds},
-                    {"max_split_ms_in_a_tick", maxSplitMsInATick_},
+                    {"max_split_ms_in_a_tick", splitStats_.maxMsInATick},
                     {"ms_per_tick", splits_->budget().settings().millisecondsPerTick},
                     {"max_splits_per_tick", splits_->budget().settings().maxSplitsPerTick},
-                    {"max_charged_ms_in_a_tick", maxChargedMsInATick_},
+                    {"max_charged_ms_in_a_tick", splitStats_.maxChargedMsInATick},
                     {"max_estimate_ms", stats.maxChargeMilliseconds},
                     {"queue", stats.queueLength}};
 }

@@ -433,7 +433,7 @@ void ArenaGame::drawInspector(app::TickContext& c) {
     (void)origin;
     ++pieces;
   }
-  const inspector::InspectorFeed feed{c.world, *splits_, splitLog_, splitMsHistory_,
+  const inspector::InspectorFeed feed{c.world, *splits_, splitLog_, splitStats_.history,
                                       splitableUnderCursor(c.input, c.frameSize), pieces};
   inspector_.draw(c, feed);
 }
@@ -781,15 +781,7 @@ void ArenaGame::committed(app::TickContext& c, const std::vector<components::Spl
   const uint32_t killedBefore = match_.enemiesKilled;
   for (const components::SplitEvent& ev : events) onSplit(ev, c.tick);
   match_.maxKillsInOneTick = std::max(match_.maxKillsInOneTick, match_.enemiesKilled - killedBefore);
-  const auto& stats = splits_->budget().stats();
-  deferredTotal_ += stats.deferred;
-  maxQueue_ = std::max(maxQueue_, stats.queueLength);
-  splitsThisTick_ = stats.executed;
-  splitMsThisTick_ = splits_->lastTickMainMilliseconds();
-  maxSplitMsInATick_ = std::max(maxSplitMsInATick_, splitMsThisTick_);
-  maxChargedMsInATick_ = std::max(maxChargedMsInATick_, stats.millisecondsCharged);
-  splitMsHistory_.push_back(float(splitMsThisTick_));
-  if (splitMsHistory_.size() > 120) splitMsHistory_.pop_front();
+  splitStats_.record(*splits_);
 }
 
 void ArenaGame::updatePieces(uint64_t tick) {

@@ -24,6 +24,7 @@
 
 #include "cleave/components/resource_hooks.h"
 #include "cleave/components/split_log.h"
+#include "cleave/components/split_stats.h"
 #include "cleave/components/simulation.h"
 #include "cleave/components/split_system.h"
 #include "cleave/anim/animation_clip.h"
@@ -267,16 +268,10 @@ class ArenaGame {
   std::map<ecs::Entity, std::vector<physics::BodyId>> ragdollBones_;  // live ragdoll pieces' bone bodies
   uint32_t ragdollBodiesLeaked_ = 0;  // bone bodies still in the physics world after their piece went
   components::SplitLog splitLog_;
+  components::SplitTickStats splitStats_;  // HUD, dump and inspector figures; the split-time graph
   inspector::Inspector inspector_;
   std::string inspectorNotice_;  // why F1 could not open it, shown until inspectorNoticeUntil_
   uint64_t inspectorNoticeUntil_ = 0;
-  uint64_t deferredTotal_ = 0;
-  uint32_t maxQueue_ = 0;
-  uint32_t splitsThisTick_ = 0;
-  double splitMsThisTick_ = 0.0;
-  double maxSplitMsInATick_ = 0.0;
-  double maxChargedMsInATick_ = 0.0;  // main-thread split time the budget charged in one tick
-  std::deque<float> splitMsHistory_;
 };
 
 }  // namespace cleave::arena

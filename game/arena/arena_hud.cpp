@@ -74,22 +74,13 @@ void ArenaGame::drawBudgetPanel(app::TickContext& c, float u) {
   std::snprintf(line, sizeof(line), "%s %.0f  tick %.1f ms", headless ? "TPS" : "FPS",
                 headless ? c.app.ticksPerSecond() : c.app.framesPerSecond(), c.app.lastTickMilliseconds());
   r.submitText(line, {bx + 10 * u, 18 * u}, 1.7f * u, kWhite);
-  std::snprintf(line, sizeof(line), "split queue %u  this tick %u", stats.queueLength, splitsThisTick_);
+  std::snprintf(line, sizeof(line), "split queue %u  this tick %u", stats.queueLength, splitStats_.splitsThisTick);
   r.submitText(line, {bx + 10 * u, 36 * u}, 1.7f * u, kWhite);
-  std::snprintf(line, sizeof(line), "split ms %.2f / %.1f  max %.2f", splitMsThisTick_,
-                splits_->budget().settings().millisecondsPerTick, maxSplitMsInATick_);
+  std::snprintf(line, sizeof(line), "split ms %.2f / %.1f  max %.2f", splitStats_.msThisTick,
+                splits_->budget().settings().millisecondsPerTick, splitStats_.maxMsInATick);
   r.submitText(line, {bx + 10 * u, 54 * u}, 1.7f * u, kWhite);
-  const float gx = bx + 10 * u, gy = 74 * u, gw = 260 * u, gh = 28 * u;
-  const float budget = float(splits_->budget().settings().millisecondsPerTick);
-  const float scale = gh / (budget * 2.f);
-  std::vector<glm::vec2> graph;
-  for (size_t i = 0; i + 1 < splitMsHistory_.size(); ++i) {
-    graph.push_back({gx + gw * float(i) / 120.f, gy + gh - std::min(gh, splitMsHistory_[i] * scale)});
-    graph.push_back({gx + gw * float(i + 1) / 120.f, gy + gh - std::min(gh, splitMsHistory_[i + 1] * scale)});
-  }
-  r.submitOverlayLines(graph, glm::vec4(0.4f, 1.f, 0.5f, 1.f));
-  const glm::vec2 budgetLine[2] = {{gx, gy + gh - budget * scale}, {gx + gw, gy + gh - budget * scale}};
-  r.submitOverlayLines(budgetLine, glm::vec4(1.f, 0.4f, 0.3f, 1.f));
+  components::drawSplitGraph(r, splitStats_.history, splits_->budget().settings().millisecondsPerTick,
+                             glm::vec4(bx + 10 * u, 74 * u, 260 * u, 28 * u));
 }
 
 void ArenaGame::drawBanners(app::TickContext& c, float u) {

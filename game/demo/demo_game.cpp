@@ -477,15 +477,8 @@ bool DemoGame::setup(app::App& app, std::string* error) {
   components::SplittingHooks hooks;
   hooks.camera = [this] { return glm::dvec3(cameraPosition_); };
   hooks.committed = [this](app::TickContext& c, const std::vector<components::SplitEvent>& events) {
-    const auto& stats = splits_->budget().stats();
     splitLog_.record(c.tick, events);
-    deferredTotal_ += stats.deferred;
-    maxQueue_ = std::max(maxQueue_, stats.queueLength);
-    splitsThisTick_ = stats.executed;
-    if (stats.executed > 0) lastSplitMs_ = stats.lastSplitMilliseconds;
-    maxSplitMs_ = stats.maxSplitMilliseconds;
-    splitMsHistory_.push_back(float(splits_->lastTickMainMilliseconds()));
-    if (splitMsHistory_.size() > 120) splitMsHistory_.pop_front();
+    splitStats_.record(*splits_);
   };
   components::installSplitting(app, *sim_, std::move(hooks));
   app.addSystem(app::Phase::Render, "demo.render", [this](app::TickContext& c) { render(c); });
@@ -513,8 +506,8 @@ bool DemoGame::setup(app::App& app, std::string* error) {
     line["hud"] = {{"frame", {frame.x, frame.y}}, {"items", std::move(hud)}};
     inspector_.writeJson(line["inspector"]);
     const auto& stats = splits_->budget().stats();
-    line["budget"] = {{"deferred_total", deferredTotal_},
-                      {"max_queue", maxQueue_},
+    line["budget"] = {{"deferred_total", splitStats_.deferredTotal},
+                      {"max_queue", splitStats_.maxQueue},
                       {"max_split_ms", stats.maxSplitMilliseconds},
                       {"queue", stats.queueLength}};
   });
@@ -825,7 +818,7 @@ void DemoGame::toggleInspector(app::TickContext& c) {
 }
 
 void DemoGame::drawInspector(app::TickContext& c) {
-  const inspector::InspectorFeed feed{c.world, *splits_, splitLog_, splitMsHistory_, entityUnderCrosshair(),
+  const inspector::InspectorFeed feed{c.world, *splits_, splitLog_, splitStats_.history, entityUnderCrosshair(),
                                       countPieces()};
   inspector_.draw(c, feed);
 }
@@ -839,8 +832,8 @@ void DemoGame::drawStatsPanel(app::TickContext& c, float u) {
   const bool headless = c.app.headless();
   std::snprintf(texts[0], sizeof(texts[0]), "%s %.0f   tick %.2f ms", headless ? "TPS" : "FPS",
                 headless ? c.app.ticksPerSecond() : c.app.framesPerSecond(), c.app.lastTickMilliseconds());
-  std::snprintf(texts[1], sizeof(texts[1]), "splits this tick %u   queue %u", splitsThisTick_, stats.queueLength);
-  std::snprintf(texts[2], sizeof(texts[2]), "split ms last %.2f  max %.2f", lastSplitMs_, maxSplitMs_);
+  std::snprintf(texts[1], sizeof(texts[1]), "splits this tick %u   queue %u", splitStats_.splitsThisTick, stats.queueLength);
+  std::snprintf(texts[2], sizeof(texts[2]), "split ms last %.2f  max %.2f", splitStats_.lastSplitMs, splitStats_.maxSplitMs);
   std::snprintf(texts[3], sizeof(texts[3]), "pieces %u   tick %llu", pieces, static_cast<unsigned long long>(c.tick));
   // The panel fits its longest line: the counts as they are, the timings at their widest usual
   // figures (so that its size does not change with the wall clock).
@@ -851,18 +844,8 @@ void DemoGame::drawStatsPanel(app::TickContext& c, float u) {
   hudBox(c, "stats", glm::vec4(4.f * u, 4.f * u, panel + 8.f * u, 59.f * u), dim);
   for (int k = 0; k < 4; ++k) hudText(c, texts[k], {8.f * u, (7.f + 10.f * float(k)) * u}, u, white);
   // Graph: split ms per tick against the budget line.
-  const float gx = 8.f * u, gy = 48.f * u;
-  const float budget = float(splits_->budget().settings().millisecondsPerTick);
-  const float scale = gh / (budget * 2.f);
-  std::vector<glm::vec2> lines;
-  for (size_t i = 0; i + 1 < splitMsHistory_.size(); ++i) {
-    const float x0 = gx + gw * float(i) / 120.f, x1 = gx + gw * float(i + 1) / 120.f;
-    lines.push_back({x0, gy + gh - std::min(gh, splitMsHistory_[i] * scale)});
-    lines.push_back({x1, gy + gh - std::min(gh, splitMsHistory_[i + 1] * scale)});
-  }
-  c.renderer.submitOverlayLines(lines, glm::vec4(0.4f, 1.f, 0.5f, 1.f));
-  const glm::vec2 budgetLine[2] = {{gx, gy + gh - budget * scale}, {gx + gw, gy + gh - budget * scale}};
-  c.renderer.submitOverlayLines(budgetLine, glm::vec4(1.f, 0.4f, 0.3f, 1.f));
+  components::drawSplitGraph(c.renderer, splitStats_.history, splits_->budget().settings().millisecondsPerTick,
+                             glm::vec4(8.f * u, 48.f * u, gw, gh));
   hudLayout_.back().open = false;
 }
 

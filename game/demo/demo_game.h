@@ -16,6 +16,7 @@
 #include "cleave/components/scene_loader.h"
 #include "cleave/components/skinned.h"
 #include "cleave/components/split_log.h"
+#include "cleave/components/split_stats.h"
 #include "cleave/components/simulation.h"
 #include "cleave/components/split_system.h"
 #include "cleave/app/app.h"
@@ -147,11 +148,9 @@ class DemoGame {
   // Every split of the run, for the state dump (replay tests check mass conservation per cut).
   components::SplitLog splitLog_;
   std::set<std::string> looksShown_;  // looks Q/E switched an object to (for the state dump)
-  uint64_t deferredTotal_ = 0;
-  uint32_t maxQueue_ = 0;
 
-  // HUD history: split milliseconds of the last ticks.
-  std::deque<float> splitMsHistory_;
+  // The split figures of the HUD, the dump and the inspector (history: the split-time graph).
+  components::SplitTickStats splitStats_;
   // The last frame's HUD layout (pixels): each box and the extent of the text drawn in it.
   struct HudItem {
     std::string what;
@@ -160,9 +159,6 @@ class DemoGame {
     bool open = true;  // text drawn next goes into this box
   };
   std::vector<HudItem> hudLayout_;
-  uint32_t splitsThisTick_ = 0;
-  double lastSplitMs_ = 0.0;
-  double maxSplitMs_ = 0.0;
 };
 
 }  // namespace cleave::demo
