@@ -203,8 +203,12 @@ struct Node {
   const json* value = nullptr;
   std::vector<std::string> path;
 
+  // A key the object does not have gives a null node with the path it would have (for messages
+  // about a field left at its default).
   Node child(const std::string& key) const {
-    Node n{&(*value)[key], path};
+    static const nlohmann::json kAbsent;
+    const auto it = value->find(key);
+    Node n{it == value->end() ? &kAbsent : &*it, path};
     n.path.push_back(key);
     return n;
   }
