@@ -46,4 +46,8 @@ std::string toString(const ResourceCounts& c) {
          " gpu_meshes=" + std::to_string(c.gpuMeshes);
 }
 
+std::string resourceReport(const ResourceCounts& before, const ResourceCounts& after) {
+  return "resources-before: " + toString(before) + "\nresources-after: " + toString(after) + "\n";
+}
+
 }  // namespace cleave::components

@@ -42,6 +42,9 @@ struct ResourceCounts {
 ResourceCounts countResources(const physics::PhysicsWorld* physics, const render::Renderer* renderer);
 // "bodies=3 shapes=4 joints=0 triggers=1 gpu_meshes=5", for logs and the --resource-report line.
 std::string toString(const ResourceCounts& counts);
+// The two lines of a game's --resource-report ("resources-before: ...\nresources-after: ...\n"): the
+// counts from before setup and those left once every entity was destroyed (the game prints them).
+std::string resourceReport(const ResourceCounts& before, const ResourceCounts& after);
 
 class ResourceHooks {
  public:

@@ -57,8 +57,7 @@ int main(int argc, char** argv) {
   if (options.resourceReport) {
     // Every entity goes, and with it (through its destroy hooks) what it held: what is left leaked.
     game.releaseAll();
-    std::printf("resources-before: %s\nresources-after: %s\n", cleave::components::toString(before).c_str(),
-                cleave::components::toString(game.resources()).c_str());
+    std::fputs(cleave::components::resourceReport(before, game.resources()).c_str(), stdout);
   }
   return code;
 }
