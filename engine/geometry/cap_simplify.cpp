@@ -158,17 +158,6 @@ bool Simplifier::traceLoops(const Region& r) {
   return x.loopStart.size() > 1;
 }
 
-bool insideRing(std::span<const glm::dvec2> p, CapRing ring, const glm::dvec2& q) {
-  bool inside = false;
-  for (uint32_t i = ring.begin, j = ring.end - 1; i < ring.end; j = i++) {
-    if ((p[i].y > q.y) != (p[j].y > q.y) &&
-        q.x < (p[j].x - p[i].x) * (q.y - p[i].y) / (p[j].y - p[i].y) + p[i].x) {
-      inside = !inside;
-    }
-  }
-  return inside;
-}
-
 // The loops' points on the region's plane (cut space), mirrored when the loops run clockwise there
 // so that outer borders run counter-clockwise; their rings and signed areas.
 void Simplifier::projectLoops(const Region& r, double& largest) {
@@ -199,7 +188,7 @@ bool Simplifier::assignHoles() {
   for (size_t h = 0; h < x.rings.size(); ++h) {
     if (x.area[h] > 0.0) continue;
     for (size_t o = 0; o < x.rings.size(); ++o) {
-      if (x.area[o] > 0.0 && insideRing(x.points, x.rings[o], x.points[x.rings[h].begin]) &&
+      if (x.area[o] > 0.0 && CapTriangulator::ringContains(x.points, x.rings[o], x.points[x.rings[h].begin]) &&
           (x.outerOf[h] == kNone || x.area[o] < x.area[x.outerOf[h]])) {
         x.outerOf[h] = static_cast<uint32_t>(o);
       }

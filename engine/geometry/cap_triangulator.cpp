@@ -51,6 +51,15 @@ double segmentDistance2(const glm::dvec2& p, const glm::dvec2& a, const glm::dve
 
 }  // namespace
 
+bool CapTriangulator::ringContains(std::span<const glm::dvec2> points, CapRing ring, const glm::dvec2& q) {
+  bool inside = false;
+  for (uint32_t i = ring.begin, j = ring.end - 1; i < ring.end; j = i++) {
+    const glm::dvec2 a = points[i], b = points[j];
+    if ((a.y > q.y) != (b.y > q.y) && q.x < (b.x - a.x) * (q.y - a.y) / (b.y - a.y) + a.x) inside = !inside;
+  }
+  return inside;
+}
+
 double CapTriangulator::twiceSignedArea(std::span<const glm::dvec2> points, CapRing ring) {
   double sum = 0.0;
   if (ring.end <= ring.begin) return 0.0;

@@ -59,6 +59,8 @@ class CapTriangulator {
 
   // Twice the signed area of a ring (positive counter-clockwise).
   static double twiceSignedArea(std::span<const glm::dvec2> points, CapRing ring);
+  // Whether q lies inside the ring (crossing number; a point on the border may go either way).
+  static bool ringContains(std::span<const glm::dvec2> points, CapRing ring, const glm::dvec2& q);
 
  private:
   struct Node {

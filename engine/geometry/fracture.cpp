@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "cleave/geometry/cap_simplify.h"
+#include "cleave/geometry/cell_clipper.h"
 #include "cleave/geometry/convex_polytope.h"
 #include "cleave/geometry/mesh_splitter.h"
 
@@ -190,7 +191,8 @@ bool carveCell(CellRun& run, const ConvexCell& cell, uint32_t cellIndex) {
 
 }  // namespace
 
-FractureResult fracture(const MeshContainer& container, std::span<const ConvexCell> cells, const SplitOptions& options) {
+FractureResult fracture(const MeshContainer& container, std::span<const ConvexCell> cells, const SplitOptions& options,
+                        FractureMethod method) {
   FractureResult result;
   if (container.mesh().indices.empty()) {
     result.status = SplitStatus::InvalidInput;
@@ -200,8 +202,20 @@ FractureResult fracture(const MeshContainer& container, std::span<const ConvexCe
   std::unique_ptr<IMeshSplitter> splitter = makeConcaveSplitter();
   CapSimplifier simplifier;
   CellRun run{*splitter, simplifier, container, options, options.relativeTolerance * container.boundsDiagonal(), result};
+  CellClipper clipper;
+  const bool clip = method == FractureMethod::Clipper && clipper.begin(container, options);
   for (uint32_t i = 0; i < cells.size(); ++i) {
     if (cells[i].empty) continue;
+    if (clip) {
+      FracturePiece piece;
+      const CellClipper::Outcome outcome = clipper.clip(cells[i], i, options, run.tolerance, piece, result.cuts);
+      if (outcome == CellClipper::Outcome::Nothing) continue;
+      if (outcome == CellClipper::Outcome::Piece) {
+        result.pieces.push_back(std::move(piece));
+        continue;
+      }
+    }
+    result.carvedBySplits += 1;
     if (!carveCell(run, cells[i], i)) {
       result.pieces.clear();
       return result;

@@ -50,13 +50,27 @@ struct FractureResult {
   std::vector<FracturePiece> pieces;  // by cell, then as the cuts made them (deterministic)
   uint32_t openChains = 0;            // section chains left open over all cuts (open art)
   uint32_t cuts = 0;                  // plane cuts made (planes that missed a part are not counted)
+  uint32_t carvedBySplits = 0;        // cells the clipper left to one split per plane (see FractureMethod)
+};
+
+// How the part inside a cell is made. Both give closed, capped pieces with exact mass properties and
+// the same volumes (to rounding); their triangles differ where the clipper's caps are made once per
+// plane instead of once per cut.
+enum class FractureMethod : uint8_t {
+  // The cell clipper (all of a cell's planes in one pass over the polygons near the cell), and one
+  // split per plane for the cells it leaves: open, mirrored, posed or skinned containers, a mesh face
+  // lying in a cell plane, loops that touch, a part that falls apart into islands, points that meet
+  // in float precision.
+  Clipper,
+  Splits,  // one split per cell plane, each keeping the side below, for every cell
 };
 
 // The parts of the container's mesh inside each cell. The options are those of every cut (caps,
 // cap UVs and material, islands, open sections); a cell that holds nothing of the mesh gives no
-// piece. Cost: one split per cell plane that crosses a part of the mesh still inside the cell.
+// piece. Cost (FractureMethod::Clipper): the triangles near each cell, once per plane that crosses
+// them, plus a cap per plane; with Splits, one split per cell plane that crosses a part still inside.
 FractureResult fracture(const MeshContainer& container, std::span<const ConvexCell> cells,
-                        const SplitOptions& options = {});
+                        const SplitOptions& options = {}, FractureMethod method = FractureMethod::Clipper);
 
 // The Voronoi cells of `seeds` inside the box [lo, hi]: cell i is the points nearer seed i than any
 // other seed. Only the bisector planes that bound the cell within the box are kept (one that does

@@ -54,6 +54,17 @@
 
 namespace cleave::geometry {
 
+void capPlaneBasis(const glm::dvec3& unitNormal, glm::dvec3& u, glm::dvec3& v) {
+  const glm::dvec3 an = glm::abs(unitNormal);
+  int axis = 0;
+  if (an.y < an[axis]) axis = 1;
+  if (an.z < an[axis]) axis = 2;
+  glm::dvec3 e(0.0);
+  e[axis] = 1.0;
+  u = glm::normalize(glm::cross(unitNormal, e));
+  v = glm::cross(unitNormal, u);
+}
+
 const char* toString(SplitStatus status) {
   switch (status) {
     case SplitStatus::Ok: return "Ok";
@@ -153,8 +164,6 @@ glm::vec3 normalizedOr(const glm::dvec3& v, const glm::vec3& fallback) {
   const double len = glm::length(v);
   return len > 0.0 && std::isfinite(len) ? glm::vec3(v / len) : fallback;
 }
-
-bool insideLoop(std::span<const glm::dvec2> points, uint32_t begin, uint32_t end, const glm::dvec2& q);
 
 struct SideTriangle {
   uint32_t v[3];    // vertex references (see Splitter::kinds), cut-space outward winding
@@ -646,14 +655,7 @@ SplitStatus Splitter::traceSection(const SplitOptions& options, SplitResult& res
 
 // The projection basis depends on the normal only, so world-planar cap UVs line up across cuts.
 void Splitter::chooseBasis() {
-  const glm::dvec3 an = glm::abs(normal_);
-  int axis = 0;
-  if (an.y < an[axis]) axis = 1;
-  if (an.z < an[axis]) axis = 2;
-  glm::dvec3 e(0.0);
-  e[axis] = 1.0;
-  u_ = glm::normalize(glm::cross(normal_, e));
-  v_ = glm::cross(normal_, u_);
+  capPlaneBasis(normal_, u_, v_);
   origin_ = segments_.empty() ? glm::dvec3(0.0) : sectionCut(keyFrom(segments_.front()));
 }
 
@@ -1062,9 +1064,9 @@ bool Splitter::chordClear(uint32_t begin, uint32_t end, bool alone) {
   for (const LoopInfo& loop : loops_) {
     otherPoints_.clear();
     for (uint32_t k = loop.begin; k < loop.end; ++k) otherPoints_.push_back(project(sectionCut(loopIds_[k])));
-    if (insideLoop(chainPoints_, 0, static_cast<uint32_t>(chainPoints_.size()), otherPoints_[0])) return false;
+    if (CapTriangulator::ringContains(chainPoints_, CapRing{0, static_cast<uint32_t>(chainPoints_.size())}, otherPoints_[0])) return false;
     const glm::dvec2 probe = 0.5 * (chainPoints_[0] + chainPoints_[1]);
-    if (insideLoop(otherPoints_, 0, static_cast<uint32_t>(otherPoints_.size()), probe)) return false;
+    if (CapTriangulator::ringContains(otherPoints_, CapRing{0, static_cast<uint32_t>(otherPoints_.size())}, probe)) return false;
   }
   return true;
 }
@@ -1270,15 +1272,6 @@ void Splitter::pushCapTriangles() {
   }
 }
 
-bool insideLoop(std::span<const glm::dvec2> points, uint32_t begin, uint32_t end, const glm::dvec2& q) {
-  bool inside = false;
-  for (uint32_t i = begin, j = end - 1; i < end; j = i++) {
-    const glm::dvec2 a = points[i], b = points[j];
-    if ((a.y > q.y) != (b.y > q.y) && q.x < (b.x - a.x) * (q.y - a.y) / (b.y - a.y) + a.x) inside = !inside;
-  }
-  return inside;
-}
-
 // The thesis's fast path: one loop whose angular order around its centroid is the loop order, strictly
 // convex once collinear points are removed, fanned.
 bool Splitter::tryConvexCap() {
@@ -1331,7 +1324,7 @@ bool Splitter::capSection(const SplitOptions& options, std::string& why) {
       const LoopInfo& outer = loops_[o];
       if (!outer.capped || outer.twiceArea < 0.0 || outer.twiceArea >= bestArea) continue;
       if (q.x < outer.lo.x || q.x > outer.hi.x || q.y < outer.lo.y || q.y > outer.hi.y) continue;
-      if (!insideLoop(points_, outer.begin, outer.end, q)) continue;
+      if (!CapTriangulator::ringContains(points_, CapRing{outer.begin, outer.end}, q)) continue;
       bestArea = outer.twiceArea;
       hole.outer = static_cast<uint32_t>(o);
     }

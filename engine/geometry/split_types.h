@@ -96,6 +96,11 @@ struct MeshWeld {
   bool inverted = false;                  // closed and wound inwards: see MeshContainer::inverted
 };
 
+// The cap plane's basis for a unit normal: u and v unit, (u, v, normal) right-handed, chosen from the
+// normal alone (its smallest axis), so world-planar cap UVs (dot(p, u), dot(p, v)) line up across
+// cuts and fractures on one plane.
+void capPlaneBasis(const glm::dvec3& unitNormal, glm::dvec3& u, glm::dvec3& v);
+
 // SplitPiece::sourceTriangles of a cap triangle of the split: this flag | the section loop it caps
 // (the outer border of its cap, numbered among the split's closed and bridged loops).
 inline constexpr uint32_t kFromCap = 0x80000000u;

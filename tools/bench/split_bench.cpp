@@ -118,7 +118,8 @@ void BM_ConcaveSplitComb32Teeth(benchmark::State& state) {
 BENCHMARK(BM_ConcaveSplitComb32Teeth)->Unit(benchmark::kMicrosecond);
 
 // Fracture into Voronoi cells: a 1k-triangle sphere (uvSphere 32 x 16: 960 triangles) and the demo's
-// torus (2,304 triangles) into range(0) cells; cells and seeds made once, outside the loop.
+// torus (2,304 triangles) into range(0) cells; cells and seeds made once, outside the loop. range(1):
+// 0 the cell clipper (as the engine fractures), 1 one split per cell plane (FractureMethod::Splits).
 void runFracture(benchmark::State& state, const MeshData& mesh) {
   MeshContainer container;
   if (container.setMesh(mesh) != SplitStatus::Ok) {
@@ -128,20 +129,23 @@ void runFracture(benchmark::State& state, const MeshData& mesh) {
   const glm::dvec3 lo = container.boundsMin(), hi = container.boundsMax();
   const std::vector<ConvexCell> cells =
       voronoiCells(fractureSeeds(uint32_t(state.range(0)), 1, lo, hi), lo - 0.01 * (hi - lo), hi + 0.01 * (hi - lo));
-  size_t pieces = 0;
+  const FractureMethod method = state.range(1) == 0 ? FractureMethod::Clipper : FractureMethod::Splits;
+  size_t pieces = 0, bySplits = 0;
   for (auto _ : state) {
-    FractureResult r = fracture(container, cells);
+    FractureResult r = fracture(container, cells, SplitOptions{}, method);
     pieces = r.pieces.size();
+    bySplits = r.carvedBySplits;
     benchmark::DoNotOptimize(r);
   }
   state.counters["pieces"] = double(pieces);
+  state.counters["by_splits"] = double(bySplits);
 }
 
 void BM_FractureSphere1k(benchmark::State& state) { runFracture(state, primitives::uvSphere(0.5f, 32, 16)); }
-BENCHMARK(BM_FractureSphere1k)->Arg(16)->Arg(32)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FractureSphere1k)->ArgsProduct({{16, 32}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 void BM_FractureDemoTorus(benchmark::State& state) { runFracture(state, primitives::torus(0.5f, 0.2f, 48, 24)); }
-BENCHMARK(BM_FractureDemoTorus)->Arg(16)->Arg(32)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FractureDemoTorus)->ArgsProduct({{16, 32}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
 void BM_ConcaveSplitComb32TeethAlongExtrusion(benchmark::State& state) {
   Plane plane;
