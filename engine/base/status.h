@@ -48,9 +48,9 @@ struct BasicStatus {
   std::string message;  // empty when ok()
 
   static BasicStatus success() { return {}; }
-  static BasicStatus failure(Code code, std::string message) {
-    assert(code != Code::Ok);
-    return BasicStatus{code, std::move(message)};
+  static BasicStatus failure(Code failureCode, std::string failureMessage) {
+    assert(failureCode != Code::Ok);
+    return BasicStatus{failureCode, std::move(failureMessage)};
   }
   bool ok() const { return code == Code::Ok; }
   explicit operator bool() const { return ok(); }
@@ -78,8 +78,8 @@ class Expected {
   }
 
   static Expected success(T value) { return Expected(std::move(value)); }
-  static Expected failure(Code code, std::string message) {
-    return Expected(StatusType::failure(code, std::move(message)));
+  static Expected failure(Code failureCode, std::string failureMessage) {
+    return Expected(StatusType::failure(failureCode, std::move(failureMessage)));
   }
 
   bool ok() const { return status_.ok(); }

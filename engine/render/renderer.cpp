@@ -24,7 +24,11 @@ namespace {
 
 constexpr int kShadowMapSize = 1024;
 
-GLuint compileShader(GLenum type, const char* source, std::string* error) {
+base::Status unavailable(std::string reason) {
+  return base::Status::failure(base::StatusCode::Unavailable, std::move(reason));
+}
+
+base::Expected<GLuint> compileShader(GLenum type, const char* source) {
   GLuint shader = glCreateShader(type);
   glShaderSource(shader, 1, &source, nullptr);
   glCompileShader(shader);
@@ -33,21 +37,22 @@ GLuint compileShader(GLenum type, const char* source, std::string* error) {
   if (!ok) {
     char log[2048] = {};
     glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    if (error) *error = std::string("shader compile failed: ") + log;
     glDeleteShader(shader);
-    return 0;
+    return unavailable(std::string("shader compile failed: ") + log);
   }
   return shader;
 }
 
-GLuint linkProgram(const char* vertex, const char* fragment, std::string* error) {
-  GLuint vs = compileShader(GL_VERTEX_SHADER, vertex, error);
-  if (!vs) return 0;
-  GLuint fs = compileShader(GL_FRAGMENT_SHADER, fragment, error);
-  if (!fs) {
+base::Expected<GLuint> linkProgram(const char* vertex, const char* fragment) {
+  const base::Expected<GLuint> vertexShader = compileShader(GL_VERTEX_SHADER, vertex);
+  if (!vertexShader.ok()) return vertexShader;
+  const GLuint vs = *vertexShader;
+  const base::Expected<GLuint> fragmentShader = compileShader(GL_FRAGMENT_SHADER, fragment);
+  if (!fragmentShader.ok()) {
     glDeleteShader(vs);
-    return 0;
+    return fragmentShader;
   }
+  const GLuint fs = *fragmentShader;
   GLuint program = glCreateProgram();
   glAttachShader(program, vs);
   glAttachShader(program, fs);
@@ -59,9 +64,8 @@ GLuint linkProgram(const char* vertex, const char* fragment, std::string* error)
   if (!ok) {
     char log[2048] = {};
     glGetProgramInfoLog(program, sizeof(log), nullptr, log);
-    if (error) *error = std::string("shader link failed: ") + log;
     glDeleteProgram(program);
-    return 0;
+    return unavailable(std::string("shader link failed: ") + log);
   }
   return program;
 }
@@ -196,7 +200,7 @@ struct Renderer::Impl {
   bool composed() const { return scaled() || intoWindow; }  // the scene drawn apart, then copied
   const RenderTarget& sceneTarget() const { return composed() ? scene : frame; }
 
-  bool createShadowMap(int size, std::string* error);
+  base::Status createShadowMap(int size);
   glm::mat4 lightViewProj() const;
   FrameMatrices frameMatrices() const;
   void drawShadowPass(const glm::mat4& lightVp);
@@ -224,7 +228,7 @@ struct Renderer::Impl {
 };
 
 // The shadow map at `size` texels square, made anew (the render scale sets its size).
-bool Renderer::Impl::createShadowMap(int size, std::string* error) {
+base::Status Renderer::Impl::createShadowMap(int size) {
   if (shadowFbo) glDeleteFramebuffers(1, &shadowFbo);
   if (shadowTexture) glDeleteTextures(1, &shadowTexture);
   shadowSize = size;
@@ -244,8 +248,7 @@ bool Renderer::Impl::createShadowMap(int size, std::string* error) {
   glReadBuffer(GL_NONE);
   const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (!complete && error) *error = "the shadow-map framebuffer is incomplete";
-  return complete;
+  return complete ? base::Status() : unavailable("the shadow-map framebuffer is incomplete");
 }
 
 glm::mat4 Renderer::Impl::lightViewProj() const {
@@ -291,14 +294,20 @@ Renderer::~Renderer() {
 
 base::Status Renderer::init() {
   Impl& r = *impl_;
-  if (!glCreateProgram) return base::Status::failure(base::StatusCode::Unavailable, "no OpenGL context is loaded");
-  std::string error;
-  r.meshProgram = linkProgram(shaders::kMeshVertex, shaders::kMeshFragment, &error);
-  r.shadowProgram = linkProgram(shaders::kShadowVertex, shaders::kShadowFragment, &error);
-  r.skyProgram = linkProgram(shaders::kSkyVertex, shaders::kSkyFragment, &error);
-  r.lineProgram = linkProgram(shaders::kLineVertex, shaders::kLineFragment, &error);
-  if (!r.meshProgram || !r.shadowProgram || !r.skyProgram || !r.lineProgram)
-    return base::Status::failure(base::StatusCode::Unavailable, error);
+  if (!glCreateProgram) return unavailable("no OpenGL context is loaded");
+  struct Program {
+    GLuint* id;
+    const char* vertex;
+    const char* fragment;
+  };
+  for (const Program& p : {Program{&r.meshProgram, shaders::kMeshVertex, shaders::kMeshFragment},
+                           Program{&r.shadowProgram, shaders::kShadowVertex, shaders::kShadowFragment},
+                           Program{&r.skyProgram, shaders::kSkyVertex, shaders::kSkyFragment},
+                           Program{&r.lineProgram, shaders::kLineVertex, shaders::kLineFragment}}) {
+    const base::Expected<GLuint> linked = linkProgram(p.vertex, p.fragment);
+    if (!linked.ok()) return linked.status();
+    *p.id = *linked;
+  }
   r.meshU.lookUp(r.meshProgram);
   r.shadowMvpU = glGetUniformLocation(r.shadowProgram, "uLightMvp");
   r.shadowSkinnedU = glGetUniformLocation(r.shadowProgram, "uSkinned");
@@ -318,8 +327,7 @@ base::Status Renderer::init() {
   glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(ColoredVertex),
                         reinterpret_cast<void*>(offsetof(ColoredVertex, color)));
   glBindVertexArray(0);
-  if (!r.createShadowMap(kShadowMapSize, &error)) return base::Status::failure(base::StatusCode::Unavailable, error);
-  return {};
+  return r.createShadowMap(kShadowMapSize);
 }
 
 void Renderer::setRenderScale(float scale) {
@@ -330,7 +338,7 @@ void Renderer::setRenderScale(float scale) {
   // The shadow map follows the scale in three steps (so that a dynamic scale moving a little does
   // not remake it); the scene target is resized at the next frame.
   const int size = clamped > 0.7f ? kShadowMapSize : clamped >= 0.3f ? kShadowMapSize / 2 : kShadowMapSize / 4;
-  if (size != r.shadowSize) r.createShadowMap(size, nullptr);
+  if (size != r.shadowSize) r.createShadowMap(size);
 }
 
 float Renderer::renderScale() const { return impl_->renderScale; }
