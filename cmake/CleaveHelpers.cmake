@@ -1,15 +1,24 @@
 # SPDX-License-Identifier: MIT
-# cleave_add_library(<name> [COMPONENT <package component>] [PUBLIC_LIBS ...] [PRIVATE_LIBS ...]
-#                    [INTERNAL_HEADERS <file.h> ...])
+# cleave_add_library(<name> [HEADER_ONLY] [COMPONENT <package component>] [PUBLIC_LIBS ...]
+#                    [PRIVATE_LIBS ...] [INTERNAL_HEADERS <file.h> ...])
 # Builds every .cpp of the calling folder into static library cleave_<name>, exported as Cleave::<name>
-# in the package component COMPONENT (default engine; see cmake/CleavePackage.cmake).
+# in the package component COMPONENT (default engine; see cmake/CleavePackage.cmake). HEADER_ONLY: an
+# INTERFACE library instead (the base layer). Every layer but base links Cleave::base.
 # Headers are included as <cleave/<name>/<file>.h>, in the build tree as when installed: the build
 # tree's include/cleave/<name> is a link to the folder. INTERNAL_HEADERS are not installed (headers
-# that name a private dependency, or helpers of the folder's own sources).
+# that name a private dependency, or helpers of the folder's own sources); neither are the headers
+# of sub-folders (detail/).
 function(cleave_add_library name)
-  cmake_parse_arguments(ARG "" "COMPONENT" "PUBLIC_LIBS;PRIVATE_LIBS;EXTRA_SOURCES;INTERNAL_HEADERS" ${ARGN})
+  cmake_parse_arguments(ARG "HEADER_ONLY" "COMPONENT" "PUBLIC_LIBS;PRIVATE_LIBS;EXTRA_SOURCES;INTERNAL_HEADERS" ${ARGN})
   if(NOT ARG_COMPONENT)
     set(ARG_COMPONENT engine)
+  endif()
+  if(ARG_HEADER_ONLY)
+    cleave_add_header_library(${name} ${ARG_COMPONENT})
+    return()
+  endif()
+  if(NOT name STREQUAL "base")
+    list(APPEND ARG_PUBLIC_LIBS cleave_base)
   endif()
   file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cpp)
   file(GLOB headers CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.h)
@@ -37,6 +46,20 @@ function(cleave_add_library name)
   endforeach()
   install(FILES ${installed} DESTINATION include/cleave/${name} COMPONENT ${ARG_COMPONENT})
   set_property(GLOBAL APPEND PROPERTY CLEAVE_TARGETS_${ARG_COMPONENT} cleave_${name})
+endfunction()
+
+# The INTERFACE library cleave_<name> of a folder without sources: its headers, installed in component.
+function(cleave_add_header_library name component)
+  file(GLOB headers CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.h)
+  add_library(cleave_${name} INTERFACE)
+  add_library(Cleave::${name} ALIAS cleave_${name})
+  set_target_properties(cleave_${name} PROPERTIES EXPORT_NAME ${name})
+  cleave_include_link(${name} ${CMAKE_CURRENT_SOURCE_DIR})
+  target_include_directories(cleave_${name} INTERFACE
+    $<BUILD_INTERFACE:${CLEAVE_INCLUDE_DIR}>
+    $<INSTALL_INTERFACE:include>)
+  install(FILES ${headers} DESTINATION include/cleave/${name} COMPONENT ${component})
+  set_property(GLOBAL APPEND PROPERTY CLEAVE_TARGETS_${component} cleave_${name})
 endfunction()
 
 # The build tree's include/cleave/<name>: a link to the source folder `dir` (made at configure time).

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 # The installed package, in components a user asks for one by one:
 #   find_package(Cleave 0.2 REQUIRED COMPONENTS geometry)
-# geometry: the split core (GLM and the standard library); anim: skeletons and clips (GLM);
+# geometry: the split core (GLM and the standard library) and base (Status, Expected: the standard
+# library only); anim: skeletons and clips (GLM; + geometry for base);
 # physics: the Bullet bridge (+ geometry, Bullet); assets: glTF and mesh files (+ geometry, anim,
 # tinygltf, stb); engine: everything (ECS, input, render, app, components; GL, EGL, GLFW, JSON).
 # Each component has an export set of its own (CleaveTargets-<component>.cmake), and the package's

@@ -7,7 +7,9 @@ namespace cleave::components {
 
 namespace {
 
-TuningResult fail(std::string reason) { return TuningResult{false, std::move(reason)}; }
+TuningResult fail(std::string reason) {
+  return TuningResult::failure(base::StatusCode::InvalidArgument, std::move(reason));
+}
 
 bool inRange(double v, double lo, double hi) { return std::isfinite(v) && v >= lo && v <= hi; }
 

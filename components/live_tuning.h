@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "cleave/base/status.h"
 #include "cleave/components/split_budget.h"
 #include "cleave/components/splitable.h"
 #include "cleave/ecs/world.h"
@@ -35,10 +36,8 @@ inline constexpr double kMinDensity = 1.0;        // kg/m^3
 inline constexpr double kMaxDensity = 50000.0;
 inline constexpr double kMaxSplitImpulse = 50.0;  // m/s
 
-struct TuningResult {
-  bool ok = true;
-  std::string error;  // names the setting and the reason
-};
+// Ok, or InvalidArgument with a message naming the setting and the reason.
+using TuningResult = base::Status;
 
 SplitableTuning tuningOf(const Splitable& splitable);
 

@@ -279,11 +279,10 @@ class Reader {
   }
 
   void fillError(SceneLoadResult& r) const {
-    r.ok = false;
     r.errorFile = file_;
     r.errorLine = line_;
     r.errorField = field_;
-    r.error = file_ + ":" + std::to_string(line_) + ": " + field_ + ": " + reason_;
+    r.setFailure(base::StatusCode::ParseError, file_ + ":" + std::to_string(line_) + ": " + field_ + ": " + reason_);
   }
 
   bool expectObject(const Node& n, std::initializer_list<const char*> allowed) {
@@ -669,7 +668,7 @@ bool readMeshFile(Reader& rd, const Node& n, const std::string& baseDirectory, E
   std::filesystem::path p(file);
   if (p.is_relative()) p = std::filesystem::path(baseDirectory) / p;
   assets::MeshReadResult r = assets::loadMesh(p.lexically_normal().string());
-  if (!r.ok) return rd.fail(n.child("file"), "cannot load the model: " + r.error);
+  if (!r.ok()) return rd.fail(n.child("file"), "cannot load the model: " + r.message);
   d.mesh = std::move(r.mesh);
   return true;
 }
@@ -959,7 +958,7 @@ struct Builder {
     auto source = std::make_shared<geometry::MeshData>(std::move(mesh));
     MeshRenderer mr;
     mr.source = source;
-    if (ctx.renderer) mr.gpu = ctx.renderer->uploadMesh(*source);
+    if (ctx.renderer) mr.gpu = ctx.renderer->uploadMesh(*source).valueOr({});
     for (const std::string& n : names) mr.materials.push_back(material(n, false));
     if (mr.materials.empty()) mr.materials.push_back(material("", false));
     ctx.world.add<MeshRenderer>(e, std::move(mr));
@@ -971,7 +970,7 @@ struct Builder {
     const ecs::Entity e = newEntity("floor", t);
     addRenderer(e, geometry::primitives::box(f.halfExtents), {f.material});
     auto shape = ctx.physics.createShape(physics::ShapeDef::box(f.halfExtents));
-    if (!shape.ok()) return failWith("floor: " + shape.reason(), {"floor"});
+    if (!shape.ok()) return failWith("floor: " + shape.message(), {"floor"});
     physics::BodyDef def;
     def.shape = shape.value();
     def.position = t.position;
@@ -979,7 +978,7 @@ struct Builder {
     auto body = ctx.physics.createBody(def);
     if (!body.ok()) {
       ctx.physics.destroyShape(shape.value());
-      return failWith("floor: " + body.reason(), {"floor"});
+      return failWith("floor: " + body.message(), {"floor"});
     }
     ctx.world.add<RigidBody>(e, RigidBody{body.value(), shape.value()});
     result.floor = e;
@@ -1044,8 +1043,8 @@ struct Builder {
         density = *d.mass / props.volume;
       }
       if (auto* s = ctx.world.tryGet<Splitable>(e); s && !d.splitDensityGiven) s->density = density;
-      std::string why;
-      if (!makeDynamicBody(sw, e, density, d.collider, &why, ctx.splits)) return failWith(name + ": " + why, d.path);
+      if (const base::Status made = makeDynamicBody(sw, e, density, d.collider, ctx.splits); !made.ok())
+        return failWith(name + ": " + made.message, d.path);
       const auto& rb = ctx.world.get<RigidBody>(e);
       if (d.linearVelocity != glm::vec3(0.f) || d.angularVelocity != glm::vec3(0.f))
         ctx.physics.setVelocity(rb.body, d.linearVelocity, d.angularVelocity);
@@ -1057,7 +1056,7 @@ struct Builder {
             for (const glm::vec3& p : keep.positions) points.push_back(p * t.scale);
             return ctx.physics.createShape(physics::ShapeDef::staticMesh(points, keep.indices));
           }();
-      if (!shape.ok()) return failWith(name + ": no collider: " + shape.reason(), d.path);
+      if (!shape.ok()) return failWith(name + ": no collider: " + shape.message(), d.path);
       physics::BodyDef def;
       def.shape = shape.value();
       def.position = t.position;
@@ -1066,7 +1065,7 @@ struct Builder {
       auto body = ctx.physics.createBody(def);
       if (!body.ok()) {
         ctx.physics.destroyShape(shape.value());
-        return failWith(name + ": " + body.reason(), d.path);
+        return failWith(name + ": " + body.message(), d.path);
       }
       ctx.world.add<RigidBody>(e, RigidBody{body.value(), shape.value()});
       if (d.splitable && !d.splitDensityGiven) ctx.world.get<Splitable>(e).density = density;
@@ -1102,8 +1101,8 @@ SceneLoadResult syntaxError(const std::string& file, const std::string& text, co
   r.errorFile = file;
   r.errorLine = line;
   r.errorField = key.empty() ? "" : key;
-  r.error = file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
-            (key.empty() ? std::string("at the start") : "after field '" + key + "'") + ": " + detail;
+  r.setFailure(base::StatusCode::ParseError, file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " +
+            (key.empty() ? std::string("at the start") : "after field '" + key + "'") + ": " + detail);
   return r;
 }
 
@@ -1136,7 +1135,7 @@ SceneLoadResult loadSceneFromString(const std::string& text, const std::string& 
   } catch (const std::exception& e) {
     SceneLoadResult r;
     r.errorFile = name;
-    r.error = name + ": " + e.what();
+    r.setFailure(base::StatusCode::ParseError, name + ": " + e.what());
     return r;
   }
 
@@ -1148,7 +1147,7 @@ SceneLoadResult loadSceneFromString(const std::string& text, const std::string& 
     read = readScene(rd, root, baseDirectory, scene);
   } catch (const std::exception& e) {  // defensive: the reader checks types before every access
     result.errorFile = name;
-    result.error = name + ": " + e.what();
+    result.setFailure(base::StatusCode::ParseError, name + ": " + e.what());
     return result;
   }
   if (!read || rd.failed()) {
@@ -1181,7 +1180,7 @@ SceneLoadResult loadSceneFromString(const std::string& text, const std::string& 
   if (!ok) {
     b.rollback();
     ctx.physics.setGravity(previousGravity);
-    result = {};
+    result = SceneLoadResult();
     rd.fail(Node{&root, b.errorPath}, b.error);
     rd.fillError(result);
     return result;
@@ -1189,7 +1188,7 @@ SceneLoadResult loadSceneFromString(const std::string& text, const std::string& 
   if (ctx.splits && scene.budgetGiven) ctx.splits->budget().setSettings(scene.budget);
   ecs::updateWorldTransforms(ctx.world);
   result.splitters = std::move(scene.splitters);
-  result.ok = true;
+  result.code = base::StatusCode::Ok;
   return result;
 }
 
@@ -1199,7 +1198,7 @@ SceneLoadResult loadScene(const std::string& path, SceneContext& ctx) {
   if (!in || std::filesystem::is_directory(path, ec)) {
     SceneLoadResult r;
     r.errorFile = path;
-    r.error = path + ": cannot open the scene file (missing or unreadable)";
+    r.setFailure(base::StatusCode::IoError, path + ": cannot open the scene file (missing or unreadable)");
     return r;
   }
   std::ostringstream buffer;

@@ -7,7 +7,7 @@
 //   components::SplitSystem splits;
 //   components::SceneContext ctx{world, physics, renderer /* or nullptr */, &splits, resolver};
 //   components::SceneLoadResult scene = components::loadScene("assets/scenes/torus_cut.json", ctx);
-//   if (!scene.ok) { std::fprintf(stderr, "%s\n", scene.error.c_str()); return 1; }
+//   if (!scene.ok()) { std::fprintf(stderr, "%s\n", scene.message.c_str()); return 1; }
 //   components::SceneRunner runner(scene.splitters);
 //   // every tick, in the Gameplay phase:   runner.update(splitWorld, tick, dt);
 //   // or, without an App, one whole tick:   components::runSceneTick(splitWorld, splits, runner, tick, dt, camera);
@@ -36,6 +36,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "cleave/base/status.h"
 #include "cleave/components/split_budget.h"
 #include "cleave/components/split_system.h"
 #include "cleave/components/splitable.h"
@@ -97,10 +98,9 @@ struct ScheduledSplitter {
   uint64_t createdTick = 0;
 };
 
-struct SceneLoadResult {
-  bool ok = false;
-  // "<file>:<line>: <field>: <reason>" when !ok; the parts are also given separately.
-  std::string error;
+// A Status (message "<file>:<line>: <field>: <reason>" when !ok(); the parts are also given
+// separately) with what the scene made.
+struct SceneLoadResult : base::Status {
   std::string errorFile;
   int errorLine = 0;
   std::string errorField;    // JSON pointer, "" for the whole file

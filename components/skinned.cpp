@@ -107,21 +107,22 @@ void posedJointGlobals(const anim::Skeleton& skeleton, std::span<const glm::mat4
   }
 }
 
-bool makeSkinnedBody(SplitWorld& w, ecs::Entity e, double density, bool kinematic, std::string* error) {
+base::Status makeSkinnedBody(SplitWorld& w, ecs::Entity e, double density, bool kinematic) {
+  auto refuse = [](std::string reason) {
+    return base::Status::failure(base::StatusCode::InvalidArgument, std::move(reason));
+  };
   auto* mr = w.world.tryGet<MeshRenderer>(e);
   auto* skin = w.world.tryGet<SkinnedMesh>(e);
   auto* t = w.world.tryGet<ecs::Transform>(e);
   if (!mr || !mr->source || !skin || !t) {
-    if (error) *error = "entity has no skinned mesh or transform";
-    return false;
+    return refuse("entity has no skinned mesh or transform");
   }
   geometry::MeshData posed;
   bakeSkin(*mr->source, skin->jointMatrices, posed);
   const glm::dmat4 model = glm::dmat4(ecs::localMatrix(*t)) * glm::dmat4(mr->meshOffset);
   const geometry::MassProperties props = geometry::computeMassProperties(posed, model);
   if (!(props.volume > 0.0)) {
-    if (error) *error = "posed mesh encloses no volume";
-    return false;
+    return refuse("posed mesh encloses no volume");
   }
   const double mass = density * props.volume;
   BodyFrame frame = bodyFrameFor(props, mass, model);
@@ -136,8 +137,7 @@ bool makeSkinnedBody(SplitWorld& w, ecs::Entity e, double density, bool kinemati
   hull.maxHullVertices = 48;
   const auto shape = w.physics.createShape(hull);
   if (!shape.ok()) {
-    if (error) *error = "no collider: " + shape.reason();
-    return false;
+    return refuse("no collider: " + shape.message());
   }
   physics::BodyDef def;
   def.shape = shape.value();
@@ -150,12 +150,11 @@ bool makeSkinnedBody(SplitWorld& w, ecs::Entity e, double density, bool kinemati
   const auto body = w.physics.createBody(def);
   if (!body.ok()) {
     w.physics.destroyShape(shape.value());
-    if (error) *error = body.reason();
-    return false;
+    return refuse(body.message());
   }
   mr->meshOffset = glm::mat4(frame.meshOffset);
   placeOnBody(w, e, def, body.value(), shape.value(), mass, props, density);
-  return true;
+  return {};
 }
 
 namespace {
@@ -297,14 +296,14 @@ glm::dmat4 boneMatrix(const RagdollBoneSpec& bone) {
 
 }  // namespace
 
-bool planRagdoll(const geometry::MeshData& bindPiece, std::span<const glm::vec3> posed,
-                 std::span<const uint16_t> keptJoints, const anim::Skeleton& skeleton,
-                 std::span<const glm::dmat4> globals, double mass, RagdollSpec& out, std::string* error) {
+base::Status planRagdoll(const geometry::MeshData& bindPiece, std::span<const glm::vec3> posed,
+                         std::span<const uint16_t> keptJoints, const anim::Skeleton& skeleton,
+                         std::span<const glm::dmat4> globals, double mass, RagdollSpec& out) {
   out = RagdollSpec{};
   const size_t jointCount = skeleton.size();
   if (bindPiece.joints.empty() || posed.size() != bindPiece.positions.size() || globals.size() != jointCount) {
-    if (error) *error = "ragdoll: the piece has no skin or the pose does not match it";
-    return false;
+    return base::Status::failure(base::StatusCode::InvalidArgument,
+                                 "ragdoll: the piece has no skin or the pose does not match it");
   }
   const std::vector<BoneFit> fits = fitBones(bindPiece, posed, keptJoints, skeleton, globals);
   double totalInfluence = 0.0;
@@ -325,8 +324,8 @@ bool planRagdoll(const geometry::MeshData& bindPiece, std::span<const glm::vec3>
     out.bones.push_back(bone);
   }
   if (out.bones.empty()) {
-    if (error) *error = "ragdoll: no bone of the piece has enough vertices for a capsule";
-    return false;
+    return base::Status::failure(base::StatusCode::InvalidArgument,
+                                 "ragdoll: no bone of the piece has enough vertices for a capsule");
   }
   out.anchor = 0;
   for (size_t b = 1; b < out.bones.size(); ++b)
@@ -345,7 +344,7 @@ bool planRagdoll(const geometry::MeshData& bindPiece, std::span<const glm::vec3>
     out.carrier[j] = uint16_t(bone);
     out.carried[j] = glm::mat4(glm::inverse(boneMatrix(out.bones[size_t(bone)])) * globals[j]);
   }
-  return true;
+  return {};
 }
 
 bool createRagdoll(physics::PhysicsWorld& physics, const RagdollSpec& spec, const RagdollDef& def, Ragdoll& out) {

@@ -101,18 +101,19 @@ void posedJointGlobals(const anim::Skeleton& skeleton, std::span<const glm::mat4
 // from the posed mesh's volume times `density`, a convex-hull collider of the posed mesh, the body
 // origin at the posed centre of mass (meshOffset shifted to match). Kinematic: the body keeps the
 // entity's rotation and is moved by the game (setBodyTransform each tick), pushing what it walks
-// into; its MassInfo still holds the mass that its pieces share. Returns false with a reason.
-bool makeSkinnedBody(SplitWorld& w, ecs::Entity e, double density, bool kinematic, std::string* error);
+// into; its MassInfo still holds the mass that its pieces share. InvalidArgument with a reason when
+// the entity has no skinned mesh, the pose no volume, or the bridge refuses the hull or the body.
+base::Status makeSkinnedBody(SplitWorld& w, ecs::Entity e, double density, bool kinematic);
 
 // Plans the ragdoll of one skinned piece (pure: no physics). `bindPiece` is the piece in bind space
 // with skin, `posed` the same vertices in world space (the pose at the cut), `keptJoints` the joints
 // it uses (SplitPiece::joints), `globals` the world transforms of every skeleton joint in that pose.
 // Bones get capsules fitted to the vertices each joint dominates and a share of `mass` by vertex
 // influence (shares sum to `mass`); joints join each bone to its nearest ancestor bone (hinges at
-// elbows and knees). Returns false if no bone has enough vertices for a capsule.
-bool planRagdoll(const geometry::MeshData& bindPiece, std::span<const glm::vec3> posed,
-                 std::span<const uint16_t> keptJoints, const anim::Skeleton& skeleton,
-                 std::span<const glm::dmat4> globals, double mass, RagdollSpec& out, std::string* error);
+// elbows and knees). InvalidArgument if no bone has enough vertices for a capsule.
+base::Status planRagdoll(const geometry::MeshData& bindPiece, std::span<const glm::vec3> posed,
+                         std::span<const uint16_t> keptJoints, const anim::Skeleton& skeleton,
+                         std::span<const glm::dmat4> globals, double mass, RagdollSpec& out);
 
 // Where and how a planned ragdoll (RagdollSpec) is made at commit. Units: metres, seconds, radians.
 struct RagdollDef {

@@ -40,7 +40,7 @@ geometry::MeshData extractPart(const geometry::MeshData& piece, std::span<const 
   geometry::MeshData out;
   if (triangles.empty()) return out;
   geometry::MeshContainer container;
-  if (container.setMesh(piece) != geometry::SplitStatus::Ok) return out;
+  if (!container.setMesh(piece).ok()) return out;
   container.extractTriangles(triangles, out);
   return out;
 }
@@ -48,30 +48,28 @@ geometry::MeshData extractPart(const geometry::MeshData& piece, std::span<const 
 // Sets the container up for the job: the shared mesh (with its weld when known) or the merged
 // hierarchy, then the cut space (model matrix, or the pose). Returns false with out.message.
 bool setUpContainer(const SplitJob& job, const geometry::MeshData* merged, SplitComputeScratch& s, SplitOutcome& out) {
-  std::string message;
-  geometry::SplitStatus set = geometry::SplitStatus::Ok;
+  geometry::MeshStatus set;
   if (merged) {
-    set = s.container.setMesh(*merged, &message);
+    set = s.container.setMesh(*merged);
   } else {
-    set = job.weld ? s.container.setMesh(job.mesh, job.weld.get(), &message)
-                   : geometry::SplitStatus::InvalidInput;
-    if (set != geometry::SplitStatus::Ok) {  // no weld, or a stale one: weld anew and hand it back
-      set = s.container.setMesh(job.mesh, nullptr, &message);
-      if (set == geometry::SplitStatus::Ok) {
+    if (job.weld) set = s.container.setMesh(job.mesh, job.weld.get());
+    if (!job.weld || !set.ok()) {  // no weld, or a stale one: weld anew and hand it back
+      set = s.container.setMesh(job.mesh, nullptr);
+      if (set.ok()) {
         auto weld = std::make_shared<geometry::MeshWeld>();
         s.container.copyWeld(*weld);
         out.sourceWeld = std::move(weld);
       }
     }
   }
-  if (set == geometry::SplitStatus::Ok && job.skinned()) {
-    set = s.container.setSkinningPose(job.jointMatrices, glm::mat4(job.model), &message);
-  } else if (set == geometry::SplitStatus::Ok) {
+  if (set.ok() && job.skinned()) {
+    set = s.container.setSkinningPose(job.jointMatrices, glm::mat4(job.model));
+  } else if (set.ok()) {
     s.container.setTransform(glm::mat4(job.model));
   }
-  if (set == geometry::SplitStatus::Ok) return true;
+  if (set.ok()) return true;
   out.status = geometry::SplitStatus::InvalidInput;
-  out.message = message;
+  out.message = std::move(set.message);
   return false;
 }
 
@@ -92,9 +90,9 @@ struct PieceContext {
 void planRagdollPiece(const PieceContext& c, const geometry::SplitPiece& piece, const geometry::MeshData& posed,
                       PieceSpec& spec) {
   const std::vector<glm::vec3> world = transformedPoints(posed, c.job.model);
-  std::string reason;
   if (!planRagdoll(piece.mesh, world, piece.joints, c.job.skin->skeleton, c.globals, std::max(spec.mass, 1e-6),
-                   spec.ragdoll, &reason)) {
+                   spec.ragdoll)
+           .ok()) {
     spec.kind = PieceKind::KeepAnimating;  // too few vertices for any bone
     return;
   }
@@ -413,7 +411,10 @@ geometry::SplitStatus shatterInto(const SplitJob& job, SplitComputeScratch& s, s
     bakeSkin(s.container.mesh(), job.jointMatrices, posed);
     geometry::MeshWeld weld;
     s.container.copyWeld(weld);
-    if (baked.setMesh(posed, weld, &message) != geometry::SplitStatus::Ok) return geometry::SplitStatus::InvalidInput;
+    if (geometry::MeshStatus set = baked.setMesh(posed, weld); !set.ok()) {
+      message = std::move(set.message);
+      return set.code;
+    }
     baked.setTransform(glm::mat4(job.model));
     source = &baked;
   }

@@ -221,16 +221,17 @@ ecs::Entity createSplitter(SplitWorld& w, const std::string& name, const physics
   return e;
 }
 
-physics::ShapeId createPlannedShape(physics::PhysicsWorld& physics, const std::vector<HullSpec>& hulls,
-                                    const std::vector<glm::vec3>& concavePositions,
-                                    const std::vector<uint32_t>& concaveIndices, std::string* reason) {
+physics::Result<physics::ShapeId> createPlannedShape(physics::PhysicsWorld& physics,
+                                                     const std::vector<HullSpec>& hulls,
+                                                     const std::vector<glm::vec3>& concavePositions,
+                                                     const std::vector<uint32_t>& concaveIndices) {
   if (!concavePositions.empty()) {
     auto r = physics.createShape(physics::ShapeDef::concaveMesh(concavePositions, concaveIndices));
-    if (r.ok()) return r.value();
+    if (r.ok()) return r;
   }
   if (hulls.empty()) {
-    if (reason) *reason = "no collider part holds any volume";
-    return {};
+    return physics::Result<physics::ShapeId>::failure(physics::PhysicsStatus::DegenerateShape,
+                                                      "no collider part holds any volume");
   }
   physics::ShapeDef def;
   if (hulls.size() == 1) {
@@ -244,10 +245,7 @@ physics::ShapeId createPlannedShape(physics::PhysicsWorld& physics, const std::v
     def = physics::ShapeDef::compound(std::move(parts));
   }
   def.maxHullVertices = 48;  // parts are small: a coarse hull each keeps contacts cheap
-  auto r = physics.createShape(def);
-  if (r.ok()) return r.value();
-  if (reason) *reason = r.reason();
-  return {};
+  return physics.createShape(def);
 }
 
 namespace {
@@ -311,16 +309,16 @@ ecs::Transform toTransform(const glm::dmat4& m) {
 
 }  // namespace
 
-bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode collider,
-                     std::string* error, SplitSystem* splits) {
+base::Status makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode collider,
+                             SplitSystem* splits) {
+  auto refuse = [](std::string reason) {
+    return base::Status::failure(base::StatusCode::InvalidArgument, std::move(reason));
+  };
   auto* t = w.world.tryGet<ecs::Transform>(e);
   std::vector<HierarchyPartData> parts;
   const bool hierarchy = t && gatherParts(w.world, e, parts);
   auto* mr = w.world.tryGet<MeshRenderer>(e);
-  if ((!hierarchy && (!mr || !mr->source)) || !t) {
-    if (error) *error = "entity has no mesh or transform";
-    return false;
-  }
+  if ((!hierarchy && (!mr || !mr->source)) || !t) return refuse("entity has no mesh or transform");
   // A parent with meshes below it: one body for the whole subtree, from the merged meshes.
   MergedParts merged;
   if (hierarchy) merged = mergeHierarchyParts(parts);
@@ -328,10 +326,7 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
   const glm::dmat4 oldLocal(ecs::localMatrix(*t));
   const glm::dmat4 model = hierarchy ? oldLocal : oldLocal * glm::dmat4(mr->meshOffset);
   const geometry::MassProperties props = geometry::computeMassProperties(source, model);
-  if (!(props.volume > 0.0)) {
-    if (error) *error = "mesh encloses no volume";
-    return false;
-  }
+  if (!(props.volume > 0.0)) return refuse("mesh encloses no volume");
   const double mass = density * props.volume;
   const BodyFrame frame = bodyFrameFor(props, mass, model);
   // The collider parts (mesh space): the cache's for a shared authored mesh, else planned here.
@@ -339,13 +334,9 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
   if (splits && !hierarchy && (collider == ColliderMode::Auto || collider == ColliderMode::Compound)) carried = splits->colliderParts(mr->source, collider);
   auto splitter = geometry::makeConcaveSplitter();
   const ColliderPlan plan = planCollider(source, frame.meshOffset, collider, false, carried, *splitter);
-  std::string reason;
-  const physics::ShapeId shape =
-      createPlannedShape(w.physics, plan.hulls, plan.concavePositions, plan.concaveIndices, &reason);
-  if (shape.isNull()) {
-    if (error) *error = "no collider: " + reason;
-    return false;
-  }
+  const auto planned = createPlannedShape(w.physics, plan.hulls, plan.concavePositions, plan.concaveIndices);
+  if (!planned.ok()) return refuse("no collider: " + planned.message());
+  const physics::ShapeId shape = planned.value();
   physics::BodyDef def;
   def.shape = shape;
   def.mass = float(mass);
@@ -356,8 +347,7 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
   auto body = w.physics.createBody(def);
   if (!body.ok()) {
     w.physics.destroyShape(shape);
-    if (error) *error = body.reason();
-    return false;
+    return refuse(body.message());
   }
   if (hierarchy) {
     // The entity moves to the body frame; its own mesh and its children keep their world placement.
@@ -375,7 +365,7 @@ bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode 
       w.world.add<ColliderParts>(e, ColliderParts{plan.parts});
   }
   placeOnBody(w, e, def, body.value(), shape, mass, props, density);
-  return true;
+  return {};
 }
 
 void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
@@ -825,8 +815,8 @@ void addHierarchyChildren(CommitContext& c, const PieceSpec& spec, ecs::Entity e
     if (c.w.renderer) {
       const double uploadStart = nowMilliseconds();
       renderer.gpu = childSpec.packed && childSpec.packedFrom == childSpec.mesh.get()
-                         ? c.w.renderer->uploadPacked(*childSpec.packed)
-                         : c.w.renderer->uploadMesh(*childSpec.mesh);
+                         ? c.w.renderer->uploadPacked(*childSpec.packed).valueOr({})
+                         : c.w.renderer->uploadMesh(*childSpec.mesh).valueOr({});
       c.ev.uploadMilliseconds += nowMilliseconds() - uploadStart;
     }
     c.commands.add<ecs::Transform>(child, ecs::Transform{});
@@ -893,9 +883,8 @@ float smallPieceCcdRadius(const PieceSpec& spec) {
 RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs::Entity e,
                                        const ecs::Transform& transform, const glm::dvec3& velocity,
                                        const glm::dvec3& angularVelocity) {
-  std::string reason;
   const physics::ShapeId shape =
-      createPlannedShape(w.physics, spec.hulls, spec.concavePositions, spec.concaveIndices, &reason);
+      createPlannedShape(w.physics, spec.hulls, spec.concavePositions, spec.concaveIndices).valueOr({});
   if (shape.isNull()) return {};  // a flat sliver: no hull can hold it
   physics::BodyDef def;
   def.shape = shape;
@@ -945,8 +934,8 @@ void SplitSystem::commitPiece(CommitContext& c, PieceSpec& spec) {
   c.ev.shapeMilliseconds += nowMilliseconds() - shapeStart;
   if (c.w.renderer) {
     const double uploadStart = nowMilliseconds();
-    renderer.gpu = spec.packed && spec.packedFrom == spec.mesh.get() ? c.w.renderer->uploadPacked(*spec.packed)
-                                                                     : c.w.renderer->uploadMesh(*spec.mesh);
+    const bool packed = spec.packed && spec.packedFrom == spec.mesh.get();
+    renderer.gpu = (packed ? c.w.renderer->uploadPacked(*spec.packed) : c.w.renderer->uploadMesh(*spec.mesh)).valueOr({});
     c.ev.uploadMilliseconds += nowMilliseconds() - uploadStart;
   }
   addPieceComponents(c, spec, e, transform, std::move(renderer), velocity);

@@ -190,17 +190,20 @@ ecs::Entity createSplitter(SplitWorld& w, const std::string& name, const physics
 
 // Creates the rigid body and collider for an authored object with a MeshRenderer, from its mesh's
 // exact mass properties (density from its Splitable, or `density`). Sets RigidBody, MassInfo and the
-// mesh offset so the body origin is the centre of mass. Returns false with a reason on failure.
+// mesh offset so the body origin is the centre of mass. InvalidArgument with a reason on failure
+// (no mesh, no volume, no collider, a body the bridge refuses).
 // With `splits`, the collider parts come from its cache (shared by every instance of the mesh) and
 // the entity keeps them (ColliderParts) for its cuts.
-bool makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode collider,
-                     std::string* error, SplitSystem* splits = nullptr);
+base::Status makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode collider,
+                             SplitSystem* splits = nullptr);
 
 // The physics shape of a planned collider (hulls: one prepared hull or a compound of them; or the
-// concave mesh). Null with a reason when none can be built.
-physics::ShapeId createPlannedShape(physics::PhysicsWorld& physics, const std::vector<HullSpec>& hulls,
-                                    const std::vector<glm::vec3>& concavePositions,
-                                    const std::vector<uint32_t>& concaveIndices, std::string* reason);
+// concave mesh). The bridge's status with the reason when none can be built (DegenerateShape when
+// there is no part at all).
+physics::Result<physics::ShapeId> createPlannedShape(physics::PhysicsWorld& physics,
+                                                     const std::vector<HullSpec>& hulls,
+                                                     const std::vector<glm::vec3>& concavePositions,
+                                                     const std::vector<uint32_t>& concaveIndices);
 
 // Puts an authored entity on the body just made for it: its Transform moves to the body's pose
 // (unit scale) and it gets RigidBody and MassInfo (mass, volume, density, closed from `props`).

@@ -11,7 +11,7 @@ ecs::Entity createSplitableObject(SplitWorld& w, SplitableObject object) {
   world.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(object.transform)});
   MeshRenderer mr;
   mr.source = std::move(object.mesh);
-  if (w.renderer && mr.source) mr.gpu = w.renderer->uploadMesh(*mr.source);
+  if (w.renderer && mr.source) mr.gpu = w.renderer->uploadMesh(*mr.source).valueOr({});
   mr.materials = std::move(object.materials);
   world.add<MeshRenderer>(e, std::move(mr));
   world.add<Splitable>(e, std::move(object.splitable));

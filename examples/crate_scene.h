@@ -36,8 +36,7 @@ struct CrateScene {
     app::AppOptions options;
     options.headless = true;
     options.ticks = ticks;
-    std::string error;
-    if (!app.init(options, "example", &error)) return fail(error);
+    if (const base::Status started = app.init(options, "example"); !started.ok()) return fail(started.message);
     sim = std::make_unique<components::Simulation>(app.world(), components::SplitBudgetSettings{}, &app.renderer());
     components::installSplitting(app, *sim, std::move(hooks));
     return addFloor() && addCrate();
@@ -62,7 +61,7 @@ struct CrateScene {
  private:
   bool addFloor() {
     auto shape = sim->physics().createShape(physics::ShapeDef::box(glm::vec3(10.f, 0.5f, 10.f)));
-    if (!shape.ok()) return fail(shape.reason());
+    if (!shape.ok()) return fail(shape.message());
     physics::BodyDef def;
     def.shape = shape.value();
     def.position = glm::vec3(0.f, -0.5f, 0.f);  // its top at y = 0
@@ -80,10 +79,9 @@ struct CrateScene {
     object.splitable.capMaterialId = 1;
     components::SplitWorld sw = sim->splitWorld();
     crate = components::createSplitableObject(sw, object);
-    std::string error;
-    if (!components::makeDynamicBody(sw, crate, object.splitable.density, object.splitable.collider, &error,
-                                     &sim->splits()))
-      return fail(error);
+    const base::Status made =
+        components::makeDynamicBody(sw, crate, object.splitable.density, object.splitable.collider, &sim->splits());
+    if (!made.ok()) return fail(made.message);
     return true;
   }
 };

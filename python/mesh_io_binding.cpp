@@ -54,7 +54,7 @@ py::tuple readMesh(const std::filesystem::path& file) {
     py::gil_scoped_release release;
     loaded = assets::loadMesh(path);
   }
-  if (!loaded.ok) throw py::value_error(loaded.error);
+  if (!loaded.ok()) throw py::value_error(loaded.message);
   const geometry::MeshData& mesh = loaded.mesh;
   return py::make_tuple(fromVec3Rows(mesh.positions, false), fromTriangleList(mesh.indices),
                         fromVec3Rows(mesh.normals, true), fromVec2Rows(mesh.uv0, true));
@@ -84,7 +84,7 @@ void writeMesh(const std::filesystem::path& file, py::handle vertices, py::handl
     written = format == assets::MeshFormat::Obj ? assets::writeObj(path, mesh, options)
                                                 : assets::writeGlb(path, mesh, options);
   }
-  if (!written.ok) raiseOsError(written.error);
+  if (!written.ok()) raiseOsError(written.message);
 }
 
 constexpr const char* kReadDoc = R"doc(read_mesh(path) -> (vertices, faces, normals, uvs)

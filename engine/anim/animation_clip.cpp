@@ -75,12 +75,12 @@ void AnimationClip::updateDuration() {
   }
 }
 
-bool validateClip(const AnimationClip& clip, size_t jointCount, std::string* reason) {
+base::Status validateClip(const AnimationClip& clip, size_t jointCount) {
   for (size_t c = 0; c < clip.channels.size(); ++c) {
     const Channel& channel = clip.channels[c];
     auto fail = [&](const std::string& why) {
-      if (reason) *reason = "clip '" + clip.name + "' channel " + std::to_string(c) + ": " + why;
-      return false;
+      return base::Status::failure(base::StatusCode::InvalidArgument,
+                                   "clip '" + clip.name + "' channel " + std::to_string(c) + ": " + why);
     };
     if (channel.joint >= jointCount)
       return fail("joint " + std::to_string(channel.joint) + " is not in the skeleton");
@@ -103,7 +103,7 @@ bool validateClip(const AnimationClip& clip, size_t jointCount, std::string* rea
       }
     }
   }
-  return true;
+  return {};
 }
 
 float clipTime(const AnimationClip& clip, float time, bool loop) {

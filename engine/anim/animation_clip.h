@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "cleave/anim/skeleton.h"
+#include "cleave/base/status.h"
 
 namespace cleave::anim {
 
@@ -47,9 +48,9 @@ struct AnimationClip {
   void updateDuration();
 };
 
-// True when every channel has keys, increasing finite times, the right number of finite values
-// and a joint inside `jointCount`; otherwise false with a reason naming the channel.
-bool validateClip(const AnimationClip& clip, size_t jointCount, std::string* reason = nullptr);
+// Ok when every channel has keys, increasing finite times, the right number of finite values and a
+// joint inside `jointCount`; otherwise InvalidArgument with a reason naming the channel.
+base::Status validateClip(const AnimationClip& clip, size_t jointCount);
 
 // The clip time that `time` maps to: wrapped into [0, duration) when looping, else clamped.
 float clipTime(const AnimationClip& clip, float time, bool loop);

@@ -25,14 +25,15 @@ int32_t Skeleton::find(const std::string& name) const {
   return -1;
 }
 
-bool validateSkeleton(const Skeleton& skeleton, std::string* reason) {
+base::Status validateSkeleton(const Skeleton& skeleton) {
+  auto fail = [](std::string reason) {
+    return base::Status::failure(base::StatusCode::InvalidArgument, std::move(reason));
+  };
   const size_t n = skeleton.joints.size();
   for (size_t j = 0; j < n; ++j) {
     const int32_t parent = skeleton.joints[j].parent;
     if (parent < -1 || parent >= static_cast<int32_t>(n) || parent == static_cast<int32_t>(j)) {
-      if (reason)
-        *reason = "joint " + std::to_string(j) + " has an invalid parent " + std::to_string(parent);
-      return false;
+      return fail("joint " + std::to_string(j) + " has an invalid parent " + std::to_string(parent));
     }
   }
   // A chain longer than n steps must revisit a joint.
@@ -44,13 +45,10 @@ bool validateSkeleton(const Skeleton& skeleton, std::string* reason) {
       ++steps;
     }
     if (at >= 0) {
-      if (reason)
-        *reason = "joint " + std::to_string(j) + " ('" + skeleton.joints[j].name +
-                  "') is in a parent cycle";
-      return false;
+      return fail("joint " + std::to_string(j) + " ('" + skeleton.joints[j].name + "') is in a parent cycle");
     }
   }
-  return true;
+  return {};
 }
 
 void restPose(const Skeleton& skeleton, Pose& out) {

@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "cleave/base/status.h"
+
 namespace cleave::anim {
 
 // Translation, rotation, scale: matrix = T * R * S.
@@ -52,9 +54,9 @@ struct Skeleton {
 // A local transform per joint, indexed like Skeleton::joints.
 using Pose = std::vector<Transform>;
 
-// True when every parent index is in range and the parent chains have no cycle; otherwise false
-// with a reason naming the joint.
-bool validateSkeleton(const Skeleton& skeleton, std::string* reason = nullptr);
+// Ok when every parent index is in range and the parent chains have no cycle; otherwise
+// InvalidArgument with a reason naming the joint.
+base::Status validateSkeleton(const Skeleton& skeleton);
 
 // The rest pose (each joint's `rest`).
 void restPose(const Skeleton& skeleton, Pose& out);

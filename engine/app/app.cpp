@@ -42,23 +42,20 @@ App::~App() {
   platform_.reset();
 }
 
-bool App::init(const AppOptions& options, const std::string& title, std::string* error) {
+base::Status App::init(const AppOptions& options, const std::string& title) {
+  auto ioError = [](std::string reason) {
+    return base::Status::failure(base::StatusCode::IoError, std::move(reason));
+  };
   options_ = options;
   if (!options_.replayPath.empty()) {
     auto loaded = input::loadReplay(options_.replayPath);
-    if (!loaded.ok) {
-      if (error) *error = loaded.error;
-      return false;
-    }
+    if (!loaded.ok()) return loaded;
     replay_ = std::make_unique<input::ReplaySource>(std::move(loaded.replay));
   }
   if (!options_.recordPath.empty()) {
     // Fail now, not after a long session, when the file cannot be written.
     std::ofstream probe(options_.recordPath, std::ios::app);
-    if (!probe) {
-      if (error) *error = options_.recordPath + ": cannot open the replay file for writing";
-      return false;
-    }
+    if (!probe) return ioError(options_.recordPath + ": cannot open the replay file for writing");
     // A recording of a replayed run names the same scene and seed as the replay.
     std::string scene = options_.sceneName;
     uint64_t seed = options_.seed;
@@ -68,45 +65,37 @@ bool App::init(const AppOptions& options, const std::string& title, std::string*
     }
     recorder_ = std::make_unique<input::ReplayRecorder>(scene, seed);
   }
-  std::string platformError;
   if (!options_.headless) {
-    platform_ = createWindowPlatform(options_.width, options_.height, title, &platformError);
-    if (!platform_) {
-      log::warning("cleave", "no window (%s); running headless", platformError.c_str());
+    auto window = createWindowPlatform(options_.width, options_.height, title);
+    if (window.ok()) {
+      platform_ = std::move(window).value();
+    } else {
+      log::warning("cleave", "no window (%s); running headless", window.message().c_str());
       options_.headless = true;
     }
   }
   if (!platform_) {
-    platform_ = createHeadlessPlatform(options_.width, options_.height, &platformError);
-    if (!platform_) {
-      if (error) *error = "no OpenGL context: " + platformError;
-      return false;
-    }
+    auto headless = createHeadlessPlatform(options_.width, options_.height);
+    if (!headless.ok()) return base::Status::failure(headless.code(), "no OpenGL context: " + headless.message());
+    platform_ = std::move(headless).value();
   }
   renderer_ = std::make_unique<render::Renderer>();
-  std::string renderError;
-  if (!renderer_->init(&renderError)) {
-    if (error) *error = "renderer: " + renderError;
-    return false;
-  }
+  if (const base::Status started = renderer_->init(); !started.ok())
+    return base::Status::failure(started.code, "renderer: " + started.message);
   applyRenderScale();
   if (!options_.dumpStatePath.empty()) {
     dumpFile_ = std::make_unique<std::ofstream>(options_.dumpStatePath);
-    if (!*dumpFile_) {
-      if (error) *error = options_.dumpStatePath + ": cannot open the state dump for writing";
-      return false;
-    }
+    if (!*dumpFile_) return ioError(options_.dumpStatePath + ": cannot open the state dump for writing");
   }
   if (!options_.screenshotDir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(options_.screenshotDir, ec);
     if (ec) {
-      if (error) *error = options_.screenshotDir + ": cannot create the screenshot directory (" +
-                          ec.message() + ")";
-      return false;
+      return ioError(options_.screenshotDir + ": cannot create the screenshot directory (" + ec.message() +
+                     ")");
     }
   }
-  return true;
+  return {};
 }
 
 // An explicit --render-scale is used as given. Auto: a window on a software rasteriser draws the
@@ -139,18 +128,18 @@ void App::addSystem(Phase phase, std::string name, System system) {
 
 void App::setUi(std::function<void(TickContext&)> build) { uiBuild_ = std::move(build); }
 
-bool App::setUiOpen(bool open, std::string* error) {
+base::Status App::setUiOpen(bool open) {
   if (!open) {
     uiOpen_ = false;
-    return true;
+    return {};
   }
   if (!ui_) {
     auto ui = std::make_unique<UiLayer>();
-    if (!ui->start(*platform_, platform_->frameSize(), error)) return false;
+    if (base::Status started = ui->start(*platform_, platform_->frameSize()); !started.ok()) return started;
     ui_ = std::move(ui);
   }
   uiOpen_ = true;
-  return true;
+  return {};
 }
 
 // Presses and scrolls over the UI, and keys typed into it, stay with it. Releases and moves always
@@ -242,13 +231,13 @@ void App::renderFrame(TickContext& context) {
   framePending_ = true;
 }
 
-bool App::writeScreenshot(const std::string& path, std::string* error) {
+base::Status App::writeScreenshot(const std::string& path) {
   std::vector<uint8_t> pixels;
   int w = 0, h = 0;
   renderer_->readPixels(pixels, w, h);
-  if (!render::writePng(path, w, h, pixels, error)) return false;
-  screenshots_.push_back(path);
-  return true;
+  base::Status written = render::writePng(path, w, h, pixels);
+  if (written.ok()) screenshots_.push_back(path);
+  return written;
 }
 
 // Fixed ticks at kTickSeconds, as many per frame as the wall clock needs (so a slow frame does not
@@ -314,9 +303,8 @@ int App::run() {
         char name[64];
         std::snprintf(name, sizeof(name), "frame_%06llu.png", static_cast<unsigned long long>(t));
         const std::string path = (std::filesystem::path(options_.screenshotDir) / name).string();
-        std::string error;
-        if (!writeScreenshot(path, &error)) {
-          log::error("cleave", "%s", error.c_str());
+        if (const base::Status written = writeScreenshot(path); !written.ok()) {
+          log::error("cleave", "%s", written.message.c_str());
           return 1;
         }
       }
@@ -326,8 +314,8 @@ int App::run() {
   }
   if (recorder_) {
     const input::ReplaySaveResult saved = input::saveReplay(options_.recordPath, recorder_->replay());
-    if (!saved.ok) {
-      log::error("cleave", "%s", saved.error.c_str());
+    if (!saved.ok()) {
+      log::error("cleave", "%s", saved.message.c_str());
       return 1;
     }
     log::info("", "replay: %s", options_.recordPath.c_str());

@@ -24,6 +24,7 @@
 #include "cleave/app/phase.h"
 #include "cleave/app/platform.h"
 #include "cleave/app/ui_layer.h"
+#include "cleave/base/status.h"
 #include "cleave/ecs/world.h"
 #include "cleave/input/input_state.h"
 #include "cleave/input/input_source.h"
@@ -64,7 +65,7 @@ class App {
   // Creates the platform (window unless options.headless; falls back to headless if no display is
   // available), the renderer, the input source (replay or live) and the recorder. Errors name the
   // file and reason (a corrupt replay, an unwritable record file).
-  bool init(const AppOptions& options, const std::string& title, std::string* error);
+  base::Status init(const AppOptions& options, const std::string& title);
 
   void addSystem(Phase phase, std::string name, System system);
   void setStateDumpExtension(StateDumpExtension extension);
@@ -79,9 +80,9 @@ class App {
   // (and keys while one of its text fields is active; F1-F12 always pass) go to it, not to the
   // game: they are neither seen by the game nor recorded. What the UI changes is not recorded.
   void setUi(std::function<void(TickContext&)> build);
-  // Opens (starting ImGui on first use) or closes the UI. False with a reason when it cannot open:
-  // the engine was built without Dear ImGui, or its GL backend did not start.
-  bool setUiOpen(bool open, std::string* error = nullptr);
+  // Opens (starting ImGui on first use) or closes the UI. Unavailable with a reason when it cannot
+  // open: the engine was built without Dear ImGui, or its GL backend did not start.
+  base::Status setUiOpen(bool open);
   bool uiOpen() const { return uiOpen_; }
   static bool uiBuilt() { return UiLayer::built(); }
 
@@ -106,7 +107,7 @@ class App {
   // position and rotation bits. Equal hashes mean equal states, bit for bit.
   uint64_t stateHash() const;
   // Takes a screenshot of the last rendered frame into `path`.
-  bool writeScreenshot(const std::string& path, std::string* error);
+  base::Status writeScreenshot(const std::string& path);
 
  private:
   bool runTick(bool render);

@@ -139,8 +139,7 @@ ParseResult parseAppOptions(int argc, const char* const* argv, AppOptions& out,
                             const std::vector<std::pair<std::string, int>>& gameOptions) {
   ParseResult result;
   auto fail = [&](const std::string& message) {
-    result.ok = false;
-    result.error = message;
+    result.setFailure(base::StatusCode::InvalidArgument, message);
     return result;
   };
   for (int i = 1; i < argc; ++i) {

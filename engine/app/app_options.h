@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "cleave/base/status.h"
+
 namespace cleave::app {
 
 struct AppOptions {
@@ -35,11 +37,10 @@ struct AppOptions {
   std::vector<std::string> extra;  // arguments the engine does not know, for the game to read
 };
 
-struct ParseResult {
-  bool ok = true;
+// A Status (InvalidArgument with a message naming the option and the reason) and what was asked.
+struct ParseResult : base::Status {
   bool helpRequested = false;
   bool versionRequested = false;  // --version: print the name and kVersion (cleave_version.h), exit
-  std::string error;  // names the option and the reason
 };
 
 // Parses argv[1..argc). Unknown options starting with "--" that the caller lists in `gameOptions`

@@ -10,8 +10,8 @@ namespace cleave::app {
 std::optional<int> startApp(int argc, const char* const* argv, const AppStart& start, AppOptions& options, App& app) {
   options.sceneName = start.scene;
   const ParseResult parsed = parseAppOptions(argc, argv, options, start.gameOptions);
-  if (!parsed.ok) {
-    std::fprintf(stderr, "%s: %s\n", start.program, parsed.error.c_str());
+  if (!parsed.ok()) {
+    std::fprintf(stderr, "%s: %s\n", start.program, parsed.message.c_str());
     return 2;
   }
   if (parsed.versionRequested) {
@@ -22,9 +22,8 @@ std::optional<int> startApp(int argc, const char* const* argv, const AppStart& s
     std::printf("usage: %s [options]\n\n%s%s", start.program, appOptionsUsage().c_str(), start.gameHelp.c_str());
     return 0;
   }
-  std::string error;
-  if (!app.init(options, start.title, &error)) {
-    std::fprintf(stderr, "%s: %s\n", start.program, error.c_str());
+  if (const base::Status started = app.init(options, start.title); !started.ok()) {
+    std::fprintf(stderr, "%s: %s\n", start.program, started.message.c_str());
     return 1;
   }
   return std::nullopt;

@@ -35,10 +35,10 @@ class HeadlessPlatform final : public Platform {
 
 }  // namespace
 
-std::unique_ptr<Platform> createHeadlessPlatform(int width, int height, std::string* error) {
-  auto context = render::HeadlessGlContext::create(render::HeadlessApi::Auto, error);
-  if (!context) return nullptr;
-  return std::make_unique<HeadlessPlatform>(std::move(context), width, height);
+base::Expected<std::unique_ptr<Platform>> createHeadlessPlatform(int width, int height) {
+  auto context = render::HeadlessGlContext::create(render::HeadlessApi::Auto);
+  if (!context.ok()) return context.status();
+  return std::unique_ptr<Platform>(std::make_unique<HeadlessPlatform>(std::move(context).value(), width, height));
 }
 
 }  // namespace cleave::app

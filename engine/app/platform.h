@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "cleave/base/status.h"
 #include "cleave/input/input_event.h"
 
 namespace cleave::app {
@@ -45,11 +46,10 @@ class Platform {
   virtual void detachUiInput() {}
 };
 
-// A GLFW window with an OpenGL 3.3 core context, loaded for the renderer. Returns nullptr with a
-// reason when no display is available or the context cannot be created.
-std::unique_ptr<Platform> createWindowPlatform(int width, int height, const std::string& title,
-                                               std::string* error);
+// A GLFW window with an OpenGL 3.3 core context, loaded for the renderer. Unavailable with a reason
+// when no display is available or the context cannot be created.
+base::Expected<std::unique_ptr<Platform>> createWindowPlatform(int width, int height, const std::string& title);
 // An offscreen GL context of the given frame size.
-std::unique_ptr<Platform> createHeadlessPlatform(int width, int height, std::string* error);
+base::Expected<std::unique_ptr<Platform>> createHeadlessPlatform(int width, int height);
 
 }  // namespace cleave::app

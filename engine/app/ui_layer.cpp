@@ -24,8 +24,8 @@ UiLayer::~UiLayer() {
   ImGui::DestroyContext(context_);
 }
 
-bool UiLayer::start(Platform& platform, glm::ivec2 frameSize, std::string* error) {
-  if (context_) return true;
+base::Status UiLayer::start(Platform& platform, glm::ivec2 frameSize) {
+  if (context_) return {};
   context_ = ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;
@@ -40,14 +40,14 @@ bool UiLayer::start(Platform& platform, glm::ivec2 frameSize, std::string* error
   ImGui::GetStyle().WindowRounding = 0.f;
   platform_ = &platform;
   renderer_ = std::make_unique<render::UiRenderer>();
-  if (!renderer_->init(error)) {
+  if (base::Status started = renderer_->init(); !started.ok()) {
     renderer_.reset();
     ImGui::DestroyContext(context_);
     context_ = nullptr;
-    return false;
+    return started;
   }
   platformInput_ = platform.attachUiInput();
-  return true;
+  return {};
 }
 
 void UiLayer::newFrame(glm::ivec2 frameSize, double deltaSeconds) {
@@ -88,8 +88,8 @@ bool UiLayer::wantsKeyboard() const { return context_ && ImGui::GetIO().WantCapt
 
 UiLayer::~UiLayer() = default;
 
-bool UiLayer::start(Platform&, glm::ivec2, std::string* error) {
-  return render::UiRenderer().init(error);  // fails with the reason: not built
+base::Status UiLayer::start(Platform&, glm::ivec2) {
+  return render::UiRenderer().init();  // fails with the reason: not built
 }
 
 void UiLayer::newFrame(glm::ivec2, double) {}

@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "cleave/app/platform.h"
+#include "cleave/base/status.h"
 #include "cleave/render/ui_renderer.h"
 
 struct ImGuiContext;
@@ -38,9 +39,9 @@ class UiLayer {
   // True when the engine was built with Dear ImGui.
   static bool built();
   // Creates the context (font and sizes scaled to the frame: 1 up to 1439 lines, 2 from 1440),
-  // the GL backend and, in a window, the input backend. False with a reason when ImGui is not built
-  // in or a backend cannot start; nothing is left half made then.
-  bool start(Platform& platform, glm::ivec2 frameSize, std::string* error);
+  // the GL backend and, in a window, the input backend. Unavailable with a reason when ImGui is not
+  // built in or a backend cannot start; nothing is left half made then.
+  base::Status start(Platform& platform, glm::ivec2 frameSize);
   bool started() const { return context_ != nullptr; }
 
   // One UI frame: ImGui::NewFrame, `build` (ImGui calls), ImGui::Render, drawn into the renderer's

@@ -160,15 +160,12 @@ class WindowPlatform final : public Platform {
 
 }  // namespace
 
-std::unique_ptr<Platform> createWindowPlatform(int width, int height, const std::string& title,
-                                               std::string* error) {
+base::Expected<std::unique_ptr<Platform>> createWindowPlatform(int width, int height, const std::string& title) {
+  using Result = base::Expected<std::unique_ptr<Platform>>;
   glfwSetErrorCallback([](int code, const char* text) {
     log::warning("glfw", "error 0x%x: %s", code, text);
   });
-  if (!glfwInit()) {
-    if (error) *error = "GLFW could not initialise (no display?)";
-    return nullptr;
-  }
+  if (!glfwInit()) return Result::failure(base::StatusCode::Unavailable, "GLFW could not initialise (no display?)");
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -176,17 +173,17 @@ std::unique_ptr<Platform> createWindowPlatform(int width, int height, const std:
   GLFWwindow* window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
   if (!window) {
     glfwTerminate();
-    if (error) *error = "GLFW could not create an OpenGL 3.3 core window";
-    return nullptr;
+    return Result::failure(base::StatusCode::Unavailable, "GLFW could not create an OpenGL 3.3 core window");
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(1);
-  if (!render::loadGl(reinterpret_cast<render::GlGetProcAddress>(glfwGetProcAddress), error)) {
+  const base::Status gl = render::loadGl(reinterpret_cast<render::GlGetProcAddress>(glfwGetProcAddress));
+  if (!gl.ok()) {
     glfwDestroyWindow(window);
     glfwTerminate();
-    return nullptr;
+    return gl;
   }
-  return std::make_unique<WindowPlatform>(window);
+  return std::unique_ptr<Platform>(std::make_unique<WindowPlatform>(window));
 }
 
 }  // namespace cleave::app

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "cleave/base/status.h"
+
 namespace cleave::assets::detail {
 
 // One accessor's elements in its buffer, after every offset, stride and count was checked.
@@ -42,22 +44,11 @@ std::string oneLine(const std::string& text);
 // Extensions that only change materials or textures: geometry can be read without them.
 bool geometryNeutral(const std::string& extension);
 
-// tinygltf callbacks: skip image decoding; refuse external files (glTF read from memory).
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*);
-bool noFileExists(const std::string&, void*);
-std::string sameFilePath(const std::string& path, void*);
-bool noReadWholeFile(std::vector<unsigned char>*, std::string* err, const std::string& path, void*);
-bool noWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&,
-                      void*);
-
 // tinygltf's parse of a .gltf or .glb held in memory. With no base directory, external files are
-// refused (the callbacks above). `imageUserData` is handed to `imageLoader` with every image.
-// `error` is one line (tinygltf's error, an exception it threw, or a generic reason) and is empty
-// when `loaded`; `warnings` are "<name>: <warning>" lines.
-struct GltfParse {
-  bool loaded = false;
-  std::string error;
+// refused. `imageUserData` is handed to `imageLoader` with every image. A failure (ParseError) has a
+// message of one line (tinygltf's error, an exception it threw, or a generic reason); `warnings` are
+// "<name>: <warning>" lines.
+struct GltfParse : base::Status {
   std::vector<std::string> warnings;
 };
 GltfParse parseGltf(std::span<const uint8_t> bytes, const std::string& name, bool binary,

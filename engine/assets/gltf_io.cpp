@@ -26,6 +26,9 @@ namespace cleave::assets::detail {
 // ------------------------------------------------------------------------------------------------
 // Loading
 
+namespace {
+
+// tinygltf callbacks (their signatures are tinygltf's).
 // Images are irrelevant to geometry: skip decoding them (it is also the costliest part of a bad file).
 bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
                int, void*) {
@@ -43,6 +46,8 @@ bool noWriteWholeFile(std::string* err, const std::string&, const std::vector<un
   if (err != nullptr) *err += "writing is disabled\n";
   return false;
 }
+
+}  // namespace
 
 bool trianglesOfPrimitive(int mode, std::span<const uint32_t> corners, std::vector<uint32_t>& triangles) {
   triangles.clear();
@@ -87,27 +92,27 @@ GltfParse parseGltf(std::span<const uint8_t> bytes, const std::string& name, boo
     loader.SetFsCallbacks(callbacks);
   }
   std::string err, warn;
+  bool loaded = false;
   try {
     const std::string dir = baseDir.value_or("");
     if (binary) {
-      parse.loaded = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                                 static_cast<unsigned int>(bytes.size()), dir);
+      loaded = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()),
+                                           dir);
     } else {
-      parse.loaded = loader.LoadASCIIFromString(&model, &err, &warn,
-                                                reinterpret_cast<const char*>(bytes.data()),
-                                                static_cast<unsigned int>(bytes.size()), dir);
+      loaded = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                          static_cast<unsigned int>(bytes.size()), dir);
     }
   } catch (const std::exception& e) {
-    parse.error = std::string("glTF parse error: ") + e.what();
+    parse.setFailure(base::StatusCode::ParseError, std::string("glTF parse error: ") + e.what());
     return parse;
   } catch (...) {
-    parse.error = "glTF parse error";
+    parse.setFailure(base::StatusCode::ParseError, "glTF parse error");
     return parse;
   }
   if (const std::string w = oneLine(warn); !w.empty()) parse.warnings.push_back(name + ": " + w);
-  if (!parse.loaded) {
-    parse.error = oneLine(err);
-    if (parse.error.empty()) parse.error = "tinygltf could not load the file";
+  if (!loaded) {
+    const std::string reason = oneLine(err);
+    parse.setFailure(base::StatusCode::ParseError, reason.empty() ? "tinygltf could not load the file" : reason);
   }
   return parse;
 }
@@ -528,8 +533,8 @@ MeshReadResult readGltf(std::span<const uint8_t> bytes, const std::string& name,
   if (bytes.size() > UINT32_MAX) return failure(name, "file too large for glTF");
   tinygltf::Model model;
   const GltfParse parse = parseGltf(bytes, name, binary, baseDir, skipImage, nullptr, model);
-  if (!parse.loaded) {
-    MeshReadResult result = failure(name, parse.error);
+  if (!parse.ok()) {
+    MeshReadResult result = failure(name, parse.message);
     result.warnings = parse.warnings;
     return result;
   }
@@ -588,7 +593,7 @@ MeshWriteResult writeGlbToMemory(const geometry::MeshData& mesh, const MeshWrite
   std::vector<geometry::SubMesh> runs;
   std::string reason;
   if (!detail::glbRuns(mesh, runs, reason)) {
-    result.error = "GLB: " + reason;
+    result.setFailure(base::StatusCode::InvalidArgument, "GLB: " + reason);
     return result;
   }
   tinygltf::Model model = detail::newGlbModel();
@@ -596,10 +601,10 @@ MeshWriteResult writeGlbToMemory(const geometry::MeshData& mesh, const MeshWrite
   detail::addMesh(model, mesh, runs, attributes, options, detail::GlbColors::Omit);
   detail::addMeshScene(model, {}, -1);
   if (!detail::serialiseGlb(model, out)) {
-    result.error = "GLB: tinygltf could not serialise the mesh";
+    result.setFailure(base::StatusCode::InvalidArgument, "GLB: tinygltf could not serialise the mesh");
     return result;
   }
-  result.ok = true;
+  result.code = base::StatusCode::Ok;
   return result;
 }
 

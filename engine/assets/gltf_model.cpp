@@ -154,7 +154,7 @@ class Loader {
 
  private:
   bool fail(const std::string& reason) {
-    result_->error = name_ + ": " + reason;
+    result_->setFailure(base::StatusCode::ParseError, name_ + ": " + reason);
     return false;
   }
   void warn(const std::string& text) { result_->warnings.push_back(name_ + ": " + text); }
@@ -453,8 +453,8 @@ class Loader {
         out.skeleton.joints[j].inverseBind = inverseBind[j];
         if (!readJoint(skin, j, jointOf, what, out.skeleton.joints[j])) return false;
       }
-      std::string reason;
-      if (!anim::validateSkeleton(out.skeleton, &reason)) return fail(what + ": " + reason);
+      const base::Status valid = anim::validateSkeleton(out.skeleton);
+      if (!valid.ok()) return fail(what + ": " + valid.message);
       model.skins.push_back(std::move(out));
     }
     return true;
@@ -570,8 +570,8 @@ class Loader {
         }
         if (clip.channels.empty()) continue;
         clip.updateDuration();
-        std::string reason;
-        if (!anim::validateClip(clip, model.skins[s].skeleton.size(), &reason)) return fail(reason);
+        const base::Status valid = anim::validateClip(clip, model.skins[s].skeleton.size());
+        if (!valid.ok()) return fail(valid.message);
         model.skins[s].clips.push_back(std::move(clip));
       }
     }
@@ -829,7 +829,7 @@ class Loader {
 ModelLoadResult failed(const std::string& name, const std::string& reason,
                        std::vector<std::string> warnings = {}) {
   ModelLoadResult result;
-  result.error = name + ": " + reason;
+  result.setFailure(base::StatusCode::ParseError, name + ": " + reason);
   result.warnings = std::move(warnings);
   return result;
 }
@@ -877,18 +877,18 @@ ModelLoadResult readModel(std::span<const uint8_t> bytes, const std::string& nam
   std::vector<EncodedImage> encoded;
   detail::GltfParse parse =
       detail::parseGltf(bytes, name, binary, baseDir, decodeImage, &encoded, gltf);
-  if (!parse.loaded) return failed(name, parse.error, std::move(parse.warnings));
+  if (!parse.ok()) return failed(name, parse.message, std::move(parse.warnings));
   std::vector<std::string> warnings = std::move(parse.warnings);
   ModelLoadResult result;
   result.warnings = std::move(warnings);
   Loader reader(gltf, name, bytes.size(), std::move(encoded));
   if (!reader.run(result)) {
     ModelLoadResult failure;
-    failure.error = std::move(result.error);
+    failure.setFailure(result.code, std::move(result.message));
     failure.warnings = std::move(result.warnings);
     return failure;
   }
-  result.ok = true;
+  result.code = base::StatusCode::Ok;
   return result;
 }
 

@@ -86,8 +86,8 @@ MeshReadResult finish(MeshReadResult result, const std::string& name) {
     }
   }
   if (result.materialNames.empty()) result.materialNames.push_back("default");
-  result.ok = true;
-  result.error.clear();
+  result.code = base::StatusCode::Ok;
+  result.message.clear();
   return result;
 }
 

@@ -19,15 +19,13 @@ namespace detail {
 
 MeshReadResult failure(const std::string& name, const std::string& reason) {
   MeshReadResult result;
-  result.ok = false;
-  result.error = name + ": " + reason;
+  result.setFailure(base::StatusCode::ParseError, name + ": " + reason);
   return result;
 }
 
 MeshReadResult failureAt(const std::string& name, size_t line, const std::string& reason) {
   MeshReadResult result;
-  result.ok = false;
-  result.error = name + ":" + std::to_string(line) + ": " + reason;
+  result.setFailure(base::StatusCode::ParseError, name + ":" + std::to_string(line) + ": " + reason);
   return result;
 }
 
@@ -133,7 +131,7 @@ MeshReadResult readMeshFile(const std::string& path, MeshFormat format) {
   std::string error;
   if (!readWholeFile(path, bytes, error)) {
     MeshReadResult result;
-    result.error = error;
+    result.setFailure(base::StatusCode::IoError, error);
     return result;
   }
   std::string baseDir = std::filesystem::path(path).parent_path().string();
@@ -248,14 +246,13 @@ bool writableRuns(const geometry::MeshData& mesh, std::vector<geometry::SubMesh>
 
 MeshWriteResult saveSerialised(const std::string& path, MeshWriteResult serialised,
                                const std::vector<uint8_t>& bytes) {
-  if (!serialised.ok) {
-    serialised.error = path + ": " + serialised.error;
+  if (!serialised.ok()) {
+    serialised.message = path + ": " + serialised.message;
     return serialised;
   }
   std::string error;
   if (!writeBytes(path, bytes.data(), bytes.size(), error)) {
-    serialised.ok = false;
-    serialised.error = error;
+    serialised.setFailure(base::StatusCode::IoError, error);
   }
   return serialised;
 }
@@ -295,7 +292,7 @@ MeshWriteResult writeObjToString(const geometry::MeshData& mesh, const MeshWrite
   std::vector<geometry::SubMesh> runs;
   std::string reason;
   if (!detail::writableRuns(mesh, runs, reason)) {
-    result.error = "OBJ: " + reason;
+    result.setFailure(base::StatusCode::InvalidArgument, "OBJ: " + reason);
     return result;
   }
   const bool uvs = options.writeUvs && !mesh.uv0.empty();
@@ -354,7 +351,7 @@ MeshWriteResult writeObjToString(const geometry::MeshData& mesh, const MeshWrite
       out += '\n';
     }
   }
-  result.ok = true;
+  result.code = base::StatusCode::Ok;
   return result;
 }
 
@@ -362,14 +359,13 @@ MeshWriteResult writeObj(const std::string& path, const geometry::MeshData& mesh
                          const MeshWriteOptions& options) {
   std::string text;
   MeshWriteResult result = writeObjToString(mesh, options, text);
-  if (!result.ok) {
-    result.error = path + ": " + result.error;
+  if (!result.ok()) {
+    result.message = path + ": " + result.message;
     return result;
   }
   std::string error;
   if (!detail::writeBytes(path, text.data(), text.size(), error)) {
-    result.ok = false;
-    result.error = error;
+    result.setFailure(base::StatusCode::IoError, error);
   }
   return result;
 }

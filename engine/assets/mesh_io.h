@@ -25,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cleave/base/status.h"
 #include "cleave/assets/material.h"
 #include "cleave/geometry/mesh_data.h"
 
@@ -38,10 +39,10 @@ const char* toString(MeshFormat format);
 // ".gltf", ".glb"); Unknown otherwise.
 MeshFormat formatFromPath(std::string_view path);
 
-struct MeshReadResult {
-  bool ok = false;
+// A Status (code, and a message of one line naming the file and the reason; empty when ok) with
+// what the read gives.
+struct MeshReadResult : base::Status {
   geometry::MeshData mesh;
-  std::string error;                       // one line naming the file and the reason; empty when ok
   std::vector<std::string> warnings;       // non-fatal remarks (tinygltf warnings, dropped normals)
   // Material names indexed by SubMesh::materialId: OBJ `usemtl` names in order of first use
   // ("default" for faces before any usemtl), glTF material names ("material_<i>" when unnamed,
@@ -61,10 +62,8 @@ MeshReadResult readMeshFile(const std::string& path, MeshFormat format);
 MeshReadResult readMeshFromMemory(std::span<const uint8_t> bytes, MeshFormat format,
                                   const std::string& name);
 
-struct MeshWriteResult {
-  bool ok = false;
-  std::string error;  // one line naming the file and the reason; empty when ok
-};
+// Ok, or the code with one line naming the file and the reason.
+using MeshWriteResult = base::Status;
 
 struct MeshWriteOptions {
   // Material id of the cap submesh: it is written as the material named "cap".

@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "cleave/base/status.h"
 #include "cleave/anim/animation_clip.h"
 #include "cleave/anim/skeleton.h"
 #include "cleave/assets/material.h"
@@ -69,10 +70,10 @@ struct Model {
   MaterialSource materialSource() const;
 };
 
-struct ModelLoadResult {
-  bool ok = false;
+// A Status (code, and a message of one line naming the file and the reason; empty when ok) with
+// the model.
+struct ModelLoadResult : base::Status {
   Model model;
-  std::string error;                  // one line naming the file and the reason; empty when ok
   std::vector<std::string> warnings;  // non-fatal remarks, each naming the file
 };
 

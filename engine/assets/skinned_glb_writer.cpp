@@ -69,7 +69,10 @@ bool checkSkinnedInput(const geometry::MeshData& mesh, const anim::Skeleton& ske
     reason = "the skeleton has more than 65535 joints";
     return false;
   }
-  if (!anim::validateSkeleton(skeleton, &reason)) return false;
+  if (const base::Status valid = anim::validateSkeleton(skeleton); !valid.ok()) {
+    reason = valid.message;
+    return false;
+  }
   if (mesh.joints.size() != mesh.positions.size() || mesh.weights.size() != mesh.positions.size()) {
     reason = "the mesh has no joints and weights for every vertex";
     return false;
@@ -253,7 +256,7 @@ MeshWriteResult writeSkinnedGlbToMemory(const geometry::MeshData& mesh,
   std::vector<geometry::SubMesh> runs;
   std::string reason;
   if (!checkSkinnedInput(mesh, skeleton, runs, reason)) {
-    result.error = "skinned GLB: " + reason;
+    result.setFailure(base::StatusCode::InvalidArgument, "skinned GLB: " + reason);
     return result;
   }
   tinygltf::Model model = detail::newGlbModel();
@@ -267,10 +270,10 @@ MeshWriteResult writeSkinnedGlbToMemory(const geometry::MeshData& mesh,
   addSkin(model, skeleton, jointNode);
   addAnimations(model, clips, jointNode);
   if (!detail::serialiseGlb(model, out)) {
-    result.error = "skinned GLB: tinygltf could not serialise the model";
+    result.setFailure(base::StatusCode::InvalidArgument, "skinned GLB: tinygltf could not serialise the model");
     return result;
   }
-  result.ok = true;
+  result.code = base::StatusCode::Ok;
   return result;
 }
 

@@ -8,7 +8,9 @@
 namespace cleave::ecs {
 namespace {
 
-HierarchyStatus failure(std::string reason) { return HierarchyStatus{false, std::move(reason)}; }
+HierarchyStatus failure(std::string reason) {
+  return HierarchyStatus::failure(base::StatusCode::InvalidArgument, std::move(reason));
+}
 
 // Removes `child` and every dead id from the parent's Children list.
 void detachFromChildren(World& world, Entity parent, Entity child) {

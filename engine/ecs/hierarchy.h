@@ -19,6 +19,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "cleave/base/status.h"
 #include "cleave/ecs/entity.h"
 #include "cleave/ecs/world.h"
 
@@ -49,11 +50,8 @@ struct WorldTransform {
   glm::mat4 matrix{1.0f};
 };
 
-// Outcome of a hierarchy call: ok, or a reason a person can act on.
-struct HierarchyStatus {
-  bool ok = true;
-  std::string reason;  // empty when ok
-};
+// Outcome of a hierarchy call: ok, or InvalidArgument with a reason a person can act on.
+using HierarchyStatus = base::Status;
 
 // translate(position) * mat4(rotation) * scale(scale).
 glm::mat4 localMatrix(const Transform& transform);

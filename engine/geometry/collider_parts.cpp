@@ -35,7 +35,7 @@ void decomposeInto(const MeshData& mesh, IMeshSplitter& splitter, int depth, Col
   plane.normal[axis] = 1.0;
   plane.offset = 0.5 * (double(lo[axis]) + double(hi[axis]));
   MeshContainer container;
-  if (container.setMesh(mesh) != SplitStatus::Ok) return wholeHull();
+  if (container.setMesh(mesh).code != SplitStatus::Ok) return wholeHull();
   SplitOptions options;
   options.computeMass = false;
   options.separateIslands = true;

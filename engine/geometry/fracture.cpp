@@ -111,11 +111,11 @@ const MeshContainer* containerOf(CellRun& run, Part& part) {
   if (part.whole) return &run.source;
   if (part.container) return part.container.get();
   auto container = std::make_unique<MeshContainer>();
-  std::string why;
-  if (container->setMesh(part.mesh, part.weld, &why) != SplitStatus::Ok &&
-      container->setMesh(part.mesh, &why) != SplitStatus::Ok) {
+  MeshStatus set = container->setMesh(part.mesh, part.weld);
+  if (!set.ok()) set = container->setMesh(part.mesh);
+  if (!set.ok()) {
     run.result.status = SplitStatus::InvalidInput;
-    run.result.message = "a fracture part cannot be cut again: " + why;
+    run.result.message = "a fracture part cannot be cut again: " + set.message;
     return nullptr;
   }
   // The part's cut space is the source's: its model matrix, and its skinning pose when it is posed
@@ -125,9 +125,10 @@ const MeshContainer* containerOf(CellRun& run, Part& part) {
     container->setTransform(glm::mat4(run.source.model()));
   } else {
     std::vector<glm::mat4> pose(joints.begin(), joints.end());
-    if (container->setSkinningPose(pose, glm::mat4(run.source.model()), &why) != SplitStatus::Ok) {
+    const MeshStatus posed = container->setSkinningPose(pose, glm::mat4(run.source.model()));
+    if (!posed.ok()) {
       run.result.status = SplitStatus::InvalidInput;
-      run.result.message = "a fracture part cannot be posed: " + why;
+      run.result.message = "a fracture part cannot be posed: " + posed.message;
       return nullptr;
     }
   }

@@ -49,9 +49,7 @@ bool sizedLike(const std::vector<T>& attribute, size_t n) {
   return attribute.empty() || attribute.size() == n;
 }
 
-void fail(std::string* message, const std::string& text) {
-  if (message) *message = text;
-}
+MeshStatus invalid(std::string text) { return MeshStatus::failure(SplitStatus::InvalidInput, std::move(text)); }
 
 // True for a closed mesh wound inwards: its signed volume (summed about the centre of its bounds,
 // which keeps the terms small) is negative beyond the rounding of the sum. Files come this way
@@ -98,12 +96,11 @@ void MeshContainer::clear() {
   cutIsSource_ = false;
 }
 
-// Checks the mesh; on failure clears the container and writes the reason.
-bool MeshContainer::validate(const MeshData& mesh, std::string* message) {
+// Checks the mesh; on failure clears the container and gives the reason.
+MeshStatus MeshContainer::validate(const MeshData& mesh) {
   auto reject = [&](const std::string& text) {
-    fail(message, "invalid mesh: " + text);
     clear();
-    return false;
+    return invalid("invalid mesh: " + text);
   };
   const size_t n = mesh.positions.size();
   if (mesh.indices.empty()) return reject("no triangle");
@@ -160,40 +157,43 @@ bool MeshContainer::validate(const MeshData& mesh, std::string* message) {
     return reject("submesh runs cover " + std::to_string(covered) + " of " + std::to_string(mesh.indices.size()) +
                   " indices");
   }
-  return true;
+  return {};
 }
 
-SplitStatus MeshContainer::setMesh(const MeshData& mesh, std::string* message) {
-  if (!validate(mesh, message)) return SplitStatus::InvalidInput;
+MeshStatus MeshContainer::setMesh(const MeshData& mesh) {
+  if (MeshStatus valid = validate(mesh); !valid.ok()) return valid;
   mesh_ = mesh;  // copy assignment keeps the capacity of our arrays
   shared_.reset();  // after the copy: `mesh` may be the shared one
   source_ = &mesh_;
-  return take(nullptr, message);
+  return take(nullptr);
 }
 
-SplitStatus MeshContainer::setMesh(const MeshData& mesh, const MeshWeld& weld, std::string* message) {
-  if (!validate(mesh, message) || !consistent(mesh, weld, message)) return SplitStatus::InvalidInput;
+MeshStatus MeshContainer::setMesh(const MeshData& mesh, const MeshWeld& weld) {
+  MeshStatus valid = validate(mesh);
+  if (valid.ok()) valid = consistent(mesh, weld);
+  if (!valid.ok()) return valid;
   mesh_ = mesh;
   shared_.reset();
   source_ = &mesh_;
-  return take(&weld, message);
+  return take(&weld);
 }
 
-SplitStatus MeshContainer::setMesh(std::shared_ptr<const MeshData> mesh, const MeshWeld* weld, std::string* message) {
+MeshStatus MeshContainer::setMesh(std::shared_ptr<const MeshData> mesh, const MeshWeld* weld) {
   if (!mesh) {
-    fail(message, "invalid mesh: no mesh given");
     clear();
-    return SplitStatus::InvalidInput;
+    return invalid("invalid mesh: no mesh given");
   }
-  if (!validate(*mesh, message) || (weld && !consistent(*mesh, *weld, message))) return SplitStatus::InvalidInput;
+  MeshStatus valid = validate(*mesh);
+  if (valid.ok() && weld) valid = consistent(*mesh, *weld);
+  if (!valid.ok()) return valid;
   shared_ = std::move(mesh);
   source_ = shared_.get();
-  return take(weld, message);
+  return take(weld);
 }
 
 // A weld fits a mesh when there is one id per vertex, each id below the count, each representative
 // a vertex carrying its own id, representatives ascending (ids numbered by first vertex).
-bool MeshContainer::consistent(const MeshData& mesh, const MeshWeld& weld, std::string* message) {
+MeshStatus MeshContainer::consistent(const MeshData& mesh, const MeshWeld& weld) {
   const size_t n = mesh.positions.size();
   const size_t ids = weld.representatives.size();
   bool ok = weld.positionIds.size() == n && ids > 0 && ids <= n;
@@ -206,17 +206,15 @@ bool MeshContainer::consistent(const MeshData& mesh, const MeshWeld& weld, std::
     const uint32_t r = weld.representatives[k];
     ok = r < n && weld.positionIds[r] == k && (k == 0 || r > weld.representatives[k - 1]);
   }
-  if (!ok) {
-    fail(message, "invalid weld: it does not belong to this mesh (" + std::to_string(weld.positionIds.size()) +
-                      " ids for " + std::to_string(n) + " vertices, or ids and representatives disagree)");
-    clear();
-  }
-  return ok;
+  if (ok) return {};
+  clear();
+  return invalid("invalid weld: it does not belong to this mesh (" + std::to_string(weld.positionIds.size()) +
+                 " ids for " + std::to_string(n) + " vertices, or ids and representatives disagree)");
 }
 
 // The rest of setMesh once source_ points at a valid mesh: the weld (taken or worked out), the cut
 // space (the source space for now) and its bounds.
-SplitStatus MeshContainer::take(const MeshWeld* weld, std::string* message) {
+MeshStatus MeshContainer::take(const MeshWeld* weld) {
   const MeshData& mesh = *source_;
   model_ = glm::dmat4(1.0);
   jointMatrices_.clear();
@@ -237,8 +235,7 @@ SplitStatus MeshContainer::take(const MeshWeld* weld, std::string* message) {
   inverted_ = closed_ && (weld ? weld->inverted : woundInwards(mesh.positions, mesh.indices));
   mirrored_ = inverted_;
   cutIsSource_ = true;
-  if (message) message->clear();
-  return SplitStatus::Ok;
+  return {};
 }
 
 void MeshContainer::copyWeld(MeshWeld& out) const {
@@ -542,22 +539,18 @@ void MeshContainer::setTransform(const glm::mat4& model) {
   updateBounds();
 }
 
-SplitStatus MeshContainer::setSkinningPose(std::span<const glm::mat4> jointMatrices, const glm::mat4& model,
-                                           std::string* message) {
+MeshStatus MeshContainer::setSkinningPose(std::span<const glm::mat4> jointMatrices, const glm::mat4& model) {
   if (source_->positions.empty()) {
-    fail(message, "skinning pose: the container holds no mesh");
-    return SplitStatus::InvalidInput;
+    return invalid("skinning pose: the container holds no mesh");
   }
   if (source_->joints.empty() || source_->weights.size() != source_->joints.size()) {
-    fail(message, "skinning pose: the mesh has no joints and weights");
-    return SplitStatus::InvalidInput;
+    return invalid("skinning pose: the mesh has no joints and weights");
   }
   for (size_t j = 0; j < jointMatrices.size(); ++j) {
     for (int c = 0; c < 4; ++c) {
       for (int r = 0; r < 4; ++r) {
         if (!std::isfinite(jointMatrices[j][c][r])) {
-          fail(message, "skinning pose: joint matrix " + std::to_string(j) + " is not finite");
-          return SplitStatus::InvalidInput;
+          return invalid("skinning pose: joint matrix " + std::to_string(j) + " is not finite");
         }
       }
     }
@@ -566,9 +559,8 @@ SplitStatus MeshContainer::setSkinningPose(std::span<const glm::mat4> jointMatri
   for (size_t i = 0; i < n; ++i) {
     for (int k = 0; k < 4; ++k) {
       if (source_->weights[i][k] != 0.f && source_->joints[i][k] >= jointMatrices.size()) {
-        fail(message, "skinning pose: vertex " + std::to_string(i) + " uses joint " +
+        return invalid("skinning pose: vertex " + std::to_string(i) + " uses joint " +
                           std::to_string(source_->joints[i][k]) + " of " + std::to_string(jointMatrices.size()));
-        return SplitStatus::InvalidInput;
       }
     }
   }
@@ -623,8 +615,7 @@ SplitStatus MeshContainer::setSkinningPose(std::span<const glm::mat4> jointMatri
   }
   mirrored_ = (uniformSign ? poseSign < 0 : 2 * negative > n) != inverted_;
   updateBounds();
-  if (message) message->clear();
-  return SplitStatus::Ok;
+  return {};
 }
 
 void MeshContainer::extractTriangles(std::span<const uint32_t> triangles, MeshData& out) const {

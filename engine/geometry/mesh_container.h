@@ -2,7 +2,8 @@
 // MeshContainer: a mesh ready to be cut (the thesis's MeshContainer). It shares or copies the
 // source arrays, welds vertices by position into position ids (so UV and normal seams never break a
 // cut loop), and keeps the cut-space positions (model matrix or skinning pose). Failure: setMesh and
-// setSkinningPose return InvalidInput with a reason for malformed data; nothing throws.
+// setSkinningPose return a MeshStatus of InvalidInput with a reason for malformed data; nothing
+// throws.
 #pragma once
 
 #include <cstdint>
@@ -13,10 +14,14 @@
 
 #include <glm/glm.hpp>
 
+#include "cleave/base/status.h"
 #include "cleave/geometry/mesh_data.h"
 #include "cleave/geometry/split_types.h"
 
 namespace cleave::geometry {
+
+// Ok, or InvalidInput with the reason ("invalid mesh: ...", "invalid weld: ...", "skinning pose: ...").
+using MeshStatus = base::BasicStatus<SplitStatus>;
 
 class MeshContainer {
  public:
@@ -26,15 +31,15 @@ class MeshContainer {
 
   // Takes a copy of the mesh (the arrays are reused between calls when sizes allow) and welds it.
   // Returns InvalidInput with a message for malformed data.
-  SplitStatus setMesh(const MeshData& mesh, std::string* message = nullptr);
+  MeshStatus setMesh(const MeshData& mesh);
   // The same with a weld worked out before for this mesh (copyWeld of a container that held it, or
   // a SplitPiece's weld): no welding, no closedness or winding check; the mesh checks, the copy and
   // the cut-space positions remain. The weld is checked for size and consistency (InvalidInput
   // otherwise); that it matches the positions is the caller's promise.
-  SplitStatus setMesh(const MeshData& mesh, const MeshWeld& weld, std::string* message = nullptr);
+  MeshStatus setMesh(const MeshData& mesh, const MeshWeld& weld);
   // The same without a copy: the container shares the mesh (which must not change while it is held).
   // `weld` may be null (the mesh is welded) or a weld worked out before, as above.
-  SplitStatus setMesh(std::shared_ptr<const MeshData> mesh, const MeshWeld* weld, std::string* message = nullptr);
+  MeshStatus setMesh(std::shared_ptr<const MeshData> mesh, const MeshWeld* weld);
   // Drops the mesh (a shared one is no longer held); the arrays keep their memory for the next one.
   void release() { clear(); }
   // The weld of the mesh held, to keep with it.
@@ -46,8 +51,7 @@ class MeshContainer {
   // already (joint world transform * inverse bind matrix), times `model`. Needs joints and weights.
   // mirrored() is decided once for the pose when every model * joint matrix is a similarity with a
   // determinant of one sign, else by the majority of the vertices' blended matrices.
-  SplitStatus setSkinningPose(std::span<const glm::mat4> jointMatrices, const glm::mat4& model,
-                              std::string* message = nullptr);
+  MeshStatus setSkinningPose(std::span<const glm::mat4> jointMatrices, const glm::mat4& model);
 
   const MeshData& mesh() const { return *source_; }
   std::span<const glm::dvec3> cutPositions() const { return cutPositions_; }
@@ -81,9 +85,9 @@ class MeshContainer {
 
  private:
   void weld();
-  bool validate(const MeshData& mesh, std::string* message);
-  bool consistent(const MeshData& mesh, const MeshWeld& weld, std::string* message);
-  SplitStatus take(const MeshWeld* weld, std::string* message);
+  MeshStatus validate(const MeshData& mesh);
+  MeshStatus consistent(const MeshData& mesh, const MeshWeld& weld);
+  MeshStatus take(const MeshWeld* weld);
   void clear();
 
   MeshData mesh_;                          // the copy, when the mesh was given by reference

@@ -1949,10 +1949,9 @@ std::unique_ptr<IMeshSplitter> makeConcaveSplitter() { return std::make_unique<S
 SplitResult splitMesh(const MeshData& mesh, const glm::mat4& model, const Plane& plane, const SplitOptions& options) {
   SplitResult result;
   MeshContainer container;
-  std::string message;
-  if (container.setMesh(mesh, &message) != SplitStatus::Ok) {
+  if (MeshStatus set = container.setMesh(mesh); !set.ok()) {
     result.status = SplitStatus::InvalidInput;
-    result.message = message;
+    result.message = std::move(set.message);
     return result;
   }
   container.setTransform(model);

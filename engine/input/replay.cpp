@@ -229,17 +229,17 @@ class Parser {
                                 : "missing header line 'cleave-replay 1'");
     }
     if (!checkHeaderComplete()) return result_;
-    result_.ok = true;
+    result_.code = base::StatusCode::Ok;
     result_.line = 0;
-    result_.error.clear();
+    result_.message.clear();
     return std::move(result_);
   }
 
  private:
   ReplayParseResult fail(std::string reason) {
-    result_.ok = false;
     result_.line = lineNumber_;
-    result_.error = std::string(fileName_) + ":" + std::to_string(lineNumber_) + ": " + reason;
+    result_.setFailure(base::StatusCode::ParseError,
+                       std::string(fileName_) + ":" + std::to_string(lineNumber_) + ": " + reason);
     result_.replay = Replay{};
     return result_;
   }
@@ -431,7 +431,7 @@ ReplayParseResult parseReplay(std::string_view text, std::string_view fileName) 
   } catch (const std::exception& e) {
     // Only allocation failure can get here; report it instead of letting it cross the layer.
     ReplayParseResult result;
-    result.error = std::string(fileName) + ": cannot parse replay: " + e.what();
+    result.setFailure(base::StatusCode::ParseError, std::string(fileName) + ": cannot parse replay: " + e.what());
     return result;
   }
 }
@@ -442,16 +442,17 @@ ReplayParseResult loadReplay(const std::string& path) {
     std::error_code error;
     const std::filesystem::file_status status = std::filesystem::status(path, error);
     if (error || !std::filesystem::exists(status)) {
-      result.error = path + ": cannot open replay file: no such file";
+      result.setFailure(base::StatusCode::NotFound, path + ": cannot open replay file: no such file");
       return result;
     }
     if (std::filesystem::is_directory(status)) {
-      result.error = path + ": cannot open replay file: it is a directory";
+      result.setFailure(base::StatusCode::IoError, path + ": cannot open replay file: it is a directory");
       return result;
     }
     std::ifstream file(path, std::ios::binary);
     if (!file) {
-      result.error = path + ": cannot open replay file (permission denied or unreadable)";
+      result.setFailure(base::StatusCode::IoError,
+                        path + ": cannot open replay file (permission denied or unreadable)");
       return result;
     }
     std::string text;
@@ -459,19 +460,18 @@ ReplayParseResult loadReplay(const std::string& path) {
     while (file.read(buffer, sizeof(buffer)) || file.gcount() > 0) {
       text.append(buffer, static_cast<size_t>(file.gcount()));
       if (text.size() > kMaxReplayFileBytes) {
-        result.error = path + ": replay file larger than " +
-                       std::to_string(kMaxReplayFileBytes >> 20) + " MiB";
+        result.setFailure(base::StatusCode::IoError, path + ": replay file larger than " +
+                       std::to_string(kMaxReplayFileBytes >> 20) + " MiB");
         return result;
       }
     }
     if (file.bad()) {
-      result.error = path + ": read error";
+      result.setFailure(base::StatusCode::IoError, path + ": read error");
       return result;
     }
     return parseReplay(text, path);
   } catch (const std::exception& e) {
-    result.ok = false;
-    result.error = path + ": cannot read replay file: " + e.what();
+    result.setFailure(base::StatusCode::IoError, path + ": cannot read replay file: " + e.what());
     return result;
   }
 }
@@ -540,24 +540,24 @@ ReplaySaveResult saveReplay(const std::string& path, const Replay& replay) {
   ReplaySaveResult result;
   try {
     if (std::string problem = validateReplay(replay); !problem.empty()) {
-      result.error = path + ": replay not saved: " + problem;
+      result.setFailure(base::StatusCode::ParseError, path + ": replay not saved: " + problem);
       return result;
     }
     const std::string text = writeReplay(replay);
     std::ofstream file(path, std::ios::binary | std::ios::trunc);
     if (!file) {
-      result.error = path + ": cannot open for writing";
+      result.setFailure(base::StatusCode::IoError, path + ": cannot open for writing");
       return result;
     }
     file.write(text.data(), static_cast<std::streamsize>(text.size()));
     file.close();
     if (!file) {
-      result.error = path + ": write error";
+      result.setFailure(base::StatusCode::IoError, path + ": write error");
       return result;
     }
-    result.ok = true;
+    result.code = base::StatusCode::Ok;
   } catch (const std::exception& e) {
-    result.error = path + ": cannot write replay: " + e.what();
+    result.setFailure(base::StatusCode::IoError, path + ": cannot write replay: " + e.what());
   }
   return result;
 }

@@ -22,6 +22,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cleave/base/status.h"
 #include "cleave/input/input_event.h"
 
 namespace cleave::input {
@@ -51,10 +52,9 @@ struct Replay {
   bool operator==(const Replay&) const = default;
 };
 
-struct ReplayParseResult {
-  bool ok = false;
+// A Status (message "<file>:<line>: <reason>" or "<file>: <reason>", empty when ok) with the replay.
+struct ReplayParseResult : base::Status {
   Replay replay;      // valid only when ok
-  std::string error;  // "<file>:<line>: <reason>" (or "<file>: <reason>"), empty when ok
   size_t line = 0;    // 1-based line of the error; 0 for file-level errors or when ok
 };
 
@@ -72,10 +72,8 @@ std::string validateReplay(const Replay& replay);
 // is empty (otherwise the text is still produced but parseReplay will reject it).
 std::string writeReplay(const Replay& replay);
 
-struct ReplaySaveResult {
-  bool ok = false;
-  std::string error;  // "<path>: <reason>", empty when ok
-};
+// Ok, or the code with "<path>: <reason>".
+using ReplaySaveResult = base::Status;
 
 // Validates and writes a replay file (replacing an existing file).
 ReplaySaveResult saveReplay(const std::string& path, const Replay& replay);

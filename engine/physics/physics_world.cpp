@@ -22,9 +22,9 @@
 #include <BulletCollision/CollisionDispatch/btGhostObject.h>
 #include <BulletCollision/Gimpact/btGImpactCollisionAlgorithm.h>
 
+#include "cleave/base/detail/slot_pool.h"
 #include "cleave/physics/detail/bullet_convert.h"
 #include "cleave/physics/detail/shape_builder.h"
-#include "cleave/physics/detail/slot_pool.h"
 
 namespace cleave::physics {
 namespace {
@@ -100,7 +100,7 @@ void hashVector(uint64_t& hash, const btVector3& v) {
 // Broadphase filter: Bullet's group/mask test, plus "bodies of the same non-zero collision group
 // never pair" (ragdoll bones). The group is looked up through the body's slot index.
 struct GroupFilter : btOverlapFilterCallback {
-  const detail::SlotPool<BodyRecord>* bodies = nullptr;
+  const base::detail::SlotPool<BodyRecord>* bodies = nullptr;
   bool needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const override {
     const bool masks = (p0->m_collisionFilterGroup & p1->m_collisionFilterMask) != 0 &&
                        (p1->m_collisionFilterGroup & p0->m_collisionFilterMask) != 0;
@@ -109,8 +109,8 @@ struct GroupFilter : btOverlapFilterCallback {
     const auto* b = static_cast<const btCollisionObject*>(p1->m_clientObject);
     if (a == nullptr || b == nullptr || a->getUserIndex2() != kKindBody || b->getUserIndex2() != kKindBody)
       return true;
-    const BodyRecord* ra = const_cast<detail::SlotPool<BodyRecord>*>(bodies)->atIndex(uint32_t(a->getUserIndex()));
-    const BodyRecord* rb = const_cast<detail::SlotPool<BodyRecord>*>(bodies)->atIndex(uint32_t(b->getUserIndex()));
+    const BodyRecord* ra = bodies->atIndex(uint32_t(a->getUserIndex()));
+    const BodyRecord* rb = bodies->atIndex(uint32_t(b->getUserIndex()));
     if (ra == nullptr || rb == nullptr) return true;
     return ra->collisionGroup == 0 || ra->collisionGroup != rb->collisionGroup;
   }
@@ -125,10 +125,10 @@ struct PhysicsWorld::Impl {
   btSequentialImpulseConstraintSolver solver;
   btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
 
-  detail::SlotPool<ShapeRecord> shapes;
-  detail::SlotPool<BodyRecord> bodies;
-  detail::SlotPool<TriggerRecord> triggers;
-  detail::SlotPool<JointRecord> joints;  // declared after bodies: freed before them
+  base::detail::SlotPool<ShapeRecord> shapes;
+  base::detail::SlotPool<BodyRecord> bodies;
+  base::detail::SlotPool<TriggerRecord> triggers;
+  base::detail::SlotPool<JointRecord> joints;  // declared after bodies: freed before them
   GroupFilter groupFilter;
 
   std::vector<TriggerEvent> triggerEvents;
@@ -493,7 +493,7 @@ Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
   if (shape == nullptr)
     return Result<BodyId>::failure(PhysicsStatus::StaleHandle, "createBody: BodyDef::shape is null or destroyed");
   const Result<CheckedBody> checked = validateBodyDef(def, shape->built.type);
-  if (!checked.ok()) return Result<BodyId>::failure(checked.status(), checked.reason());
+  if (!checked.ok()) return Result<BodyId>::failure(checked.code(), checked.message());
   const bool dynamic = checked.value().dynamic;
   std::unique_ptr<btRigidBody> body = makeRigidBody(def, checked.value(), shape->built.shape.get(),
                                                     bodyInertia(def, dynamic, *shape->built.shape));

@@ -18,18 +18,22 @@
 
 namespace cleave::render {
 
-bool loadGl(GlGetProcAddress getProcAddress, std::string* error) {
+namespace {
+
+base::Status unavailable(std::string reason) {
+  return base::Status::failure(base::StatusCode::Unavailable, std::move(reason));
+}
+
+}  // namespace
+
+base::Status loadGl(GlGetProcAddress getProcAddress) {
   const int version = gladLoadGL(reinterpret_cast<GLADloadfunc>(getProcAddress));
-  if (version == 0) {
-    if (error) *error = "could not load OpenGL entry points (no current context?)";
-    return false;
-  }
+  if (version == 0) return unavailable("could not load OpenGL entry points (no current context?)");
   if (GLAD_VERSION_MAJOR(version) < 3 ||
       (GLAD_VERSION_MAJOR(version) == 3 && GLAD_VERSION_MINOR(version) < 3)) {
-    if (error) *error = "OpenGL 3.3 core is required; the context offers " + glDescription();
-    return false;
+    return unavailable("OpenGL 3.3 core is required; the context offers " + glDescription());
   }
-  return true;
+  return {};
 }
 
 std::string glDescription() {
@@ -70,22 +74,19 @@ void pinMesaDriver() {
 void pinMesaDriver() {}
 #endif
 
-bool createEgl(HeadlessGlContext::Impl& impl, std::string* error) {
+base::Status createEgl(HeadlessGlContext::Impl& impl) {
   auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
       eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!getPlatformDisplay) {
-    if (error) *error = "EGL: eglGetPlatformDisplayEXT is not available";
-    return false;
+    return unavailable("EGL: eglGetPlatformDisplayEXT is not available");
   }
   EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
   if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr)) {
-    if (error) *error = "EGL: the Mesa surfaceless platform could not be initialised";
-    return false;
+    return unavailable("EGL: the Mesa surfaceless platform could not be initialised");
   }
   if (!eglBindAPI(EGL_OPENGL_API)) {
     eglTerminate(display);
-    if (error) *error = "EGL: OpenGL API not available";
-    return false;
+    return unavailable("EGL: OpenGL API not available");
   }
   const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
                                EGL_CONTEXT_OPENGL_PROFILE_MASK,
@@ -95,36 +96,33 @@ bool createEgl(HeadlessGlContext::Impl& impl, std::string* error) {
       !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
     if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
     eglTerminate(display);
-    if (error) *error = "EGL: could not create a surfaceless OpenGL 3.3 core context";
-    return false;
+    return unavailable("EGL: could not create a surfaceless OpenGL 3.3 core context");
   }
   impl.display = display;
   impl.context = context;
   impl.api = "egl-surfaceless";
-  return loadGl(reinterpret_cast<GlGetProcAddress>(eglGetProcAddress), error);
+  return loadGl(reinterpret_cast<GlGetProcAddress>(eglGetProcAddress));
 }
 
 #if defined(CLEAVE_HAVE_OSMESA)
-bool createOsMesa(HeadlessGlContext::Impl& impl, std::string* error) {
+base::Status createOsMesa(HeadlessGlContext::Impl& impl) {
   const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24,
                             OSMESA_STENCIL_BITS, 8, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
                             OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
   OSMesaContext context = OSMesaCreateContextAttribs(attributes, nullptr);
   if (!context) {
-    if (error) *error = "OSMesa: could not create an OpenGL 3.3 core context";
-    return false;
+    return unavailable("OSMesa: could not create an OpenGL 3.3 core context");
   }
   // OSMesa needs a colour buffer to make the context current; the renderer draws into its own FBO,
   // so a tiny one is enough.
   impl.osmesaBuffer.assign(16 * 16 * 4, 0);
   if (!OSMesaMakeCurrent(context, impl.osmesaBuffer.data(), GL_UNSIGNED_BYTE, 16, 16)) {
     OSMesaDestroyContext(context);
-    if (error) *error = "OSMesa: could not make the context current";
-    return false;
+    return unavailable("OSMesa: could not make the context current");
   }
   impl.osmesa = context;
   impl.api = "osmesa";
-  return loadGl(reinterpret_cast<GlGetProcAddress>(OSMesaGetProcAddress), error);
+  return loadGl(reinterpret_cast<GlGetProcAddress>(OSMesaGetProcAddress));
 }
 #endif
 
@@ -142,7 +140,7 @@ HeadlessGlContext::~HeadlessGlContext() {
 #endif
 }
 
-std::unique_ptr<HeadlessGlContext> HeadlessGlContext::create(HeadlessApi api, std::string* error) {
+base::Expected<std::unique_ptr<HeadlessGlContext>> HeadlessGlContext::create(HeadlessApi api) {
   if (api == HeadlessApi::Auto) {
     if (const char* env = std::getenv("CLEAVE_HEADLESS")) {
       if (std::strcmp(env, "egl") == 0) api = HeadlessApi::Egl;
@@ -154,20 +152,18 @@ std::unique_ptr<HeadlessGlContext> HeadlessGlContext::create(HeadlessApi api, st
   context->impl_ = std::make_unique<Impl>();
   std::string eglError;
   if (api != HeadlessApi::OsMesa) {
-    if (createEgl(*context->impl_, &eglError)) return context;
-    if (api == HeadlessApi::Egl) {
-      if (error) *error = eglError;
-      return nullptr;
-    }
+    const base::Status egl = createEgl(*context->impl_);
+    if (egl.ok()) return context;
+    if (api == HeadlessApi::Egl) return egl;
+    eglError = egl.message;
   }
 #if defined(CLEAVE_HAVE_OSMESA)
-  std::string osError;
-  if (createOsMesa(*context->impl_, &osError)) return context;
-  if (error) *error = (eglError.empty() ? "" : eglError + "; ") + osError;
+  const base::Status osmesa = createOsMesa(*context->impl_);
+  if (osmesa.ok()) return context;
+  return unavailable((eglError.empty() ? "" : eglError + "; ") + osmesa.message);
 #else
-  if (error) *error = eglError.empty() ? "OSMesa support was not built" : eglError;
+  return unavailable(eglError.empty() ? "OSMesa support was not built" : eglError);
 #endif
-  return nullptr;
 }
 
 const char* HeadlessGlContext::apiName() const { return impl_ ? impl_->api : "none"; }

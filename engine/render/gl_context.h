@@ -10,14 +10,16 @@
 #include <memory>
 #include <string>
 
+#include "cleave/base/status.h"
+
 namespace cleave::render {
 
 using GlProc = void (*)();
 using GlGetProcAddress = GlProc (*)(const char* name);
 
 // Loads the GL 3.3 core entry points through `getProcAddress` for the current context.
-// Returns false (with a reason) if the context is missing or older than 3.3.
-bool loadGl(GlGetProcAddress getProcAddress, std::string* error);
+// Unavailable (with a reason) if the context is missing or older than 3.3.
+base::Status loadGl(GlGetProcAddress getProcAddress);
 
 // "renderer | version" of the current context, for logs.
 std::string glDescription();
@@ -33,8 +35,9 @@ class HeadlessGlContext {
   HeadlessGlContext& operator=(const HeadlessGlContext&) = delete;
 
   // Creates the context and loads GL. `api` Auto tries EGL then OSMesa (also settable with the
-  // environment variable CLEAVE_HEADLESS=egl|osmesa). Returns nullptr and fills `error` on failure.
-  static std::unique_ptr<HeadlessGlContext> create(HeadlessApi api, std::string* error);
+  // environment variable CLEAVE_HEADLESS=egl|osmesa). Unavailable, with the reasons of every API
+  // tried, on failure.
+  static base::Expected<std::unique_ptr<HeadlessGlContext>> create(HeadlessApi api);
 
   const char* apiName() const;
 

@@ -9,12 +9,12 @@ PackedMesh packMesh(const geometry::MeshData& mesh) {
   PackedMesh out;
   const size_t n = mesh.positions.size();
   if (n == 0 || mesh.indices.empty() || mesh.indices.size() % 3 != 0) {
-    out.error = "mesh has no triangles";
+    out.setFailure(base::StatusCode::InvalidArgument, "mesh has no triangles");
     return out;
   }
   for (uint32_t i : mesh.indices) {
     if (i >= n) {
-      out.error = "mesh index out of range";
+      out.setFailure(base::StatusCode::InvalidArgument, "mesh index out of range");
       return out;
     }
   }

@@ -16,6 +16,7 @@
 
 #include <glm/glm.hpp>
 
+#include "cleave/base/status.h"
 #include "cleave/geometry/mesh_data.h"
 
 namespace cleave::render {
@@ -24,7 +25,8 @@ namespace cleave::render {
 // above it are clamped to the last one at upload; skeletons that large need splitting into parts.
 inline constexpr uint32_t kMaxSkinJoints = 128;
 
-struct PackedMesh {
+// The GPU layout of a mesh, and a Status saying why it could not be packed (ok when it could).
+struct PackedMesh : base::Status {
   struct SkinVertex {
     glm::u16vec4 joints;
     glm::vec4 weights;
@@ -33,9 +35,6 @@ struct PackedMesh {
   std::vector<SkinVertex> skin;       // per vertex, or empty
   std::vector<uint32_t> indices;      // triangle list
   std::vector<geometry::SubMesh> submeshes;  // valid runs only; one run of material 0 when the mesh has none
-  std::string error;                  // why it could not be packed; empty when fine
-
-  bool ok() const { return error.empty(); }
   size_t vertexCount() const { return vertices.size() / 12; }
 };
 

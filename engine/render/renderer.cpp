@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "cleave/base/detail/slot_pool.h"
 #include "cleave/render/shaders.h"
 
 #include <stb_easy_font.h>
@@ -23,7 +24,11 @@ namespace {
 
 constexpr int kShadowMapSize = 1024;
 
-GLuint compileShader(GLenum type, const char* source, std::string* error) {
+base::Status unavailable(std::string reason) {
+  return base::Status::failure(base::StatusCode::Unavailable, std::move(reason));
+}
+
+base::Expected<GLuint> compileShader(GLenum type, const char* source) {
   GLuint shader = glCreateShader(type);
   glShaderSource(shader, 1, &source, nullptr);
   glCompileShader(shader);
@@ -32,21 +37,22 @@ GLuint compileShader(GLenum type, const char* source, std::string* error) {
   if (!ok) {
     char log[2048] = {};
     glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    if (error) *error = std::string("shader compile failed: ") + log;
     glDeleteShader(shader);
-    return 0;
+    return unavailable(std::string("shader compile failed: ") + log);
   }
   return shader;
 }
 
-GLuint linkProgram(const char* vertex, const char* fragment, std::string* error) {
-  GLuint vs = compileShader(GL_VERTEX_SHADER, vertex, error);
-  if (!vs) return 0;
-  GLuint fs = compileShader(GL_FRAGMENT_SHADER, fragment, error);
-  if (!fs) {
+base::Expected<GLuint> linkProgram(const char* vertex, const char* fragment) {
+  const base::Expected<GLuint> vertexShader = compileShader(GL_VERTEX_SHADER, vertex);
+  if (!vertexShader.ok()) return vertexShader;
+  const GLuint vs = *vertexShader;
+  const base::Expected<GLuint> fragmentShader = compileShader(GL_FRAGMENT_SHADER, fragment);
+  if (!fragmentShader.ok()) {
     glDeleteShader(vs);
-    return 0;
+    return fragmentShader;
   }
+  const GLuint fs = *fragmentShader;
   GLuint program = glCreateProgram();
   glAttachShader(program, vs);
   glAttachShader(program, fs);
@@ -58,9 +64,8 @@ GLuint linkProgram(const char* vertex, const char* fragment, std::string* error)
   if (!ok) {
     char log[2048] = {};
     glGetProgramInfoLog(program, sizeof(log), nullptr, log);
-    if (error) *error = std::string("shader link failed: ") + log;
     glDeleteProgram(program);
-    return 0;
+    return unavailable(std::string("shader link failed: ") + log);
   }
   return program;
 }
@@ -75,16 +80,19 @@ struct GpuMesh {
   GLuint vao = 0, vbo = 0, ibo = 0;
   GLuint skinVbo = 0;  // joints (4 x uint16) and weights (4 x float) per vertex; 0 without a skin
   std::vector<GpuSubMesh> submeshes;
-  uint32_t generation = 0;
-  bool alive = false;
   uint32_t triangles = 0;
 };
 
 struct GpuTexture {
   GLuint id = 0;
-  uint32_t generation = 0;
-  bool alive = false;
 };
+
+void deleteGpuMesh(GpuMesh& m) {
+  glDeleteVertexArrays(1, &m.vao);
+  glDeleteBuffers(1, &m.vbo);
+  glDeleteBuffers(1, &m.ibo);
+  if (m.skinVbo) glDeleteBuffers(1, &m.skinVbo);
+}
 
 struct DrawItem {
   uint32_t mesh;
@@ -170,10 +178,8 @@ struct Renderer::Impl {
   RenderTarget scene;  // the 3D scene at the render scale (unused at scale 1: drawn into `frame`)
   float renderScale = 1.f;
   bool intoWindow = false;  // `frame` is the default framebuffer (fbo 0), sized by beginFrame
-  std::vector<GpuMesh> meshes;
-  std::vector<uint32_t> freeMeshes;
-  std::vector<GpuTexture> textures;
-  std::vector<uint32_t> freeTextures;
+  base::detail::SlotPool<GpuMesh> meshes;  // a handle is a slot's index and generation
+  base::detail::SlotPool<GpuTexture> textures;
   std::vector<DrawItem> draws;
   std::vector<Material> materials;
   std::vector<glm::mat4> jointMatrices;
@@ -184,22 +190,17 @@ struct Renderer::Impl {
   Lighting lighting;
   std::vector<char> textScratch;
 
-  GpuMesh* mesh(MeshHandle h) {
-    if (h.generation == 0 || h.index >= meshes.size()) return nullptr;
-    GpuMesh& m = meshes[h.index];
-    return (m.alive && m.generation == h.generation) ? &m : nullptr;
-  }
-  const GpuMesh* mesh(MeshHandle h) const { return const_cast<Impl*>(this)->mesh(h); }
+  GpuMesh* mesh(MeshHandle h) { return meshes.get(h.index, h.generation); }
+  const GpuMesh* mesh(MeshHandle h) const { return meshes.get(h.index, h.generation); }
   GLuint texture(TextureHandle h) const {
-    if (h.generation == 0 || h.index >= textures.size()) return 0;
-    const GpuTexture& t = textures[h.index];
-    return (t.alive && t.generation == h.generation) ? t.id : 0;
+    const GpuTexture* t = textures.get(h.index, h.generation);
+    return t ? t->id : 0;
   }
   bool scaled() const { return renderScale < 1.f; }
   bool composed() const { return scaled() || intoWindow; }  // the scene drawn apart, then copied
   const RenderTarget& sceneTarget() const { return composed() ? scene : frame; }
 
-  bool createShadowMap(int size, std::string* error);
+  base::Status createShadowMap(int size);
   glm::mat4 lightViewProj() const;
   FrameMatrices frameMatrices() const;
   void drawShadowPass(const glm::mat4& lightVp);
@@ -227,7 +228,7 @@ struct Renderer::Impl {
 };
 
 // The shadow map at `size` texels square, made anew (the render scale sets its size).
-bool Renderer::Impl::createShadowMap(int size, std::string* error) {
+base::Status Renderer::Impl::createShadowMap(int size) {
   if (shadowFbo) glDeleteFramebuffers(1, &shadowFbo);
   if (shadowTexture) glDeleteTextures(1, &shadowTexture);
   shadowSize = size;
@@ -247,8 +248,7 @@ bool Renderer::Impl::createShadowMap(int size, std::string* error) {
   glReadBuffer(GL_NONE);
   const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (!complete && error) *error = "the shadow-map framebuffer is incomplete";
-  return complete;
+  return complete ? base::Status() : unavailable("the shadow-map framebuffer is incomplete");
 }
 
 glm::mat4 Renderer::Impl::lightViewProj() const {
@@ -277,15 +277,8 @@ Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
 
 Renderer::~Renderer() {
   if (!impl_ || !glDeleteProgram) return;
-  for (auto& m : impl_->meshes) {
-    if (!m.alive) continue;
-    glDeleteVertexArrays(1, &m.vao);
-    glDeleteBuffers(1, &m.vbo);
-    glDeleteBuffers(1, &m.ibo);
-    if (m.skinVbo) glDeleteBuffers(1, &m.skinVbo);
-  }
-  for (auto& t : impl_->textures)
-    if (t.alive) glDeleteTextures(1, &t.id);
+  impl_->meshes.forEach([](uint32_t, uint32_t, GpuMesh& m) { deleteGpuMesh(m); });
+  impl_->textures.forEach([](uint32_t, uint32_t, GpuTexture& t) { glDeleteTextures(1, &t.id); });
   glDeleteProgram(impl_->meshProgram);
   glDeleteProgram(impl_->shadowProgram);
   glDeleteProgram(impl_->skyProgram);
@@ -299,17 +292,22 @@ Renderer::~Renderer() {
   impl_->scene.release();
 }
 
-bool Renderer::init(std::string* error) {
+base::Status Renderer::init() {
   Impl& r = *impl_;
-  if (!glCreateProgram) {
-    if (error) *error = "no OpenGL context is loaded";
-    return false;
+  if (!glCreateProgram) return unavailable("no OpenGL context is loaded");
+  struct Program {
+    GLuint* id;
+    const char* vertex;
+    const char* fragment;
+  };
+  for (const Program& p : {Program{&r.meshProgram, shaders::kMeshVertex, shaders::kMeshFragment},
+                           Program{&r.shadowProgram, shaders::kShadowVertex, shaders::kShadowFragment},
+                           Program{&r.skyProgram, shaders::kSkyVertex, shaders::kSkyFragment},
+                           Program{&r.lineProgram, shaders::kLineVertex, shaders::kLineFragment}}) {
+    const base::Expected<GLuint> linked = linkProgram(p.vertex, p.fragment);
+    if (!linked.ok()) return linked.status();
+    *p.id = *linked;
   }
-  r.meshProgram = linkProgram(shaders::kMeshVertex, shaders::kMeshFragment, error);
-  r.shadowProgram = linkProgram(shaders::kShadowVertex, shaders::kShadowFragment, error);
-  r.skyProgram = linkProgram(shaders::kSkyVertex, shaders::kSkyFragment, error);
-  r.lineProgram = linkProgram(shaders::kLineVertex, shaders::kLineFragment, error);
-  if (!r.meshProgram || !r.shadowProgram || !r.skyProgram || !r.lineProgram) return false;
   r.meshU.lookUp(r.meshProgram);
   r.shadowMvpU = glGetUniformLocation(r.shadowProgram, "uLightMvp");
   r.shadowSkinnedU = glGetUniformLocation(r.shadowProgram, "uSkinned");
@@ -329,7 +327,7 @@ bool Renderer::init(std::string* error) {
   glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(ColoredVertex),
                         reinterpret_cast<void*>(offsetof(ColoredVertex, color)));
   glBindVertexArray(0);
-  return r.createShadowMap(kShadowMapSize, error);
+  return r.createShadowMap(kShadowMapSize);
 }
 
 void Renderer::setRenderScale(float scale) {
@@ -340,7 +338,7 @@ void Renderer::setRenderScale(float scale) {
   // The shadow map follows the scale in three steps (so that a dynamic scale moving a little does
   // not remake it); the scene target is resized at the next frame.
   const int size = clamped > 0.7f ? kShadowMapSize : clamped >= 0.3f ? kShadowMapSize / 2 : kShadowMapSize / 4;
-  if (size != r.shadowSize) r.createShadowMap(size, nullptr);
+  if (size != r.shadowSize) r.createShadowMap(size);
 }
 
 float Renderer::renderScale() const { return impl_->renderScale; }
@@ -367,30 +365,18 @@ bool Renderer::isSoftwareRasterizer(const std::string& deviceName) {
   return false;
 }
 
-MeshHandle Renderer::uploadMesh(const geometry::MeshData& mesh, std::string* error) {
-  return uploadPacked(packMesh(mesh), error);
+base::Expected<MeshHandle> Renderer::uploadMesh(const geometry::MeshData& mesh) {
+  return uploadPacked(packMesh(mesh));
 }
 
-MeshHandle Renderer::uploadPacked(const PackedMesh& packed, std::string* error) {
-  if (!packed.ok() || packed.vertices.empty()) {
-    if (error) *error = packed.ok() ? "mesh has no triangles" : packed.error;
-    return {};
+base::Expected<MeshHandle> Renderer::uploadPacked(const PackedMesh& packed) {
+  if (!packed.ok()) return base::Status(packed);
+  if (packed.vertices.empty()) {
+    return base::Expected<MeshHandle>::failure(base::StatusCode::InvalidArgument, "mesh has no triangles");
   }
-  Impl& r = *impl_;
-  uint32_t index;
-  if (!r.freeMeshes.empty()) {
-    index = r.freeMeshes.back();
-    r.freeMeshes.pop_back();
-  } else {
-    index = uint32_t(r.meshes.size());
-    r.meshes.emplace_back();
-  }
-  GpuMesh& g = r.meshes[index];
-  g.generation = g.generation + 1;
-  if (g.generation == 0) g.generation = 1;
-  g.alive = true;
+  const auto key = impl_->meshes.insert(GpuMesh{});
+  GpuMesh& g = *impl_->meshes.get(key.index, key.generation);
   g.triangles = uint32_t(packed.indices.size() / 3);
-  g.submeshes.clear();
   for (const auto& s : packed.submeshes) g.submeshes.push_back({s.firstIndex, s.indexCount, s.materialId});
   glGenVertexArrays(1, &g.vao);
   glGenBuffers(1, &g.vbo);
@@ -427,57 +413,31 @@ MeshHandle Renderer::uploadPacked(const PackedMesh& packed, std::string* error) 
                           reinterpret_cast<void*>(offsetof(SkinVertex, weights)));
   }
   glBindVertexArray(0);
-  return {index, g.generation};
+  return MeshHandle{key.index, key.generation};
 }
 
 void Renderer::destroyMesh(MeshHandle handle) {
   GpuMesh* m = impl_->mesh(handle);
   if (!m) return;
-  glDeleteVertexArrays(1, &m->vao);
-  glDeleteBuffers(1, &m->vbo);
-  glDeleteBuffers(1, &m->ibo);
-  if (m->skinVbo) glDeleteBuffers(1, &m->skinVbo);
-  m->vao = m->vbo = m->ibo = m->skinVbo = 0;
-  m->alive = false;
-  m->submeshes.clear();
-  impl_->freeMeshes.push_back(handle.index);
+  deleteGpuMesh(*m);
+  impl_->meshes.erase(handle.index);
 }
 
-uint32_t Renderer::liveMeshCount() const {
-  uint32_t count = 0;
-  for (const auto& m : impl_->meshes) count += m.alive ? 1 : 0;
-  return count;
-}
+uint32_t Renderer::liveMeshCount() const { return impl_->meshes.size(); }
 
-uint32_t Renderer::liveTextureCount() const {
-  uint32_t count = 0;
-  for (const auto& t : impl_->textures) count += t.alive ? 1 : 0;
-  return count;
-}
+uint32_t Renderer::liveTextureCount() const { return impl_->textures.size(); }
 
 bool Renderer::isValid(MeshHandle mesh) const { return impl_->mesh(mesh) != nullptr; }
 
 bool Renderer::isValid(TextureHandle texture) const { return impl_->texture(texture) != 0; }
 
-TextureHandle Renderer::createTexture(int width, int height, std::span<const uint8_t> rgba,
-                                      std::string* error) {
+base::Expected<TextureHandle> Renderer::createTexture(int width, int height, std::span<const uint8_t> rgba) {
   if (width <= 0 || height <= 0 || rgba.size() != size_t(width) * size_t(height) * 4) {
-    if (error) *error = "texture size does not match its pixel data";
-    return {};
+    return base::Expected<TextureHandle>::failure(base::StatusCode::InvalidArgument,
+                                                  "texture size does not match its pixel data");
   }
-  Impl& r = *impl_;
-  uint32_t index;
-  if (!r.freeTextures.empty()) {
-    index = r.freeTextures.back();
-    r.freeTextures.pop_back();
-  } else {
-    index = uint32_t(r.textures.size());
-    r.textures.emplace_back();
-  }
-  GpuTexture& t = r.textures[index];
-  t.generation = t.generation + 1;
-  if (t.generation == 0) t.generation = 1;
-  t.alive = true;
+  const auto key = impl_->textures.insert(GpuTexture{});
+  GpuTexture& t = *impl_->textures.get(key.index, key.generation);
   glGenTextures(1, &t.id);
   glBindTexture(GL_TEXTURE_2D, t.id);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -487,16 +447,14 @@ TextureHandle Renderer::createTexture(int width, int height, std::span<const uin
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  return {index, t.generation};
+  return TextureHandle{key.index, key.generation};
 }
 
 void Renderer::destroyTexture(TextureHandle handle) {
   GLuint id = impl_->texture(handle);
   if (!id) return;
   glDeleteTextures(1, &id);
-  impl_->textures[handle.index].alive = false;
-  impl_->textures[handle.index].id = 0;
-  impl_->freeTextures.push_back(handle.index);
+  impl_->textures.erase(handle.index);
 }
 
 void Renderer::beginFrame(int width, int height, const Camera& camera, const Lighting& lighting) {
@@ -594,14 +552,15 @@ void Renderer::Impl::drawShadowPass(const glm::mat4& lightVp) {
   glPolygonOffset(1.5f, 2.f);
   glUseProgram(shadowProgram);
   for (const DrawItem& d : draws) {
-    const GpuMesh& m = meshes[d.mesh];
+    const GpuMesh* m = meshes.atIndex(d.mesh);
+    if (!m) continue;  // destroyed since it was submitted
     // The floor (checker material) and materials marked so receive but do not cast.
     const Material& first = materials[d.firstMaterial];
     if (first.shading == Shading::Checker || !first.castsShadow) continue;
     setSkin(d, shadowSkinnedU, shadowJointsU);
     glUniformMatrix4fv(shadowMvpU, 1, GL_FALSE, glm::value_ptr(lightVp * d.model));
-    glBindVertexArray(m.vao);
-    for (const auto& s : m.submeshes)
+    glBindVertexArray(m->vao);
+    for (const auto& s : m->submeshes)
       glDrawElements(GL_TRIANGLES, GLsizei(s.indexCount), GL_UNSIGNED_INT,
                      reinterpret_cast<void*>(uintptr_t(s.firstIndex) * 4));
   }
@@ -629,13 +588,14 @@ void Renderer::Impl::drawLitPass(const FrameMatrices& fm, FrameStats& stats) {
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, shadowTexture);
   for (const DrawItem& d : draws) {
-    const GpuMesh& m = meshes[d.mesh];
+    const GpuMesh* m = meshes.atIndex(d.mesh);
+    if (!m) continue;  // destroyed since it was submitted
     setSkin(d, u.skinned, u.joints);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
     glUniformMatrix4fv(u.model, 1, GL_FALSE, glm::value_ptr(d.model));
     glUniformMatrix3fv(u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-    glBindVertexArray(m.vao);
-    for (const auto& s : m.submeshes) {
+    glBindVertexArray(m->vao);
+    for (const auto& s : m->submeshes) {
       const Material& mat = materials[d.firstMaterial + std::min(s.materialId, d.materialCount - 1)];
       const GLuint tex = texture(mat.albedo);
       glUniform1i(u.shading, int(mat.shading));
@@ -766,34 +726,30 @@ void Renderer::presentToDefaultFramebuffer(int windowWidth, int windowHeight) co
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-bool writePng(const std::string& path, int width, int height, std::span<const uint8_t> rgba,
-              std::string* error) {
+base::Status writePng(const std::string& path, int width, int height, std::span<const uint8_t> rgba) {
   if (rgba.size() != size_t(width) * size_t(height) * 4) {
-    if (error) *error = path + ": pixel data does not match " + std::to_string(width) + "x" +
-                        std::to_string(height);
-    return false;
+    return base::Status::failure(base::StatusCode::InvalidArgument, path + ": pixel data does not match " +
+                                                                        std::to_string(width) + "x" +
+                                                                        std::to_string(height));
   }
   // Level 4 instead of stb's 8: files about 10% larger, written several times faster (screenshots
   // of long headless runs).
   stbi_write_png_compression_level = 4;
-  if (!stbi_write_png(path.c_str(), width, height, 4, rgba.data(), width * 4)) {
-    if (error) *error = path + ": could not write the PNG file";
-    return false;
-  }
-  return true;
+  if (!stbi_write_png(path.c_str(), width, height, 4, rgba.data(), width * 4))
+    return base::Status::failure(base::StatusCode::IoError, path + ": could not write the PNG file");
+  return {};
 }
 
-bool readPng(const std::string& path, int& width, int& height, std::vector<uint8_t>& rgba,
-             std::string* error) {
+base::Status readPng(const std::string& path, int& width, int& height, std::vector<uint8_t>& rgba) {
   int channels = 0;
   unsigned char* data = stbi_load(path.c_str(), &width, &height, &channels, 4);
   if (!data) {
-    if (error) *error = path + ": " + (stbi_failure_reason() ? stbi_failure_reason() : "unreadable");
-    return false;
+    return base::Status::failure(base::StatusCode::IoError,
+                                 path + ": " + (stbi_failure_reason() ? stbi_failure_reason() : "unreadable"));
   }
   rgba.assign(data, data + size_t(width) * size_t(height) * 4);
   stbi_image_free(data);
-  return true;
+  return {};
 }
 
 }  // namespace cleave::render

@@ -18,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include "cleave/base/status.h"
 #include "cleave/geometry/mesh_data.h"
 #include "cleave/render/packed_mesh.h"
 
@@ -88,8 +89,9 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Compiles shaders and creates the shadow map. Needs a current GL 3.3 core context.
-  bool init(std::string* error);
+  // Compiles shaders and creates the shadow map. Needs a current GL 3.3 core context: Unavailable
+  // (with the reason) without one, or when a shader or the shadow map cannot be made.
+  base::Status init();
 
   // Render scale: the 3D scene (shadow, lit, sky and world-line passes) is drawn into an offscreen
   // target of scale x the frame size and stretched over the frame with linear filtering; the HUD
@@ -113,10 +115,11 @@ class Renderer {
 
   // Uploads positions, normals (computed flat if absent), uv0 (zero if absent) and tangents, with the
   // submesh runs, and the skin (joints and weights) when the mesh has one, for submitSkinned.
-  // Returns an invalid handle (and a reason) for empty or malformed meshes.
-  MeshHandle uploadMesh(const geometry::MeshData& mesh, std::string* error = nullptr);
+  // InvalidArgument (with the reason) for empty or malformed meshes; `.valueOr({})` gives an invalid
+  // handle then.
+  base::Expected<MeshHandle> uploadMesh(const geometry::MeshData& mesh);
   // The same for a mesh packed before (packMesh, on any thread): only the GL buffers are made here.
-  MeshHandle uploadPacked(const PackedMesh& packed, std::string* error = nullptr);
+  base::Expected<MeshHandle> uploadPacked(const PackedMesh& packed);
   void destroyMesh(MeshHandle mesh);
   uint32_t liveMeshCount() const;
   uint32_t liveTextureCount() const;
@@ -125,8 +128,8 @@ class Renderer {
   bool isValid(TextureHandle texture) const;
 
   // RGBA8 pixels, rows top to bottom, width*height*4 bytes. Mipmapped, repeating.
-  TextureHandle createTexture(int width, int height, std::span<const uint8_t> rgba,
-                              std::string* error = nullptr);
+  // InvalidArgument when the size does not match the pixel data.
+  base::Expected<TextureHandle> createTexture(int width, int height, std::span<const uint8_t> rgba);
   void destroyTexture(TextureHandle texture);
 
   // Starts a frame of the given size in pixels; resizes the offscreen target when needed.
@@ -168,11 +171,10 @@ class Renderer {
   std::unique_ptr<Impl> impl_;
 };
 
-// Writes RGBA8 pixels (rows top to bottom) as a PNG. Returns false with a reason on failure.
-bool writePng(const std::string& path, int width, int height, std::span<const uint8_t> rgba,
-              std::string* error = nullptr);
-// Reads a PNG as RGBA8 (rows top to bottom).
-bool readPng(const std::string& path, int& width, int& height, std::vector<uint8_t>& rgba,
-             std::string* error = nullptr);
+// Writes RGBA8 pixels (rows top to bottom) as a PNG. On failure InvalidArgument (the pixels do not
+// match the size) or IoError, with a reason naming the file.
+base::Status writePng(const std::string& path, int width, int height, std::span<const uint8_t> rgba);
+// Reads a PNG as RGBA8 (rows top to bottom). On failure IoError with a reason naming the file.
+base::Status readPng(const std::string& path, int& width, int& height, std::vector<uint8_t>& rgba);
 
 }  // namespace cleave::render

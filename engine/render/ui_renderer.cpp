@@ -18,19 +18,17 @@ UiRenderer::~UiRenderer() {
   if (started_ && ImGui::GetCurrentContext()) ImGui_ImplOpenGL3_Shutdown();
 }
 
-bool UiRenderer::init(std::string* error) {
-  if (started_) return true;
-  if (!ImGui::GetCurrentContext()) {
-    if (error) *error = "ui renderer: no Dear ImGui context";
-    return false;
-  }
+base::Status UiRenderer::init() {
+  if (started_) return {};
+  if (!ImGui::GetCurrentContext())
+    return base::Status::failure(base::StatusCode::Unavailable, "ui renderer: no Dear ImGui context");
   // The GLSL of the engine's own shaders (OpenGL 3.3 core).
   if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
-    if (error) *error = "ui renderer: the Dear ImGui OpenGL 3 backend could not start";
-    return false;
+    return base::Status::failure(base::StatusCode::Unavailable,
+                                 "ui renderer: the Dear ImGui OpenGL 3 backend could not start");
   }
   started_ = true;
-  return true;
+  return {};
 }
 
 void UiRenderer::newFrame() {
@@ -50,9 +48,9 @@ void UiRenderer::draw(Renderer& renderer) {
 
 UiRenderer::~UiRenderer() = default;
 
-bool UiRenderer::init(std::string* error) {
-  if (error) *error = "the inspector is not built (it needs Dear ImGui, libimgui-dev, at configure time)";
-  return false;
+base::Status UiRenderer::init() {
+  return base::Status::failure(base::StatusCode::Unavailable,
+                               "the inspector is not built (it needs Dear ImGui, libimgui-dev, at configure time)");
 }
 
 void UiRenderer::newFrame() {}

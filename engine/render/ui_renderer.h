@@ -10,6 +10,8 @@
 
 #include <string>
 
+#include "cleave/base/status.h"
+
 namespace cleave::render {
 
 class Renderer;
@@ -23,9 +25,9 @@ class UiRenderer {
 
   // True when the engine was built with Dear ImGui.
   static bool built();
-  // Creates the backend's shader, buffers and font texture for the current ImGui context. Returns
-  // false with a reason when ImGui is not built in or the GL objects cannot be made.
-  bool init(std::string* error);
+  // Creates the backend's shader, buffers and font texture for the current ImGui context.
+  // Unavailable, with the reason, when ImGui is not built in or the GL objects cannot be made.
+  base::Status init();
   // Before each ImGui::NewFrame: makes the shader, buffers and font texture the first time.
   void newFrame();
   // Draws the ImGui draw data of the frame just ended (ImGui::Render) into `renderer`'s frame.

@@ -396,7 +396,7 @@ void setFigureMaterials(ArenaMaterials& m, const ArenaTextures& t, const std::ve
 ArenaMaterials createArenaMaterials(render::Renderer& r, const std::vector<glm::vec4>& characterColors) {
   ArenaMaterials m;
   auto upload = [&](const assets::Image& img) {
-    const render::TextureHandle h = r.createTexture(img.width, img.height, img.rgba);
+    const render::TextureHandle h = r.createTexture(img.width, img.height, img.rgba).valueOr({});
     m.textures.push_back(h);
     return h;
   };

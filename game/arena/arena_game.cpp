@@ -120,7 +120,7 @@ ecs::Entity ArenaGame::addStatic(const std::string& name, geometry::MeshData mes
   }
   components::MeshRenderer mr;
   mr.source = source;
-  mr.gpu = app_->renderer().uploadMesh(*source);
+  mr.gpu = app_->renderer().uploadMesh(*source).valueOr({});
   mr.materials = std::move(materials);
   world.add<components::MeshRenderer>(e, std::move(mr));
   return e;
@@ -238,9 +238,9 @@ ecs::Entity ArenaGame::spawnDynamic(const std::string& name, geometry::MeshData 
   components::SplitWorld sw = splitWorld();
   const ecs::Entity e = components::createSplitableObject(sw, std::move(object));
   world.add<ArenaTag>(e, ArenaTag{kind});
-  std::string error;
-  if (!components::makeDynamicBody(sw, e, splitable.density, splitable.collider, &error, splits_)) {
-    std::fprintf(stderr, "arena: %s has no body: %s\n", name.c_str(), error.c_str());
+  const base::Status made = components::makeDynamicBody(sw, e, splitable.density, splitable.collider, splits_);
+  if (!made.ok()) {
+    std::fprintf(stderr, "arena: %s has no body: %s\n", name.c_str(), made.message.c_str());
     removeEntity(e);
     return {};
   }
@@ -296,12 +296,12 @@ void ArenaGame::spawnMenuCubes() {
 }
 
 void ArenaGame::createPlayer() {
-  characterMesh_ = app_->renderer().uploadMesh(character_.mesh);
+  characterMesh_ = app_->renderer().uploadMesh(character_.mesh).valueOr({});
   animator_ = anim::Animator(&character_.skeleton);
   animator_.play(&character_.idle);
-  bladeMesh_ = app_->renderer().uploadMesh(prim::box(glm::vec3(0.03f, 0.012f, 0.5f)));
-  discMesh_ = app_->renderer().uploadMesh(prim::torus(0.36f, 0.05f, 32, 8));
-  hammerMesh_ = app_->renderer().uploadMesh(prim::box(glm::vec3(0.32f, 0.2f, 0.2f)));
+  bladeMesh_ = app_->renderer().uploadMesh(prim::box(glm::vec3(0.03f, 0.012f, 0.5f))).valueOr({});
+  discMesh_ = app_->renderer().uploadMesh(prim::torus(0.36f, 0.05f, 32, 8)).valueOr({});
+  hammerMesh_ = app_->renderer().uploadMesh(prim::box(glm::vec3(0.32f, 0.2f, 0.2f))).valueOr({});
 
   ecs::World& world = app_->world();
   player_ = world.create();
@@ -327,7 +327,7 @@ void ArenaGame::createPlayer() {
   }
 }
 
-bool ArenaGame::setup(app::App& app, std::string* error) {
+base::Status ArenaGame::setup(app::App& app) {
   app_ = &app;
   health_ = tuning_.player.health;
   rng_ = app.options().seed * 0x9e3779b97f4a7c15ull + 0x632be59bd9b4e019ull;
@@ -376,11 +376,10 @@ bool ArenaGame::setup(app::App& app, std::string* error) {
   app.setFrameDumpExtension([this](nlohmann::json& line) { dumpFrame(line); });
   app.setUi([this](app::TickContext& c) { drawInspector(c); });
   if (app.options().inspector) {
-    std::string why;
-    if (!inspector_.open(app, &why)) log::warning("cleave-arena", "--inspector: %s", why.c_str());
+    if (const base::Status opened = inspector_.open(app); !opened.ok())
+      log::warning("cleave-arena", "--inspector: %s", opened.message.c_str());
   }
-  (void)error;
-  return true;
+  return {};
 }
 
 // ---------------------------------------------------------------------------------------------

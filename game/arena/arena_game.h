@@ -67,8 +67,9 @@ class ArenaGame {
   ArenaGame();
   ~ArenaGame();
 
-  // Builds the arena and registers the systems. Returns false with a reason on failure.
-  bool setup(app::App& app, std::string* error);
+  // Builds the arena and registers the systems (it cannot fail today; the Status is the shape every
+  // setup has).
+  base::Status setup(app::App& app);
 
   // The numbers the match plays by (arena_tuning.h); change them before setup.
   ArenaTuning& tuning() { return tuning_; }

@@ -55,10 +55,11 @@ Enemy spawnGladiator(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 posit
   // Built at the origin so the body frame found by makeDynamicBody is the one in the enemy's frame.
   const ecs::Entity e = components::createSplitableObject(
       sw, {"gladiator", ecs::Transform{}, meshes.gladiator, {m.armour, m.flesh, m.skin, m.cloth}, splitable});
-  std::string error;
   // The living figure is moved by the game: its convex hull is collider enough (cheap to build).
-  if (!components::makeDynamicBody(sw, e, splitable.density, components::ColliderMode::ConvexHull, &error)) {
-    std::fprintf(stderr, "arena: gladiator has no body: %s\n", error.c_str());
+  const base::Status made =
+      components::makeDynamicBody(sw, e, splitable.density, components::ColliderMode::ConvexHull);
+  if (!made.ok()) {
+    std::fprintf(stderr, "arena: gladiator has no body: %s\n", made.message.c_str());
     world.destroy(e);
     return enemy;
   }
@@ -94,9 +95,9 @@ Enemy spawnSkinned(EnemyContext& c, const EnemyMeshes& meshes, glm::vec2 positio
   // Each one starts its stride somewhere else (from its spawn point: deterministic).
   const float start = std::fmod(std::abs(position.x * 0.37f + position.y * 0.61f), 1.f);
   world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(meshes.skinnedAsset, "walk", start));
-  std::string error;
-  if (!components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true, &error)) {
-    std::fprintf(stderr, "arena: skinned enemy has no body: %s\n", error.c_str());
+  const base::Status made = components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true);
+  if (!made.ok()) {
+    std::fprintf(stderr, "arena: skinned enemy has no body: %s\n", made.message.c_str());
     world.destroy(e);
     return enemy;
   }

@@ -69,7 +69,7 @@ void DemoGame::createMaterials() {
   render::Renderer& r = app_->renderer();
   auto texture = [&](assets::TextureKind kind, int size, uint32_t seed) {
     const assets::Image img = assets::makeTexture(kind, size, seed);
-    const render::TextureHandle h = r.createTexture(img.width, img.height, img.rgba);
+    const render::TextureHandle h = r.createTexture(img.width, img.height, img.rgba).valueOr({});
     textures_.push_back(h);
     return h;
   };
@@ -181,7 +181,7 @@ void DemoGame::createFloor() {
   auto mesh = std::make_shared<geometry::MeshData>(geometry::primitives::box(glm::vec3(60.f, 0.5f, 60.f)));
   components::MeshRenderer mr;
   mr.source = mesh;
-  mr.gpu = app_->renderer().uploadMesh(*mesh);
+  mr.gpu = app_->renderer().uploadMesh(*mesh).valueOr({});
   mr.materials = {floorMaterial_};
   world.add<components::MeshRenderer>(floor, std::move(mr));
   auto shape = physics_->createShape(physics::ShapeDef::box(glm::vec3(60.f, 0.5f, 60.f)));
@@ -268,9 +268,9 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
   components::SplitWorld sw = splitWorld();
   const ecs::Entity e = components::createSplitableObject(sw, std::move(object));
   world.add<components::MaterialChoice>(e, components::MaterialChoice{look});
-  std::string error;
-  if (!components::makeDynamicBody(sw, e, splitable.density, splitable.collider, &error, splits_))
-    std::fprintf(stderr, "demo: %s has no body: %s\n", name.c_str(), error.c_str());
+  const base::Status made = components::makeDynamicBody(sw, e, splitable.density, splitable.collider, splits_);
+  if (!made.ok())
+    std::fprintf(stderr, "demo: %s has no body: %s\n", name.c_str(), made.message.c_str());
   return e;
 }
 
@@ -346,9 +346,9 @@ ecs::Entity DemoGame::spawnCharacter(const glm::vec3& position, const glm::quat&
   components::SplitWorld sw = splitWorld();
   const ecs::Entity e = components::createSplitableObject(sw, std::move(object));
   world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(characterAsset_, "walk"));
-  std::string error;
-  if (!components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true, &error)) {
-    std::fprintf(stderr, "demo: the character has no body: %s\n", error.c_str());
+  const base::Status made = components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true);
+  if (!made.ok()) {
+    std::fprintf(stderr, "demo: the character has no body: %s\n", made.message.c_str());
   } else {
     const auto& body = world.get<components::RigidBody>(e);
     const auto bt = physics_->bodyTransform(body.body);
@@ -374,9 +374,9 @@ ecs::Entity DemoGame::spawnFigure(const glm::vec3& position, const glm::quat& ro
   const ecs::Entity e = components::createSplitableObject(sw, std::move(object));
   world.add<components::SkinnedMesh>(e, components::makeSkinnedMesh(characterAsset_, "idle"));
   world.add<components::MaterialChoice>(e, components::MaterialChoice{5});
-  std::string error;
-  if (!components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true, &error))
-    std::fprintf(stderr, "demo: the figure has no body: %s\n", error.c_str());
+  const base::Status made = components::makeSkinnedBody(sw, e, splitable.density, /*kinematic=*/true);
+  if (!made.ok())
+    std::fprintf(stderr, "demo: the figure has no body: %s\n", made.message.c_str());
   return e;
 }
 
@@ -401,7 +401,7 @@ void DemoGame::walkCharacters(double dt) {
   }
 }
 
-bool DemoGame::loadSceneFile(const std::string& path, std::string* error) {
+base::Status DemoGame::loadSceneFile(const std::string& path) {
   components::SceneContext context{app_->world(), *physics_, &app_->renderer(), splits_, {}};
   // Material names of the scene file map to the demo's looks; caps get the inside look.
   context.materials = [this](const std::string& name, bool cap) {
@@ -420,10 +420,7 @@ bool DemoGame::loadSceneFile(const std::string& path, std::string* error) {
     return plain;
   };
   components::SceneLoadResult scene = components::loadScene(path, context);
-  if (!scene.ok) {
-    if (error) *error = scene.error;
-    return false;
-  }
+  if (!scene.ok()) return scene;
   for (const components::SceneEntity& e : scene.entities) {
     for (size_t k = 0; k < 7; ++k) {
       if (e.material == lookNames_[k] && app_->world().alive(e.entity))
@@ -438,10 +435,10 @@ bool DemoGame::loadSceneFile(const std::string& path, std::string* error) {
     yaw_ = std::atan2(-d.x, -d.z);
     pitch_ = std::asin(std::clamp(d.y, -1.f, 1.f));
   }
-  return true;
+  return {};
 }
 
-bool DemoGame::setup(app::App& app, std::string* error) {
+base::Status DemoGame::setup(app::App& app) {
   app_ = &app;
   components::SplitBudgetSettings budget;
   // Main-thread split work is kept under 4 ms a tick: the estimates are fitted to single cuts and
@@ -459,7 +456,7 @@ bool DemoGame::setup(app::App& app, std::string* error) {
     splits_->setFailureDumpDirectory(dir);
   createMaterials();
   if (!app.options().scenePath.empty()) {
-    if (!loadSceneFile(app.options().scenePath, error)) return false;
+    if (base::Status loaded = loadSceneFile(app.options().scenePath); !loaded.ok()) return loaded;
   } else {
     createFloor();
     // The thesis's line-up: one of each object, plus a second row to have something to push into.
@@ -484,8 +481,8 @@ bool DemoGame::setup(app::App& app, std::string* error) {
   app.addSystem(app::Phase::Render, "demo.render", [this](app::TickContext& c) { render(c); });
   app.setUi([this](app::TickContext& c) { drawInspector(c); });
   if (app.options().inspector) {
-    std::string why;
-    if (!inspector_.open(app, &why)) log::warning("cleave-demo", "--inspector: %s", why.c_str());
+    if (const base::Status opened = inspector_.open(app); !opened.ok())
+      log::warning("cleave-demo", "--inspector: %s", opened.message.c_str());
   }
   app.setStateDumpExtension([this](ecs::Entity e, nlohmann::json& out) { dumpExtension(e, out); });
   app.setFrameDumpExtension([this](nlohmann::json& line) {
@@ -511,8 +508,7 @@ bool DemoGame::setup(app::App& app, std::string* error) {
                       {"max_split_ms", stats.maxSplitMilliseconds},
                       {"queue", stats.queueLength}};
   });
-  (void)error;
-  return true;
+  return {};
 }
 
 glm::vec3 DemoGame::rayDirection(glm::vec2 pixel, glm::ivec2 frame) const {

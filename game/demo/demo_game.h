@@ -41,8 +41,8 @@ class DemoGame {
   DemoGame();
   ~DemoGame();
 
-  // Builds the scene and registers the systems. Returns false with a reason on failure.
-  bool setup(app::App& app, std::string* error);
+  // Builds the scene and registers the systems. The scene file's error when --scene cannot load.
+  base::Status setup(app::App& app);
 
   // Spawns an object of the given kind at a position (used by keys 1-8 and by scenes).
   ecs::Entity spawn(ObjectKind kind, const glm::vec3& position, const glm::quat& rotation);
@@ -78,7 +78,7 @@ class DemoGame {
   ecs::Entity spawnFigure(const glm::vec3& position, const glm::quat& rotation);
   void walkCharacters(double dt);
   // --scene FILE: the objects, splitters, budget and camera of a JSON scene (docs/scene-format.md).
-  bool loadSceneFile(const std::string& path, std::string* error);
+  base::Status loadSceneFile(const std::string& path);
   void gameplay(app::TickContext& c);
   void render(app::TickContext& c);
   void drawHud(app::TickContext& c);

@@ -27,12 +27,11 @@ int main(int argc, char** argv) {
   cleave::app::AppOptions options;
   cleave::app::App app;
   if (const std::optional<int> code = cleave::app::startApp(argc, argv, start, options, app)) return *code;
-  std::string error;
   cleave::demo::DemoGame game;
   // Before setup: the game's physics world does not exist yet (a new one holds nothing).
   const cleave::components::ResourceCounts before = cleave::components::countResources(nullptr, &app.renderer());
-  if (!game.setup(app, &error)) {
-    std::fprintf(stderr, "cleave-demo: %s\n", error.c_str());
+  if (const cleave::base::Status ready = game.setup(app); !ready.ok()) {
+    std::fprintf(stderr, "cleave-demo: %s\n", ready.message.c_str());
     return 1;
   }
   const auto& extra = options.extra;

@@ -17,14 +17,13 @@ std::string Inspector::toggle(app::App& app) {
     close(app);
     return {};
   }
-  std::string why;
-  return open(app, &why) ? std::string() : why;
+  return open(app).message;
 }
 
-bool Inspector::open(app::App& app, std::string* why) {
-  if (!app.setUiOpen(true, why)) return false;
-  open_ = true;
-  return true;
+base::Status Inspector::open(app::App& app) {
+  base::Status opened = app.setUiOpen(true);
+  if (opened.ok()) open_ = true;
+  return opened;
 }
 
 void Inspector::close(app::App& app) {
@@ -136,7 +135,7 @@ void Inspector::drawTarget(const InspectorFeed& feed) {
   changed |= ImGui::Checkbox("hollow (no caps)", &t.hollow);
   if (changed) {
     const components::TuningResult r = components::applySplitableTuning(feed.world, feed.target, t);
-    lastError_ = r.ok ? std::string() : r.error;
+    lastError_ = r.ok() ? std::string() : r.message;
   }
   targetTuning_ = components::tuningOf(*sp);
   ImGui::TextColored(kDim, "changes apply to the next split of this object");
@@ -156,7 +155,7 @@ void Inspector::drawBudget(const InspectorFeed& feed) {
   changed |= ImGui::Checkbox("deterministic (charge estimates)", &s.deterministic);
   if (changed) {
     const components::TuningResult r = components::applyBudgetTuning(budget, s);
-    lastError_ = r.ok ? std::string() : r.error;
+    lastError_ = r.ok() ? std::string() : r.message;
   }
   const components::SplitBudgetStats& st = budget.stats();
   ImGui::Text("queue %u   deferred %u   done %llu in all", st.queueLength, st.deferred,

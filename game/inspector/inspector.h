@@ -40,8 +40,8 @@ class Inspector {
   // F1: opens or closes the inspector (the app's UI). Returns what to tell the player when it
   // cannot open (the reason: not built, or the UI could not start); empty otherwise.
   std::string toggle(app::App& app);
-  // Opens it (--inspector). False with the reason in `why` when it cannot.
-  bool open(app::App& app, std::string* why);
+  // Opens it (--inspector). Unavailable with the reason when it cannot.
+  base::Status open(app::App& app);
   void close(app::App& app);
   bool isOpen() const { return open_; }
 

@@ -61,13 +61,15 @@ TEST(Transform, MatrixIsTranslationRotationScale) {
 
 TEST(Skeleton, ValidateRejectsCyclesAndBadParents) {
   Skeleton s = twoBoneArm();
-  EXPECT_TRUE(validateSkeleton(s));
+  EXPECT_TRUE(validateSkeleton(s).ok());
   s.joints[0].parent = 1;
   std::string why;
-  EXPECT_FALSE(validateSkeleton(s, &why));
+  why = validateSkeleton(s).message;
+  EXPECT_FALSE(why.empty());
   EXPECT_NE(why.find("cycle"), std::string::npos) << why;
   s.joints[0].parent = 7;
-  EXPECT_FALSE(validateSkeleton(s, &why));
+  why = validateSkeleton(s).message;
+  EXPECT_FALSE(why.empty());
   EXPECT_NE(why.find("invalid parent"), std::string::npos) << why;
   EXPECT_EQ(twoBoneArm().find("tip"), 1);
   EXPECT_EQ(twoBoneArm().find("nose"), -1);
@@ -206,16 +208,19 @@ TEST(AnimationClip, ValidateNamesTheBrokenChannel) {
   clip.name = "walk";
   clip.channels.push_back(channel(0, ChannelPath::Translation, Interpolation::Linear, {0.f, 1.f},
                                   {{0, 0, 0, 0}, {1, 0, 0, 0}}));
-  EXPECT_TRUE(validateClip(clip, 2));
+  EXPECT_TRUE(validateClip(clip, 2).ok());
   std::string why;
-  EXPECT_FALSE(validateClip(clip, 0, &why));
+  why = validateClip(clip, 0).message;
+  EXPECT_FALSE(why.empty());
   EXPECT_NE(why.find("walk"), std::string::npos);
   clip.channels[0].times = {1.f, 1.f};
-  EXPECT_FALSE(validateClip(clip, 2, &why));
+  why = validateClip(clip, 2).message;
+  EXPECT_FALSE(why.empty());
   EXPECT_NE(why.find("increasing"), std::string::npos) << why;
   clip.channels[0].times = {0.f, 1.f};
   clip.channels[0].interpolation = Interpolation::CubicSpline;  // needs 6 values
-  EXPECT_FALSE(validateClip(clip, 2, &why));
+  why = validateClip(clip, 2).message;
+  EXPECT_FALSE(why.empty());
   // A malformed channel is skipped, not read out of range.
   const Skeleton s = twoBoneArm();
   Pose pose;

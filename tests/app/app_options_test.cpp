@@ -29,7 +29,7 @@ TEST(AppOptions, EveryOptionSetsWhatItNames) {
                           "out.replay", "--scene", "s.json", "--screenshot-dir", "shots", "--dump-state", "d.jsonl",
                           "--ticks", "120", "--screenshot-every", "30", "--dump-every", "10", "--width", "640",
                           "--height", "360", "--seed", "7", "--render-scale", "0.5", "--split-threads", "0"});
-  ASSERT_TRUE(p.result.ok) << p.result.error;
+  ASSERT_TRUE(p.result.ok()) << p.result.message;
   const AppOptions& o = p.options;
   EXPECT_TRUE(o.headless);
   EXPECT_TRUE(o.inspector);
@@ -54,7 +54,7 @@ TEST(AppOptions, EveryOptionSetsWhatItNames) {
 
 TEST(AppOptions, DefaultsWithoutOptionsAndHelpAndVersionAreRequests) {
   const Parsed none = parse({});
-  ASSERT_TRUE(none.result.ok);
+  ASSERT_TRUE(none.result.ok());
   EXPECT_FALSE(none.options.headless);
   EXPECT_EQ(none.options.width, 1280);
   EXPECT_EQ(none.options.ticks, -1);
@@ -85,19 +85,19 @@ TEST(AppOptions, BadValuesAreRefusedWithTheOptionNamed) {
   };
   for (const Case& c : cases) {
     const Parsed p = parse(c.args);
-    EXPECT_FALSE(p.result.ok) << c.message;
-    EXPECT_EQ(p.result.error, c.message);
+    EXPECT_FALSE(p.result.ok()) << c.message;
+    EXPECT_EQ(p.result.message, c.message);
   }
 }
 
 TEST(AppOptions, GameOptionsPassThroughWithTheirValues) {
   const Parsed p = parse({"--bench-splits", "20", "--headless", "--quiet"}, {{"--bench-splits", 1}, {"--quiet", 0}});
-  ASSERT_TRUE(p.result.ok) << p.result.error;
+  ASSERT_TRUE(p.result.ok()) << p.result.message;
   EXPECT_TRUE(p.options.headless);
   EXPECT_EQ(p.options.extra, (std::vector<std::string>{"--bench-splits", "20", "--quiet"}));
   const Parsed missing = parse({"--bench-splits"}, {{"--bench-splits", 1}});
-  EXPECT_FALSE(missing.result.ok);
-  EXPECT_EQ(missing.result.error, "--bench-splits needs 1 value(s)");
+  EXPECT_FALSE(missing.result.ok());
+  EXPECT_EQ(missing.result.message, "--bench-splits needs 1 value(s)");
 }
 
 }  // namespace

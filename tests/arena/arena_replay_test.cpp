@@ -514,8 +514,7 @@ TEST(ArenaReplay, NewMatchStartsOnACleanArena) {
 void expectFrameMatchesGolden(const fs::path& dir, const std::string& frame, const std::string& prefix) {
   int width = 0, height = 0;
   std::vector<uint8_t> rgba;
-  std::string error;
-  ASSERT_TRUE(cleave::render::readPng((dir / frame).string(), width, height, rgba, &error)) << error;
+  ASSERT_EQ(cleave::render::readPng((dir / frame).string(), width, height, rgba).message, "");
   ASSERT_EQ(width, 640);
   ASSERT_EQ(height, 360);
   // The HUD is laid out for 720 lines: at 360, half its units (drawBudgetPanel, box at x = W - 145).

@@ -263,8 +263,8 @@ inline std::string cubeGltf(const std::string& extra = "", int indexPatch = -1,
 
 // The checks every reader of the cube must pass: 12 triangles, closed and outward (volume +1).
 inline void expectUnitCube(const MeshReadResult& result, size_t expectedVertices = 8) {
-  ASSERT_TRUE(result.ok) << result.error;
-  EXPECT_TRUE(result.error.empty());
+  ASSERT_TRUE(result.ok()) << result.message;
+  EXPECT_TRUE(result.message.empty());
   EXPECT_EQ(result.mesh.triangleCount(), 12u);
   EXPECT_EQ(result.mesh.vertexCount(), expectedVertices);
   EXPECT_TRUE(geometry::isClosedAndOriented(result.mesh.positions, result.mesh.indices));

@@ -291,9 +291,9 @@ struct Tally {
 };
 
 void expectCleanError(const MeshReadResult& result, const std::string& name) {
-  EXPECT_FALSE(result.error.empty());
-  EXPECT_EQ(result.error.find('\n'), std::string::npos) << result.error;
-  EXPECT_NE(result.error.find(name), std::string::npos) << "the error does not name the file: " << result.error;
+  EXPECT_FALSE(result.message.empty());
+  EXPECT_EQ(result.message.find('\n'), std::string::npos) << result.message;
+  EXPECT_NE(result.message.find(name), std::string::npos) << "the error does not name the file: " << result.message;
   EXPECT_TRUE(result.mesh.positions.empty() && result.mesh.indices.empty());
 }
 
@@ -311,7 +311,7 @@ void checkTruncations(const fs::path& file, Tally& tally) {
     const MeshReadResult result =
         readMeshFromMemory(std::span(reinterpret_cast<const uint8_t*>(bytes.data()), cut), format, name);
     ++tally.truncations;
-    if (!result.ok) expectCleanError(result, name);
+    if (!result.ok()) expectCleanError(result, name);
   }
 }
 
@@ -341,9 +341,8 @@ double sectionLength(std::span<const glm::dvec3> p, std::span<const uint32_t> in
 
 void splitAndCheck(const std::string& name, const MeshData& mesh, Tally& tally) {
   MeshContainer container;
-  std::string why;
-  if (container.setMesh(mesh, &why) != SplitStatus::Ok) {
-    ADD_FAILURE() << name << ": the reader returned a mesh the container refuses: " << why;
+  if (const geometry::MeshStatus set = container.setMesh(mesh); !set.ok()) {
+    ADD_FAILURE() << name << ": the reader returned a mesh the container refuses: " << set.message;
     return;
   }
   const std::span<const glm::dvec3> cut = container.cutPositions();
@@ -443,9 +442,9 @@ void runFile(const fs::path& file, Tally& tally) {
   ++tally.files;
   const MeshReadResult result = loadMesh(file.string());
   checkTruncations(file, tally);
-  if (!result.ok) {
+  if (!result.ok()) {
     ++tally.rejected;
-    tally.rejectedFiles.push_back(result.error);
+    tally.rejectedFiles.push_back(result.message);
     expectCleanError(result, name);
     return;
   }
@@ -623,7 +622,7 @@ struct OpenTally {
 
 void cutOpenArt(const std::string& name, const MeshData& mesh, OpenTally& tally) {
   MeshContainer container;
-  if (container.setMesh(mesh) != SplitStatus::Ok || container.closed()) return;
+  if (container.setMesh(mesh).code != SplitStatus::Ok || container.closed()) return;
   ++tally.meshes;
   glm::dvec3 lo, hi;
   geometry::testing::bounds(container.cutPositions(), lo, hi);
@@ -669,7 +668,7 @@ TEST(Corpus, OpenArtIsCutWithItsClosedLoopsCapped) {
   OpenTally tally;
   for (const fs::path& file : files) {
     const MeshReadResult read = loadMesh(file.string());
-    if (read.ok && read.mesh.triangleCount() <= kLargeTriangles) cutOpenArt(file.filename().string(), read.mesh, tally);
+    if (read.ok() && read.mesh.triangleCount() <= kLargeTriangles) cutOpenArt(file.filename().string(), read.mesh, tally);
   }
   std::printf("[ open art ] %zu open meshes, %zu cuts with caps, %zu refused, %zu planes missed: %zu closed loops "
               "(%zu left open), %zu open chains left open with cap-closed, %zu with bridge (%zu bridged)\n",
@@ -691,7 +690,7 @@ struct FloatTally {
 
 void cutOnFloats(const std::string& name, const MeshData& mesh, FloatTally& tally) {
   MeshContainer container;
-  if (container.setMesh(mesh) != SplitStatus::Ok || !container.closed()) return;
+  if (container.setMesh(mesh).code != SplitStatus::Ok || !container.closed()) return;
   if (!geometry::testing::floatWeldReport(mesh).manifold()) {
     ++tally.skippedInput;
     return;
@@ -759,7 +758,7 @@ TEST(Corpus, CutsOfClosedCgalMeshesAreManifoldOnTheirFloatPositions) {
   FloatTally tally;
   for (const fs::path& file : files) {
     const MeshReadResult read = loadMesh(file.string());
-    if (!read.ok || read.mesh.triangleCount() > kLargeTriangles) continue;
+    if (!read.ok() || read.mesh.triangleCount() > kLargeTriangles) continue;
     cutOnFloats(file.filename().string(), read.mesh, tally);
   }
   std::printf("[ floats   ] %zu closed meshes (%zu more not closed on their own float positions, skipped): %zu "
@@ -787,9 +786,9 @@ TEST(Corpus, FractureOfClosedCgalMeshesKeepsVolumeAndClosedPieces) {
   double worst = 0.0;
   for (const fs::path& file : files) {
     const MeshReadResult read = loadMesh(file.string());
-    if (!read.ok || read.mesh.triangleCount() > 20000) continue;
+    if (!read.ok() || read.mesh.triangleCount() > 20000) continue;
     MeshContainer container;
-    if (container.setMesh(read.mesh) != SplitStatus::Ok || !container.closed()) continue;
+    if (container.setMesh(read.mesh).code != SplitStatus::Ok || !container.closed()) continue;
     if (!geometry::testing::floatWeldReport(read.mesh).manifold()) continue;
     const double volume = geometry::computeMassProperties(container.cutPositions(), read.mesh.indices).volume;
     if (!(std::abs(volume) > 0.0)) continue;

@@ -164,11 +164,11 @@ TEST(CorruptFiles, EveryCaseGivesAnErrorNamingTheFile) {
     SCOPED_TRACE(c.label);
     const std::string path = dir.write(c.fileName, c.bytes);
     const MeshReadResult result = loadMesh(path);
-    EXPECT_FALSE(result.ok);
+    EXPECT_FALSE(result.ok());
     EXPECT_TRUE(result.mesh.positions.empty() && result.mesh.indices.empty());
-    EXPECT_EQ(result.error.rfind(path, 0), 0u) << result.error;  // starts with the file name
-    EXPECT_EQ(result.error.find('\n'), std::string::npos) << result.error;
-    EXPECT_NE(lower(result.error).find(c.reasonPart), std::string::npos) << result.error;
+    EXPECT_EQ(result.message.rfind(path, 0), 0u) << result.message;  // starts with the file name
+    EXPECT_EQ(result.message.find('\n'), std::string::npos) << result.message;
+    EXPECT_NE(lower(result.message).find(c.reasonPart), std::string::npos) << result.message;
   }
 }
 
@@ -176,27 +176,27 @@ TEST(CorruptFiles, TextErrorsCarryTheLineNumber) {
   TempDir dir;
   const std::string path = dir.write("lines.obj", "# header\nv 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n");
   const MeshReadResult result = loadMesh(path);
-  ASSERT_FALSE(result.ok);
-  EXPECT_EQ(result.error.rfind(path + ":6: ", 0), 0u) << result.error;
+  ASSERT_FALSE(result.ok());
+  EXPECT_EQ(result.message.rfind(path + ":6: ", 0), 0u) << result.message;
 }
 
 TEST(CorruptFiles, MissingFileDirectoryAndUnknownExtension) {
   TempDir dir;
   const std::string missing = dir.file("absent.obj");
   MeshReadResult result = loadMesh(missing);
-  EXPECT_FALSE(result.ok);
-  EXPECT_EQ(result.error, missing + ": no such file");
+  EXPECT_FALSE(result.ok());
+  EXPECT_EQ(result.message, missing + ": no such file");
 
   const std::string folder = dir.file("folder.stl");
   std::filesystem::create_directories(folder);
   result = loadMesh(folder);
-  EXPECT_FALSE(result.ok);
-  EXPECT_NE(result.error.find(folder), std::string::npos);
-  EXPECT_NE(result.error.find("directory"), std::string::npos);
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.message.find(folder), std::string::npos);
+  EXPECT_NE(result.message.find("directory"), std::string::npos);
 
   result = loadMesh(dir.write("noext", "v 0 0 0\n"));
-  EXPECT_FALSE(result.ok);
-  EXPECT_NE(result.error.find("extension"), std::string::npos);
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.message.find("extension"), std::string::npos);
 }
 
 // Every prefix of every valid cube file reads as a mesh or as an error naming the file.
@@ -215,10 +215,10 @@ TEST(CorruptFiles, EveryTruncationOfValidFilesFailsCleanly) {
     for (size_t length = 0; length < bytes.size(); length += step) {
       const std::span<const uint8_t> prefix(reinterpret_cast<const uint8_t*>(bytes.data()), length);
       const MeshReadResult result = readMeshFromMemory(prefix, format, "prefix");
-      if (result.ok) {
+      if (result.ok()) {
         EXPECT_GT(result.mesh.triangleCount(), 0u);
       } else {
-        EXPECT_EQ(result.error.rfind("prefix", 0), 0u) << result.error;
+        EXPECT_EQ(result.message.rfind("prefix", 0), 0u) << result.message;
       }
     }
   }
@@ -231,7 +231,7 @@ TEST(CorruptFiles, ByteFlipsOfBinaryFilesFailCleanlyOrStayValid) {
   mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   mesh.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
   std::vector<uint8_t> glb;
-  ASSERT_TRUE(writeGlbToMemory(mesh, MeshWriteOptions{}, glb).ok);
+  ASSERT_TRUE(writeGlbToMemory(mesh, MeshWriteOptions{}, glb).ok());
   const std::string stl = test::cubeStlBinary("solid");
   const std::string ply = test::cubePlyBinary(false);
   const std::vector<std::pair<MeshFormat, std::vector<uint8_t>>> files = {
@@ -244,7 +244,7 @@ TEST(CorruptFiles, ByteFlipsOfBinaryFilesFailCleanlyOrStayValid) {
       std::vector<uint8_t> bytes = original;
       bytes[i] ^= 0xff;
       const MeshReadResult result = readMeshFromMemory(bytes, format, "flipped");
-      EXPECT_TRUE(result.ok || result.error.rfind("flipped", 0) == 0) << result.error;
+      EXPECT_TRUE(result.ok() || result.message.rfind("flipped", 0) == 0) << result.message;
     }
   }
 }

@@ -259,7 +259,7 @@ ModelLoadResult readGlb(const std::vector<uint8_t>& bytes) {
 // The cube read with the model loader, cut by y = 0.5 into two capped pieces (cap material 1).
 std::vector<geometry::SplitPiece> cutCube(const Model& cube) {
   geometry::MeshContainer container;
-  EXPECT_EQ(container.setMesh(cube.meshes.at(0).mesh), geometry::SplitStatus::Ok);
+  EXPECT_EQ(container.setMesh(cube.meshes.at(0).mesh).code, geometry::SplitStatus::Ok);
   geometry::SplitOptions options;
   options.capMaterialId = 1;
   geometry::SplitResult result;
@@ -285,7 +285,7 @@ TEST(ModelMaterials, LoaderKeepsImagesAsTheFileStoresThemWithTexturesAndSamplers
   for (const std::string& path : {writeCubeGlb(dir), writeCubeGltfWithImageFiles(dir)}) {
     SCOPED_TRACE(path);
     const ModelLoadResult loaded = loadModel(path);
-    ASSERT_TRUE(loaded.ok) << loaded.error;
+    ASSERT_TRUE(loaded.ok()) << loaded.message;
     EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front();
     expectPaintedMaterial(loaded.model);
     // Decoded too, for the renderer: the pixels the PNG was made of.
@@ -301,14 +301,14 @@ TEST(ModelMaterials, LoaderKeepsImagesAsTheFileStoresThemWithTexturesAndSamplers
 TEST(GlbMaterials, StaticPiecesKeepTheTexturesImageBytesAndDoubleSided) {
   TempDir dir;
   const ModelLoadResult cube = loadModel(writeCubeGlb(dir));
-  ASSERT_TRUE(cube.ok) << cube.error;
+  ASSERT_TRUE(cube.ok()) << cube.message;
   for (const geometry::SplitPiece& piece : cutCube(cube.model)) {
     std::vector<uint8_t> bytes;
     const MeshWriteResult written =
         writeGlbToMemory(piece.mesh, cubeWriteOptions(cube.model), bytes);
-    ASSERT_TRUE(written.ok) << written.error;
+    ASSERT_TRUE(written.ok()) << written.message;
     const ModelLoadResult loaded = readGlb(bytes);
-    ASSERT_TRUE(loaded.ok) << loaded.error;
+    ASSERT_TRUE(loaded.ok()) << loaded.message;
     ASSERT_EQ(loaded.model.meshes.size(), 1u);
     const geometry::MeshData& mesh = loaded.model.meshes[0].mesh;
     EXPECT_EQ(mesh.triangleCount(), piece.mesh.triangleCount());
@@ -351,8 +351,8 @@ std::vector<geometry::SplitPiece> cutCharacter(const TexturedCharacter& textured
   std::vector<glm::mat4> joints;
   anim::poseToJointMatrices(textured.character.skeleton, pose, joints);
   geometry::MeshContainer container;
-  EXPECT_EQ(container.setMesh(textured.mesh), geometry::SplitStatus::Ok);
-  EXPECT_EQ(container.setSkinningPose(joints, glm::mat4(1.f)), geometry::SplitStatus::Ok);
+  EXPECT_EQ(container.setMesh(textured.mesh).code, geometry::SplitStatus::Ok);
+  EXPECT_EQ(container.setSkinningPose(joints, glm::mat4(1.f)).code, geometry::SplitStatus::Ok);
   geometry::SplitResult result;
   geometry::makeConcaveSplitter()->split(container, geometry::Plane{{0.2, 1, 0.1}, 1.0},
                                          geometry::SplitOptions{}, result);
@@ -364,12 +364,12 @@ std::vector<geometry::SplitPiece> cutCharacter(const TexturedCharacter& textured
 TEST(GlbMaterials, SkinnedWriterCopiesTheSourceMaterialsButNotOntoTheCap) {
   TempDir dir;
   const ModelLoadResult cube = loadModel(writeCubeGlb(dir));
-  ASSERT_TRUE(cube.ok) << cube.error;
+  ASSERT_TRUE(cube.ok()) << cube.message;
   const TexturedCharacter textured(cube.model);
   const MeshWriteResult written = textured.write(dir.file("character.glb"));
-  ASSERT_TRUE(written.ok) << written.error;
+  ASSERT_TRUE(written.ok()) << written.message;
   const ModelLoadResult loaded = loadModel(dir.file("character.glb"));
-  ASSERT_TRUE(loaded.ok) << loaded.error;
+  ASSERT_TRUE(loaded.ok()) << loaded.message;
   ASSERT_EQ(loaded.model.skins.size(), 1u);
   expectPaintedMaterial(loaded.model);
   // Ids the source does not have keep their colours, as without a source.
@@ -386,9 +386,9 @@ TEST(GlbMaterials, SkinnedWriterCopiesTheSourceMaterialsButNotOntoTheCap) {
     std::vector<uint8_t> bytes;
     ASSERT_TRUE(writeSkinnedGlbToMemory(piece.mesh, textured.character.skeleton, textured.clips,
                                         textured.options, bytes)
-                    .ok);
+                    .ok());
     const ModelLoadResult read = readGlb(bytes);
-    ASSERT_TRUE(read.ok) << read.error;
+    ASSERT_TRUE(read.ok()) << read.message;
     expectPlainCap(read.model);
   }
 }
@@ -396,16 +396,16 @@ TEST(GlbMaterials, SkinnedWriterCopiesTheSourceMaterialsButNotOntoTheCap) {
 TEST(GlbMaterials, ATextureThePieceCannotUseIsLeftOutAndTheFileStaysValid) {
   TempDir dir;
   const ModelLoadResult cube = loadModel(writeCubeGlb(dir));
-  ASSERT_TRUE(cube.ok) << cube.error;
+  ASSERT_TRUE(cube.ok()) << cube.message;
   const std::vector<geometry::SplitPiece> pieces = cutCube(cube.model);
   ASSERT_FALSE(pieces.empty());
   // Without uvs there is no TEXCOORD_0 to sample with: the factors stay, the textures go.
   geometry::MeshData noUv = pieces[0].mesh;
   noUv.uv0.clear();
   std::vector<uint8_t> bytes;
-  ASSERT_TRUE(writeGlbToMemory(noUv, cubeWriteOptions(cube.model), bytes).ok);
+  ASSERT_TRUE(writeGlbToMemory(noUv, cubeWriteOptions(cube.model), bytes).ok());
   ModelLoadResult loaded = readGlb(bytes);
-  ASSERT_TRUE(loaded.ok) << loaded.error;
+  ASSERT_TRUE(loaded.ok()) << loaded.message;
   EXPECT_TRUE(loaded.model.materials[0].doubleSided);
   EXPECT_EQ(loaded.model.materials[0].roughnessFactor, 0.75f);
   EXPECT_EQ(loaded.model.materials[0].baseColorTexture.texture, -1);
@@ -417,9 +417,9 @@ TEST(GlbMaterials, ATextureThePieceCannotUseIsLeftOutAndTheFileStaysValid) {
   source.images[0].encoded.clear();
   MeshWriteOptions options = cubeWriteOptions(cube.model);
   options.materials = source.materialSource();
-  ASSERT_TRUE(writeGlbToMemory(pieces[0].mesh, options, bytes).ok);
+  ASSERT_TRUE(writeGlbToMemory(pieces[0].mesh, options, bytes).ok());
   loaded = readGlb(bytes);
-  ASSERT_TRUE(loaded.ok) << loaded.error;
+  ASSERT_TRUE(loaded.ok()) << loaded.message;
   EXPECT_EQ(loaded.model.materials[0].baseColorTexture.texture, -1);
   EXPECT_EQ(loaded.model.materials[0].normalTexture.texture, 0);
   ASSERT_EQ(loaded.model.images.size(), 1u);
@@ -453,10 +453,10 @@ TexturedPieces texturedPieces(const TempDir& dir) {
   TexturedPieces pieces;
   const std::string glb = writeCubeGlb(dir);
   const ModelLoadResult cube = loadModel(glb);
-  EXPECT_TRUE(cube.ok) << cube.error;
+  EXPECT_TRUE(cube.ok()) << cube.message;
   const std::string gltf = writeCubeGltfWithImageFiles(dir);
   const std::string character = dir.file("character.glb");
-  EXPECT_TRUE(TexturedCharacter(cube.model).write(character).ok);
+  EXPECT_TRUE(TexturedCharacter(cube.model).write(character).ok());
   const std::vector<std::pair<std::string, std::string>> cuts = {
       {glb, "--plane 0 1 0 0.5"},
       {gltf, "--plane 0 1 0 0.5"},
@@ -482,7 +482,7 @@ TEST(CleaveSplitTool, GlbPiecesOfATexturedGltfKeepItsMaterials) {
     for (const std::string& file : *files) {
       SCOPED_TRACE(file);
       const ModelLoadResult loaded = loadModel(file);
-      ASSERT_TRUE(loaded.ok) << loaded.error;
+      ASSERT_TRUE(loaded.ok()) << loaded.message;
       expectPlainCap(loaded.model);
       if (files == &pieces.character && findMaterial(loaded.model, "painted") == nullptr) continue;
       painted += files == &pieces.character ? 1 : 0;
@@ -533,7 +533,7 @@ TEST(CleaveSplitTool, FoxPiecesKeepTheFoxTexture) {
   const std::string fox = (modelsFolder() / "Fox.glb").string();
   if (!std::filesystem::exists(fox)) GTEST_SKIP() << "no " << fox;
   const ModelLoadResult input = loadModel(fox);
-  ASSERT_TRUE(input.ok) << input.error;
+  ASSERT_TRUE(input.ok()) << input.message;
   const ModelMaterial& material = input.model.materials.at(0);
   ASSERT_GE(material.baseColorImage, 0);
   const ModelImage& image = input.model.images[static_cast<size_t>(material.baseColorImage)];
@@ -547,7 +547,7 @@ TEST(CleaveSplitTool, FoxPiecesKeepTheFoxTexture) {
   for (const std::string& file : files) {
     SCOPED_TRACE(file);
     const ModelLoadResult loaded = loadModel(file);
-    ASSERT_TRUE(loaded.ok) << loaded.error;
+    ASSERT_TRUE(loaded.ok()) << loaded.message;
     const ModelMaterial& piece = loaded.model.materials.at(0);
     EXPECT_EQ(piece.name, material.name);
     EXPECT_EQ(piece.roughnessFactor, material.roughnessFactor);

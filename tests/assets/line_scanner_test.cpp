@@ -109,14 +109,14 @@ TEST(LineScanner, AsciiPlyBodyLinesAndNulBytes) {
     return readMeshFromMemory(bytes, MeshFormat::Ply, "t.ply");
   };
   MeshReadResult result = read(header + "0 0 0\r1 0 0\n0 1 0\n3 0 1 x\n");
-  EXPECT_FALSE(result.ok);
-  EXPECT_EQ(result.error, "t.ply:12: in face 0: bad number 'x'");
+  EXPECT_FALSE(result.ok());
+  EXPECT_EQ(result.message, "t.ply:12: in face 0: bad number 'x'");
   result = read(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n");
-  EXPECT_EQ(result.error, "t.ply:14: in face 0: file ends inside the data");
+  EXPECT_EQ(result.message, "t.ply:14: in face 0: file ends inside the data");
   result = read(header + "0 0 0\n1 0" + std::string(1, '\0') + "5 0\n0 1 0\n3 0 1 2\n");
-  EXPECT_EQ(result.error, "t.ply:11: in vertex 1: bad number '0?5'");
+  EXPECT_EQ(result.message, "t.ply:11: in vertex 1: bad number '0?5'");
   result = read(header + "0 0 0\r1 0 0\n0 1 0\n3 0 1 2\n");
-  EXPECT_TRUE(result.ok) << result.error;
+  EXPECT_TRUE(result.ok()) << result.message;
   EXPECT_EQ(result.mesh.indices, (std::vector<uint32_t>{0, 1, 2}));
 }
 

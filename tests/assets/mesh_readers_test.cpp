@@ -23,9 +23,9 @@ TEST(MeshFormat, ExtensionIsCaseInsensitiveAndUnknownIsRejected) {
   TempDir dir;
   const std::string path = dir.write("mesh.fbx", "whatever");
   const MeshReadResult result = loadMesh(path);
-  EXPECT_FALSE(result.ok);
-  EXPECT_NE(result.error.find(path), std::string::npos);
-  EXPECT_NE(result.error.find("extension"), std::string::npos);
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.message.find(path), std::string::npos);
+  EXPECT_NE(result.message.find("extension"), std::string::npos);
 }
 
 TEST(ObjReader, CubeWithQuadsIsClosedWithTwoMaterialRuns) {
@@ -49,7 +49,7 @@ TEST(ObjReader, PentagonIsFanTriangulatedFromItsFirstCorner) {
   const std::string obj =
       "v 0 0 0\nv 1 0 0\nv 2 1 0\nv 1 2 0\nv 0 1 0\nf 1 2 3 4 5\n";
   const MeshReadResult result = loadMesh(dir.write("penta.obj", obj));
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   EXPECT_EQ(result.mesh.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4}));
   EXPECT_EQ(result.materialNames, std::vector<std::string>{"default"});
 }
@@ -58,7 +58,7 @@ TEST(ObjReader, PentagonIsFanTriangulatedFromItsFirstCorner) {
 // fan folds, an inverted triangle over the others, so the mesh intersects itself and no cut
 // through it can be capped. Read in every text format, it must come out without a fold.
 void expectUnfoldedL(const MeshReadResult& result) {
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   ASSERT_EQ(result.mesh.indices.size(), 12u);
   double area = 0.0;
   for (size_t t = 0; t < result.mesh.indices.size(); t += 3) {
@@ -89,7 +89,7 @@ TEST(ObjReader, NegativeIndicesCountFromTheLatestVertex) {
   const std::string obj =
       "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 0 0 1\nf 1 -3 4\n";
   const MeshReadResult result = loadMesh(dir.write("neg.obj", obj));
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   ASSERT_EQ(result.mesh.vertexCount(), 4u);
   EXPECT_EQ(result.mesh.indices, (std::vector<uint32_t>{0, 1, 2, 0, 1, 3}));
   EXPECT_EQ(result.mesh.positions[3], glm::vec3(0, 0, 1));
@@ -105,7 +105,7 @@ TEST(ObjReader, IdenticalTriplesAreWeldedAndSeamsAreNot) {
       "vn 0 0 2\n"
       "f 1/1/1 2/2/1 3/3/1\nf 3/3/1 2/5/1 4/4/1\n";
   const MeshReadResult result = loadMesh(dir.write("seam.obj", obj));
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   EXPECT_EQ(result.mesh.vertexCount(), 5u);
   EXPECT_EQ(result.mesh.indices, (std::vector<uint32_t>{0, 1, 2, 2, 3, 4}));
   ASSERT_EQ(result.mesh.uv0.size(), 5u);
@@ -118,7 +118,7 @@ TEST(ObjReader, NormalsAreDroppedWhenSomeCornersHaveNone) {
   TempDir dir;
   const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3\n";
   const MeshReadResult result = loadMesh(dir.write("partial.obj", obj));
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   EXPECT_TRUE(result.mesh.normals.empty());
 }
 
@@ -126,7 +126,7 @@ TEST(ObjReader, VertexColoursAreRead) {
   TempDir dir;
   const std::string obj = "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n";
   const MeshReadResult result = loadMesh(dir.write("colour.obj", obj));
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   ASSERT_EQ(result.mesh.colors.size(), 3u);
   EXPECT_EQ(result.mesh.colors[1], glm::vec4(0, 1, 0, 1));
 }
@@ -140,7 +140,7 @@ TEST(OffReader, HeaderWithCountsOnTheSameLineAndNormals) {
   TempDir dir;
   const std::string off = "NOFF 3 1 0\n0 0 0 0 0 3\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
   const MeshReadResult result = loadMesh(dir.write("tri.off", off));
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   ASSERT_EQ(result.mesh.normals.size(), 3u);
   EXPECT_EQ(result.mesh.normals[0], glm::vec3(0, 0, 1));
 }
@@ -193,7 +193,7 @@ TEST(PlyReader, BinaryBigEndianGivesTheSameMeshAsLittleEndian) {
   const MeshReadResult little = loadMesh(dir.write("le.ply", test::cubePlyBinary(false)));
   const MeshReadResult big = loadMesh(dir.write("be.ply", test::cubePlyBinary(true)));
   test::expectUnitCube(big);
-  ASSERT_TRUE(little.ok);
+  ASSERT_TRUE(little.ok());
   EXPECT_EQ(big.mesh.positions, little.mesh.positions);
   EXPECT_EQ(big.mesh.indices, little.mesh.indices);
   EXPECT_EQ(big.mesh.normals, little.mesh.normals);
@@ -213,7 +213,7 @@ TEST(GltfReader, NodeTransformsAreAppliedAlongTheHierarchy) {
       R"([{"translation":[10,0,0],"scale":[2,2,2],"children":[1]},)"
       R"({"mesh":0,"rotation":[0,0,0.70710678,0.70710678]}])";
   const MeshReadResult result = loadMesh(dir.write("moved.gltf", test::cubeGltf("", -1, nodes)));
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   glm::vec3 lo(1e9f), hi(-1e9f);
   for (const glm::vec3& p : result.mesh.positions) {
     lo = glm::min(lo, p);
@@ -231,7 +231,7 @@ TEST(GltfReader, MirroringNodeKeepsTheMeshOutwardOriented) {
   TempDir dir;
   const std::string nodes = R"([{"mesh":0,"scale":[-1,1,1]}])";
   const MeshReadResult result = loadMesh(dir.write("mirror.gltf", test::cubeGltf("", -1, nodes)));
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   EXPECT_TRUE(geometry::isClosedAndOriented(result.mesh.positions, result.mesh.indices));
   EXPECT_NEAR(geometry::computeMassProperties(result.mesh).volume, 1.0, 1e-6);
 }
@@ -240,7 +240,7 @@ TEST(GltfReader, MeshUsedByTwoNodesIsMergedTwice) {
   TempDir dir;
   const std::string gltf = test::cubeGltf("", -1, R"([{"children":[1,2]},{"mesh":0},{"mesh":0,"translation":[3,0,0]}])");
   const MeshReadResult result = loadMesh(dir.write("two.gltf", gltf));
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   EXPECT_EQ(result.mesh.triangleCount(), 24u);
   EXPECT_NEAR(geometry::computeMassProperties(result.mesh).volume, 2.0, 1e-6);
   ASSERT_EQ(result.mesh.submeshes.size(), 1u);  // same (default) material: one run
@@ -260,7 +260,7 @@ TEST(MeshReaders, MemoryReadsMatchFileReads) {
   const MeshReadResult fromFile = loadMesh(dir.write("cube.obj", obj));
   const MeshReadResult fromMemory = readMeshFromMemory(
       std::span(reinterpret_cast<const uint8_t*>(obj.data()), obj.size()), MeshFormat::Obj, "memory");
-  ASSERT_TRUE(fromFile.ok && fromMemory.ok);
+  ASSERT_TRUE(fromFile.ok() && fromMemory.ok());
   EXPECT_EQ(fromFile.mesh.positions, fromMemory.mesh.positions);
   EXPECT_EQ(fromFile.mesh.indices, fromMemory.mesh.indices);
 }

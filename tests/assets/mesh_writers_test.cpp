@@ -53,9 +53,9 @@ TEST(ObjWriter, RoundTripKeepsAttributesAndNamesTheCap) {
   const geometry::MeshData mesh = twoMaterialMesh();
   const std::string path = dir.file("piece.obj");
   const MeshWriteResult written = writeObj(path, mesh, capOptions());
-  ASSERT_TRUE(written.ok) << written.error;
+  ASSERT_TRUE(written.ok()) << written.message;
   const MeshReadResult read = loadMesh(path);
-  ASSERT_TRUE(read.ok) << read.error;
+  ASSERT_TRUE(read.ok()) << read.message;
   expectSameTriangles(mesh, read.mesh);
   EXPECT_EQ(read.mesh.vertexCount(), mesh.vertexCount());
   EXPECT_EQ(read.materialNames, (std::vector<std::string>{"skin", "cap"}));
@@ -69,10 +69,10 @@ TEST(ObjWriter, FloatsRoundTripExactly) {
   mesh.positions = {{0.1f, 1e-7f, -123456.789f}, {3.14159265f, 2.5e10f, 1.f / 3.f}, {0, 0, 0}};
   mesh.indices = {0, 1, 2};
   std::string text;
-  ASSERT_TRUE(writeObjToString(mesh, MeshWriteOptions{}, text).ok);
+  ASSERT_TRUE(writeObjToString(mesh, MeshWriteOptions{}, text).ok());
   const MeshReadResult read = readMeshFromMemory(
       std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()), MeshFormat::Obj, "mem");
-  ASSERT_TRUE(read.ok) << read.error;
+  ASSERT_TRUE(read.ok()) << read.message;
   EXPECT_EQ(read.mesh.positions, mesh.positions);
   EXPECT_NE(text.find("usemtl material_0"), std::string::npos);
 }
@@ -84,8 +84,8 @@ TEST(ObjWriter, InvalidMeshIsAnErrorNamingTheFile) {
   mesh.indices = {0, 0, 3};
   const std::string path = dir.file("bad.obj");
   const MeshWriteResult written = writeObj(path, mesh, MeshWriteOptions{});
-  EXPECT_FALSE(written.ok);
-  EXPECT_NE(written.error.find(path), std::string::npos);
+  EXPECT_FALSE(written.ok());
+  EXPECT_NE(written.message.find(path), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
@@ -93,8 +93,8 @@ TEST(ObjWriter, UnwritablePathIsAnError) {
   TempDir dir;
   const std::string path = dir.file("missing_folder/piece.obj");
   const MeshWriteResult written = writeObj(path, twoMaterialMesh(), capOptions());
-  EXPECT_FALSE(written.ok);
-  EXPECT_NE(written.error.find(path), std::string::npos);
+  EXPECT_FALSE(written.ok());
+  EXPECT_NE(written.message.find(path), std::string::npos);
 }
 
 TEST(GlbWriter, RoundTripKeepsAttributesAndOnePrimitivePerSubmesh) {
@@ -102,9 +102,9 @@ TEST(GlbWriter, RoundTripKeepsAttributesAndOnePrimitivePerSubmesh) {
   const geometry::MeshData mesh = twoMaterialMesh();
   const std::string path = dir.file("piece.glb");
   const MeshWriteResult written = writeGlb(path, mesh, capOptions());
-  ASSERT_TRUE(written.ok) << written.error;
+  ASSERT_TRUE(written.ok()) << written.message;
   const MeshReadResult read = loadMesh(path);
-  ASSERT_TRUE(read.ok) << read.error;
+  ASSERT_TRUE(read.ok()) << read.message;
   expectSameTriangles(mesh, read.mesh);
   EXPECT_EQ(read.materialNames, (std::vector<std::string>{"skin", "cap"}));
   ASSERT_EQ(read.mesh.submeshes.size(), 2u);
@@ -126,9 +126,9 @@ TEST(GlbWriter, RoundTripKeepsAttributesAndOnePrimitivePerSubmesh) {
 TEST(GlbWriter, ClosedPrimitiveStaysClosedThroughTheFile) {
   const geometry::MeshData sphere = geometry::primitives::uvSphere(1.f, 16, 9);
   std::vector<uint8_t> bytes;
-  ASSERT_TRUE(writeGlbToMemory(sphere, MeshWriteOptions{}, bytes).ok);
+  ASSERT_TRUE(writeGlbToMemory(sphere, MeshWriteOptions{}, bytes).ok());
   const MeshReadResult read = readMeshFromMemory(bytes, MeshFormat::Glb, "sphere.glb");
-  ASSERT_TRUE(read.ok) << read.error;
+  ASSERT_TRUE(read.ok()) << read.message;
   EXPECT_EQ(read.mesh.positions, sphere.positions);
   EXPECT_EQ(read.mesh.indices, sphere.indices);
   EXPECT_NEAR(geometry::computeMassProperties(read.mesh).volume,
@@ -224,7 +224,7 @@ TEST(GltfReader, ModelBuiltWithTinygltfIsMergedWithTransformsAndMaterials) {
   const std::string path = dir.write("built.gltf", stream.str());
 
   const MeshReadResult read = loadMesh(path);
-  ASSERT_TRUE(read.ok) << read.error;
+  ASSERT_TRUE(read.ok()) << read.message;
   ASSERT_EQ(read.mesh.triangleCount(), 3u);
   ASSERT_EQ(read.mesh.vertexCount(), 7u);
   EXPECT_EQ(read.mesh.positions[2], glm::vec3(1, 1, 5));

@@ -43,7 +43,7 @@ TEST(ModelFiles, SharedGltfModelsLoadStatically) {
   for (const std::filesystem::path& file : files) {
     SCOPED_TRACE(file.string());
     const MeshReadResult result = loadMesh(file.string());
-    ASSERT_TRUE(result.ok) << result.error;
+    ASSERT_TRUE(result.ok()) << result.message;
     const geometry::MeshData& mesh = result.mesh;
     EXPECT_GT(mesh.triangleCount(), 0u);
     EXPECT_TRUE(mesh.normals.empty() || mesh.normals.size() == mesh.vertexCount());
@@ -62,7 +62,7 @@ TEST(ModelFiles, SharedGltfModelsLoadStatically) {
     const MeshReadResult fromMemory = readMeshFromMemory(
         std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()),
         formatFromPath(file.string()), file.filename().string());
-    ASSERT_TRUE(fromMemory.ok) << fromMemory.error;
+    ASSERT_TRUE(fromMemory.ok()) << fromMemory.message;
     EXPECT_EQ(fromMemory.mesh.positions, mesh.positions);
     EXPECT_EQ(fromMemory.mesh.indices, mesh.indices);
   }
@@ -109,7 +109,7 @@ TEST(CleaveSplitTool, JsonReportsPiecesWhoseVolumesAddUp) {
 
   // The written pieces read back closed, with a cap material.
   const MeshReadResult above = loadMesh(out + "/piece_0_above.obj");
-  ASSERT_TRUE(above.ok) << above.error;
+  ASSERT_TRUE(above.ok()) << above.message;
   EXPECT_TRUE(geometry::isClosedAndOriented(above.mesh.positions, above.mesh.indices));
   EXPECT_NEAR(geometry::computeMassProperties(above.mesh).volume, 0.7, 1e-6);
   EXPECT_NE(std::find(above.materialNames.begin(), above.materialNames.end(), "cap"),

@@ -25,8 +25,7 @@ TEST(ProceduralCharacter, IsClosedAfterWeldingAndHasAbout4000Triangles) {
   EXPECT_GE(mesh.triangleCount(), 3500u);
   EXPECT_LE(mesh.triangleCount(), 4500u);
   geometry::MeshContainer container;
-  std::string why;
-  ASSERT_EQ(container.setMesh(mesh, &why), geometry::SplitStatus::Ok) << why;
+  ASSERT_EQ(container.setMesh(mesh).message, "");
   EXPECT_TRUE(container.closed());
   // Each position once: welding merges nothing.
   EXPECT_EQ(container.positionIdCount(), mesh.vertexCount());
@@ -72,11 +71,10 @@ TEST(ProceduralCharacter, WeightsSumToOneOverAtMostFourJoints) {
 
 TEST(ProceduralCharacter, SkeletonAndClipsAreValid) {
   const ProceduralCharacter& c = character();
-  std::string why;
   EXPECT_EQ(c.skeleton.size(), 17u);
-  EXPECT_TRUE(anim::validateSkeleton(c.skeleton, &why)) << why;
-  EXPECT_TRUE(anim::validateClip(c.idle, c.skeleton.size(), &why)) << why;
-  EXPECT_TRUE(anim::validateClip(c.walk, c.skeleton.size(), &why)) << why;
+  EXPECT_EQ(anim::validateSkeleton(c.skeleton).message, "");
+  EXPECT_EQ(anim::validateClip(c.idle, c.skeleton.size()).message, "");
+  EXPECT_EQ(anim::validateClip(c.walk, c.skeleton.size()).message, "");
   EXPECT_FLOAT_EQ(c.walk.duration, 1.f);
   EXPECT_FLOAT_EQ(c.idle.duration, 2.f);
   // The walk loops seamlessly: the pose at the end equals the pose at the start.
@@ -109,8 +107,8 @@ TEST(ProceduralCharacter, CutsWithCapsInAWalkingPose) {
   std::vector<glm::mat4> joints;
   anim::poseToJointMatrices(c.skeleton, pose, joints);
   geometry::MeshContainer container;
-  ASSERT_EQ(container.setMesh(c.mesh), geometry::SplitStatus::Ok);
-  ASSERT_EQ(container.setSkinningPose(joints, glm::mat4(1.f)), geometry::SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(c.mesh).code, geometry::SplitStatus::Ok);
+  ASSERT_EQ(container.setSkinningPose(joints, glm::mat4(1.f)).code, geometry::SplitStatus::Ok);
   auto splitter = geometry::makeConcaveSplitter();
   const geometry::Plane planes[] = {{{0, 1, 0}, 1.0},     {{0, 1, 0}, 0.6},   {{1, 0, 0}, 0.0},
                                     {{0.3, 1, 0.2}, 1.3}, {{1, 0.2, 0}, 0.3}, {{0, 0, 1}, 0.02}};
@@ -125,7 +123,7 @@ TEST(ProceduralCharacter, CutsWithCapsInAWalkingPose) {
       EXPECT_GT(piece.mass.volume, 0.0);
       EXPECT_FALSE(piece.joints.empty());
       geometry::MeshContainer check;
-      ASSERT_EQ(check.setMesh(piece.mesh), geometry::SplitStatus::Ok);
+      ASSERT_EQ(check.setMesh(piece.mesh).code, geometry::SplitStatus::Ok);
       EXPECT_TRUE(check.closed());
     }
   }
@@ -150,7 +148,7 @@ TEST(ProceduralCharacter, MultiPartVariantIsRigidConvexPartsThatNeverTouch) {
     hi[v / 24] = glm::max(hi[v / 24], parts.positions[v]);
   }
   geometry::MeshContainer container;
-  ASSERT_EQ(container.setMesh(parts), geometry::SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(parts).code, geometry::SplitStatus::Ok);
   EXPECT_TRUE(container.closed());
   // Every box is convex and the parts are apart: the smallest gap between vertices of different
   // boxes is positive (a conservative check against touching parts).
@@ -165,7 +163,7 @@ TEST(ProceduralCharacter, MultiPartVariantIsRigidConvexPartsThatNeverTouch) {
   anim::sampleClip(c.skeleton, c.idle, 0.7f, true, pose);
   std::vector<glm::mat4> joints;
   anim::poseToJointMatrices(c.skeleton, pose, joints);
-  ASSERT_EQ(container.setSkinningPose(joints, glm::mat4(1.f)), geometry::SplitStatus::Ok);
+  ASSERT_EQ(container.setSkinningPose(joints, glm::mat4(1.f)).code, geometry::SplitStatus::Ok);
   auto splitter = geometry::makeConcaveSplitter();
   for (const geometry::Plane& plane : {geometry::Plane{{0, 1, 0}, 1.1}, geometry::Plane{{0, 1, 0}, 0.5},
                                        geometry::Plane{{1, 0, 0.3}, 0.05}, geometry::Plane{{0.2, 1, 0.1}, 1.4}}) {
@@ -174,7 +172,7 @@ TEST(ProceduralCharacter, MultiPartVariantIsRigidConvexPartsThatNeverTouch) {
         << result.message;
     for (const geometry::SplitPiece& piece : result.pieces) {
       geometry::MeshContainer check;
-      ASSERT_EQ(check.setMesh(piece.mesh), geometry::SplitStatus::Ok);
+      ASSERT_EQ(check.setMesh(piece.mesh).code, geometry::SplitStatus::Ok);
       EXPECT_TRUE(check.closed());
     }
   }

@@ -58,8 +58,8 @@ std::vector<glm::dvec3> posed(const geometry::MeshData& mesh, const anim::Skelet
   std::vector<glm::mat4> joints;
   anim::poseToJointMatrices(skeleton, pose, joints);
   geometry::MeshContainer container;
-  if (container.setMesh(mesh) != geometry::SplitStatus::Ok) return {};
-  if (container.setSkinningPose(joints, glm::mat4(1.f)) != geometry::SplitStatus::Ok) return {};
+  if (container.setMesh(mesh).code != geometry::SplitStatus::Ok) return {};
+  if (container.setSkinningPose(joints, glm::mat4(1.f)).code != geometry::SplitStatus::Ok) return {};
   return {container.cutPositions().begin(), container.cutPositions().end()};
 }
 
@@ -68,9 +68,9 @@ TEST(SkinnedGlbWriter, RoundTripKeepsJointsClipsTrianglesAndThePose) {
   std::vector<uint8_t> bytes;
   const std::vector<anim::AnimationClip> clips = characterClips();
   const MeshWriteResult written = writeSkinnedGlbToMemory(c.mesh, c.skeleton, clips, characterOptions(), bytes);
-  ASSERT_TRUE(written.ok) << written.error;
+  ASSERT_TRUE(written.ok()) << written.message;
   const ModelLoadResult loaded = readModelFromMemory(bytesOf(bytes), "character.glb");
-  ASSERT_TRUE(loaded.ok) << loaded.error;
+  ASSERT_TRUE(loaded.ok()) << loaded.message;
   const Model& model = loaded.model;
   ASSERT_EQ(model.meshes.size(), 1u);
   ASSERT_EQ(model.skins.size(), 1u);
@@ -135,9 +135,9 @@ TEST(SkinnedGlbWriter, JointOffsetsBecomeNodesAndComeBack) {
   anim::setBindPose(skeleton, rest);
   std::vector<uint8_t> bytes;
   const MeshWriteResult written = writeSkinnedGlbToMemory(mesh, skeleton, {}, MeshWriteOptions{}, bytes);
-  ASSERT_TRUE(written.ok) << written.error;
+  ASSERT_TRUE(written.ok()) << written.message;
   const ModelLoadResult loaded = readModelFromMemory(bytesOf(bytes), "chain.glb");
-  ASSERT_TRUE(loaded.ok) << loaded.error;
+  ASSERT_TRUE(loaded.ok()) << loaded.message;
   ASSERT_EQ(loaded.model.skins.size(), 1u);
   const anim::Skeleton& back = loaded.model.skins[0].skeleton;
   ASSERT_EQ(back.size(), 2u);
@@ -161,16 +161,16 @@ TEST(SkinnedGlbWriter, RejectsMeshesWithoutSkinOrWithJointsOutsideTheSkeleton) {
   noSkin.joints.clear();
   noSkin.weights.clear();
   MeshWriteResult result = writeSkinnedGlbToMemory(noSkin, c.skeleton, {}, MeshWriteOptions{}, bytes);
-  EXPECT_FALSE(result.ok);
-  EXPECT_NE(result.error.find("joints and weights"), std::string::npos) << result.error;
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.message.find("joints and weights"), std::string::npos) << result.message;
   geometry::MeshData outside = c.mesh;
   outside.joints[5] = glm::u16vec4(uint16_t(c.skeleton.size()), 0, 0, 0);
   outside.weights[5] = glm::vec4(1, 0, 0, 0);
   result = writeSkinnedGlbToMemory(outside, c.skeleton, {}, MeshWriteOptions{}, bytes);
-  EXPECT_FALSE(result.ok);
-  EXPECT_NE(result.error.find("vertex 5"), std::string::npos) << result.error;
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.message.find("vertex 5"), std::string::npos) << result.message;
   result = writeSkinnedGlbToMemory(c.mesh, anim::Skeleton{}, {}, MeshWriteOptions{}, bytes);
-  EXPECT_FALSE(result.ok);
+  EXPECT_FALSE(result.ok());
 }
 
 TEST(SkinnedGlbWriter, PiecesCutInAPoseKeepTheirSkinAndClips) {
@@ -180,8 +180,8 @@ TEST(SkinnedGlbWriter, PiecesCutInAPoseKeepTheirSkinAndClips) {
   std::vector<glm::mat4> joints;
   anim::poseToJointMatrices(c.skeleton, pose, joints);
   geometry::MeshContainer container;
-  ASSERT_EQ(container.setMesh(c.mesh), geometry::SplitStatus::Ok);
-  ASSERT_EQ(container.setSkinningPose(joints, glm::mat4(1.f)), geometry::SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(c.mesh).code, geometry::SplitStatus::Ok);
+  ASSERT_EQ(container.setSkinningPose(joints, glm::mat4(1.f)).code, geometry::SplitStatus::Ok);
   auto splitter = geometry::makeConcaveSplitter();
   geometry::SplitResult result;
   ASSERT_EQ(splitter->split(container, geometry::Plane{{0.2, 1, 0.1}, 1.0}, geometry::SplitOptions{}, result),
@@ -192,9 +192,9 @@ TEST(SkinnedGlbWriter, PiecesCutInAPoseKeepTheirSkinAndClips) {
   for (const geometry::SplitPiece& piece : result.pieces) {
     std::vector<uint8_t> bytes;
     const MeshWriteResult written = writeSkinnedGlbToMemory(piece.mesh, c.skeleton, clips, characterOptions(), bytes);
-    ASSERT_TRUE(written.ok) << written.error;
+    ASSERT_TRUE(written.ok()) << written.message;
     const ModelLoadResult loaded = readModelFromMemory(bytesOf(bytes), "piece.glb");
-    ASSERT_TRUE(loaded.ok) << loaded.error;
+    ASSERT_TRUE(loaded.ok()) << loaded.message;
     ASSERT_EQ(loaded.model.meshes.size(), 1u);
     EXPECT_EQ(loaded.model.meshes[0].mesh.triangleCount(), piece.mesh.triangleCount());
     ASSERT_EQ(loaded.model.skins.size(), 1u);
@@ -214,7 +214,7 @@ std::string writeCharacterGlb(const TempDir& dir) {
   const std::string path = dir.file("character.glb");
   const std::vector<anim::AnimationClip> clips = characterClips();
   const MeshWriteResult written = writeSkinnedGlb(path, c.mesh, c.skeleton, clips, characterOptions());
-  EXPECT_TRUE(written.ok) << written.error;
+  EXPECT_TRUE(written.ok()) << written.message;
   return path;
 }
 
@@ -248,7 +248,7 @@ TEST(CleaveSplitTool, PoseCutsASkinnedGlbIntoSkinnedAnimatedPieces) {
     EXPECT_GT(piece["joints_used"].get<int>(), 0);
     volume += piece["volume"].get<double>();
     const ModelLoadResult loaded = loadModel(report["files"][k].get<std::string>());
-    ASSERT_TRUE(loaded.ok) << loaded.error;
+    ASSERT_TRUE(loaded.ok()) << loaded.message;
     ASSERT_EQ(loaded.model.meshes.size(), 1u);
     EXPECT_EQ(loaded.model.meshes[0].skin, 0);
     EXPECT_EQ(loaded.model.meshes[0].mesh.triangleCount(), piece["triangles"].get<size_t>());

@@ -70,16 +70,15 @@ Figure makeFigure(Sim& sim) {
   armT.position = glm::vec3(0.45f, 0.1f, 0.f);
   armT.rotation = glm::angleAxis(0.3f, glm::vec3(0.f, 0.f, 1.f));
   addMesh(f.arm, geometry::primitives::box(glm::vec3(0.08f, 0.35f, 0.08f)), "arm", armT);
-  EXPECT_TRUE(ecs::setParent(world, f.head, f.root).ok);
-  EXPECT_TRUE(ecs::setParent(world, f.arm, f.root).ok);
+  EXPECT_TRUE(ecs::setParent(world, f.head, f.root).ok());
+  EXPECT_TRUE(ecs::setParent(world, f.arm, f.root).ok());
   f.volume = drawnVolume(world, f.root);
 
   Splitable sp;
   sp.density = 1000.0;
   world.add<Splitable>(f.root, sp);
-  std::string error;
   SplitWorld w = sim.sw();
-  EXPECT_TRUE(makeDynamicBody(w, f.root, sp.density, ColliderMode::ConvexHull, &error)) << error;
+  EXPECT_EQ(makeDynamicBody(w, f.root, sp.density, ColliderMode::ConvexHull).message, "");
   return f;
 }
 
@@ -172,14 +171,13 @@ TEST(HierarchySplit, ManyPartsWithHighMaterialIdsAreCutAndKeepTheirMaterials) {
     MeshRenderer mr;
     mr.source = std::make_shared<geometry::MeshData>(std::move(mesh));
     world.add<MeshRenderer>(cube, std::move(mr));
-    ASSERT_TRUE(ecs::setParent(world, cube, root).ok);
+    ASSERT_TRUE(ecs::setParent(world, cube, root).ok());
   }
   const double volume = drawnVolume(world, root);
   Splitable sp;
   world.add<Splitable>(root, sp);
-  std::string error;
   SplitWorld w = sim.sw();
-  ASSERT_TRUE(makeDynamicBody(w, root, sp.density, ColliderMode::ConvexHull, &error)) << error;
+  ASSERT_EQ(makeDynamicBody(w, root, sp.density, ColliderMode::ConvexHull).message, "");
   SplitRequest request;
   request.target = root;
   request.planeNormal = glm::dvec3(0.0, 1.0, 0.0);

@@ -68,11 +68,11 @@ TEST(LiveTuning, ASplitableEditedThroughTheInspectorPathIsHonouredByTheNextSplit
   h.hollow = true;
   h.density = 2000.0;
   h.splitImpulse = 4.0;
-  ASSERT_TRUE(applySplitableTuning(sim.world, hollow, h).ok);
+  ASSERT_TRUE(applySplitableTuning(sim.world, hollow, h).ok());
   SplitableTuning n = tuningOf(sim.world.get<Splitable>(normalised));
   n.capUvMode = geometry::CapUvMode::NormalizedBounds;
   n.collider = ColliderMode::ConcaveMesh;
-  ASSERT_TRUE(applySplitableTuning(sim.world, normalised, n).ok);
+  ASSERT_TRUE(applySplitableTuning(sim.world, normalised, n).ok());
   EXPECT_EQ(tuningOf(sim.world.get<Splitable>(hollow)), h);
 
   const std::vector<SplitEvent> events = cutEach(sim, {control, hollow, normalised});
@@ -118,10 +118,10 @@ TEST(LiveTuning, IslandChoiceEditedLiveSetsThePieceCountOfTheNextSplit) {
   const ecs::Entity parts = addSplitableBody(sim, "every part", spheres, Splitable{}, 500.0, {4.f, 5.f, 0.f});
   SplitableTuning t = tuningOf(sim.world.get<Splitable>(whole));
   t.separateIslands = false;
-  ASSERT_TRUE(applySplitableTuning(sim.world, whole, t).ok);
+  ASSERT_TRUE(applySplitableTuning(sim.world, whole, t).ok());
   t.separateIslands = true;
   t.islands = geometry::IslandMode::Connected;
-  ASSERT_TRUE(applySplitableTuning(sim.world, parts, t).ok);
+  ASSERT_TRUE(applySplitableTuning(sim.world, parts, t).ok());
   for (ecs::Entity e : {whole, parts}) sim.requestCut(e, glm::dvec3(0.0, 1.0, 0.0), 5.0 - 0.1);
   size_t wholePieces = 0, partPieces = 0;
   for (const SplitEvent& ev : sim.runUntil(sim.tick + 4)) {
@@ -153,12 +153,12 @@ TEST(LiveTuning, OutOfRangeValuesAreRefusedWithTheSettingAndChangeNothing) {
     t.hollow = true;  // a good change next to the bad one is not written either
     c.edit(t);
     const TuningResult r = applySplitableTuning(sim.world, e, t);
-    EXPECT_FALSE(r.ok) << c.word;
-    EXPECT_NE(r.error.find(c.word), std::string::npos) << r.error;
+    EXPECT_FALSE(r.ok()) << c.word;
+    EXPECT_NE(r.message.find(c.word), std::string::npos) << r.message;
     EXPECT_EQ(tuningOf(sim.world.get<Splitable>(e)), before) << c.word;
   }
   sim.world.destroy(e);
-  EXPECT_FALSE(applySplitableTuning(sim.world, e, before).ok);
+  EXPECT_FALSE(applySplitableTuning(sim.world, e, before).ok());
 }
 
 TEST(LiveTuning, BudgetEditsApplyFromTheNextTickAndKeepTheRest) {
@@ -171,7 +171,7 @@ TEST(LiveTuning, BudgetEditsApplyFromTheNextTickAndKeepTheRest) {
   const uint32_t threads = edit.threads;
   edit.maxSplitsPerTick = 1;
   edit.threads = threads + 7;  // not an inspector setting: kept as it was
-  ASSERT_TRUE(applyBudgetTuning(sim.splits.budget(), edit).ok);
+  ASSERT_TRUE(applyBudgetTuning(sim.splits.budget(), edit).ok());
   EXPECT_EQ(sim.splits.budget().settings().threads, threads);
   EXPECT_EQ(sim.splits.budget().settings().maxSplitsPerTick, 1u);
   for (ecs::Entity e : cubes) sim.requestCut(e, glm::dvec3(1.0, 0.0, 0.0), sim.world.get<ecs::Transform>(e).position.x);
@@ -184,7 +184,7 @@ TEST(LiveTuning, BudgetEditsApplyFromTheNextTickAndKeepTheRest) {
   EXPECT_EQ(most, 1u) << "more than one split in a tick with maxSplitsPerTick 1";
   EXPECT_EQ(done, 3u);
   edit.maxSplitsPerTick = 0;
-  EXPECT_FALSE(applyBudgetTuning(sim.splits.budget(), edit).ok);
+  EXPECT_FALSE(applyBudgetTuning(sim.splits.budget(), edit).ok());
   EXPECT_EQ(sim.splits.budget().settings().maxSplitsPerTick, 1u);
 }
 

@@ -34,7 +34,7 @@ std::string write(const std::string& name, const std::string& text) {
 
 TEST(SceneLoader, LoadsTheSpinningSphereScene) {
   Sim sim;
-  ASSERT_TRUE(sim.load(scenePath("spinning_sphere.json"))) << sim.scene.error;
+  ASSERT_TRUE(sim.load(scenePath("spinning_sphere.json"))) << sim.scene.message;
   const SceneLoadResult& s = sim.scene;
   ASSERT_EQ(s.entities.size(), 1u);
   EXPECT_EQ(s.entities[0].name, "sphere");
@@ -63,13 +63,13 @@ TEST(SceneLoader, LoadsTheSpinningSphereScene) {
 TEST(SceneLoader, AllExampleScenesLoad) {
   for (const char* name : {"spinning_sphere.json", "torus_cut.json", "u_shape.json", "fifty_cubes.json"}) {
     Sim sim;
-    EXPECT_TRUE(sim.load(scenePath(name))) << sim.scene.error;
+    EXPECT_TRUE(sim.load(scenePath(name))) << sim.scene.message;
   }
 }
 
 TEST(SceneLoader, ReadsEveryKindOfField) {
   geometry::MeshData cube = geometry::primitives::box(glm::vec3(0.5f));
-  ASSERT_TRUE(assets::writeObj((tempDir() / "models" / "cube.obj").string(), cube, {}).ok);
+  ASSERT_TRUE(assets::writeObj((tempDir() / "models" / "cube.obj").string(), cube, {}).ok());
   const std::string path = write("rich.json", R"({
   // comments are allowed
   "version": 1,
@@ -115,7 +115,7 @@ TEST(SceneLoader, ReadsEveryKindOfField) {
     render::Material m;
     m.specular = cap ? 2.f : 1.f;
     return m;
-  })) << sim.scene.error;
+  })) << sim.scene.message;
   const SceneLoadResult& s = sim.scene;
   EXPECT_EQ(sim.physics.gravity(), glm::vec3(0.f, -5.f, 0.f));
   EXPECT_DOUBLE_EQ(sim.splits.budget().settings().millisecondsPerTick, 3.5);
@@ -216,7 +216,7 @@ BadCase loadBad(const std::string& name, const std::string& text) {
 // The bundled shatter scene: a stone block broken into cells by a shatter splitter, its mass kept.
 TEST(SceneLoader, ShatterSplitterBreaksTheBlockIntoCells) {
   Sim sim;
-  ASSERT_TRUE(sim.load(scenePath("shatter_block.json"))) << sim.scene.error;
+  ASSERT_TRUE(sim.load(scenePath("shatter_block.json"))) << sim.scene.message;
   ASSERT_EQ(sim.scene.splitters.size(), 1u);
   EXPECT_EQ(sim.scene.splitters[0].kind, SplitterKind::Shatter);
   EXPECT_EQ(sim.scene.splitters[0].shatter.cells, 16u);
@@ -236,10 +236,10 @@ TEST(SceneLoaderErrors, SyntaxErrorNamesFileLineAndField) {
                             "  \"gravity\": [0, -9.81, 0]\n"
                             "  \"entities\": []\n"
                             "}\n");
-  ASSERT_FALSE(c.result.ok);
-  EXPECT_NE(c.result.error.find("bad_syntax.json:4:"), std::string::npos) << c.result.error;
-  EXPECT_NE(c.result.error.find("gravity"), std::string::npos) << c.result.error;
-  EXPECT_NE(c.result.error.find("syntax error"), std::string::npos) << c.result.error;
+  ASSERT_FALSE(c.result.ok());
+  EXPECT_NE(c.result.message.find("bad_syntax.json:4:"), std::string::npos) << c.result.message;
+  EXPECT_NE(c.result.message.find("gravity"), std::string::npos) << c.result.message;
+  EXPECT_NE(c.result.message.find("syntax error"), std::string::npos) << c.result.message;
   EXPECT_EQ(c.result.errorLine, 4);
   EXPECT_EQ(c.entitiesLeft, 0u);
 }
@@ -254,10 +254,10 @@ TEST(SceneLoaderErrors, WrongTypeNamesFileLineAndField) {
       "body": { "density": 100 } }
   ]
 })");
-  ASSERT_FALSE(c.result.ok);
-  EXPECT_EQ(c.result.error,
+  ASSERT_FALSE(c.result.ok());
+  EXPECT_EQ(c.result.message,
             c.result.errorFile + ":6: /entities/0/mesh/radius: expected a number, found a string");
-  EXPECT_NE(c.result.error.find("bad_type.json"), std::string::npos);
+  EXPECT_NE(c.result.message.find("bad_type.json"), std::string::npos);
   EXPECT_EQ(c.entitiesLeft, 0u);
   EXPECT_EQ(c.bodiesLeft, 0u);
 }
@@ -273,10 +273,10 @@ TEST(SceneLoaderErrors, UnknownPrimitiveNamesFileLineAndField) {
       "body": {} }
   ]
 })");
-  ASSERT_FALSE(c.result.ok);
-  EXPECT_NE(c.result.error.find("bad_primitive.json:6: /entities/1/mesh/primitive: unknown primitive 'cub'"),
+  ASSERT_FALSE(c.result.ok());
+  EXPECT_NE(c.result.message.find("bad_primitive.json:6: /entities/1/mesh/primitive: unknown primitive 'cub'"),
             std::string::npos)
-      << c.result.error;
+      << c.result.message;
   EXPECT_EQ(c.entitiesLeft, 0u);  // the good object before it was not created either
   EXPECT_EQ(c.bodiesLeft, 0u);
 }
@@ -304,7 +304,7 @@ TEST(SceneLoader, EveryPrimitiveUsesItsDefaults) {
         write(std::string("default_") + name + ".json",
               std::string(R"({"entities": [{"name": "p", "mesh": {"primitive": ")") + name +
                   R"("}, "body": {}}]})");
-    ASSERT_TRUE(sim.load(path)) << sim.scene.error;
+    ASSERT_TRUE(sim.load(path)) << sim.scene.message;
     const double volume = geometry::computeMassProperties(mesh).volume;
     ASSERT_GT(volume, 0.0);
     EXPECT_NEAR(sim.world.get<MassInfo>(sim.scene.find("p")).mass, 1000.0 * volume, 1e-9 * volume);
@@ -345,8 +345,8 @@ TEST(SceneLoaderErrors, PrimitiveFieldsAreCheckedInOrder) {
         loadBad("bad_primitive_field.json",
                 std::string("{\n  \"entities\": [\n    {\"name\": \"p\", \"mesh\": ") + c.mesh +
                     "}\n  ]\n}");
-    ASSERT_FALSE(bad.result.ok);
-    EXPECT_EQ(bad.result.error, bad.result.errorFile + ":3: " + c.error);
+    ASSERT_FALSE(bad.result.ok());
+    EXPECT_EQ(bad.result.message, bad.result.errorFile + ":3: " + c.error);
     EXPECT_EQ(bad.entitiesLeft, 0u);
   }
 }
@@ -359,11 +359,11 @@ TEST(SceneLoaderErrors, MissingModelFileNamesFileLineAndField) {
       "body": { "density": 100 } }
   ]
 })");
-  ASSERT_FALSE(c.result.ok);
-  EXPECT_NE(c.result.error.find("bad_model.json:4: /entities/0/mesh/file: cannot load the model"),
+  ASSERT_FALSE(c.result.ok());
+  EXPECT_NE(c.result.message.find("bad_model.json:4: /entities/0/mesh/file: cannot load the model"),
             std::string::npos)
-      << c.result.error;
-  EXPECT_NE(c.result.error.find("missing.obj"), std::string::npos) << c.result.error;
+      << c.result.message;
+  EXPECT_NE(c.result.message.find("missing.obj"), std::string::npos) << c.result.message;
   EXPECT_EQ(c.result.errorField, "/entities/0/mesh/file");
   EXPECT_EQ(c.result.errorLine, 4);
 }
@@ -374,8 +374,8 @@ TEST(SceneLoaderErrors, MissingSceneFileNamesTheFile) {
   SceneContext ctx{world, physics, nullptr, nullptr, {}};
   const std::string path = (tempDir() / "no_such_scene.json").string();
   const SceneLoadResult r = loadScene(path, ctx);
-  ASSERT_FALSE(r.ok);
-  EXPECT_NE(r.error.find(path), std::string::npos) << r.error;
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message.find(path), std::string::npos) << r.message;
 }
 
 TEST(SceneLoaderErrors, UnknownFieldIsReportedWithTheFieldsThatExist) {
@@ -385,10 +385,10 @@ TEST(SceneLoaderErrors, UnknownFieldIsReportedWithTheFieldsThatExist) {
       "transform": { "positon": [0, 1, 0] } }
   ]
 })");
-  ASSERT_FALSE(c.result.ok);
-  EXPECT_NE(c.result.error.find(":4: /entities/0/transform/positon: unknown field 'positon'"), std::string::npos)
-      << c.result.error;
-  EXPECT_NE(c.result.error.find("position"), std::string::npos);
+  ASSERT_FALSE(c.result.ok());
+  EXPECT_NE(c.result.message.find(":4: /entities/0/transform/positon: unknown field 'positon'"), std::string::npos)
+      << c.result.message;
+  EXPECT_NE(c.result.message.find("position"), std::string::npos);
 }
 
 TEST(SceneLoaderErrors, FailureWhileCreatingRemovesWhatWasCreated) {
@@ -403,8 +403,8 @@ TEST(SceneLoaderErrors, FailureWhileCreatingRemovesWhatWasCreated) {
   ],
   "splitters": [ { "lifetime": "persistent" } ]
 })");
-  ASSERT_FALSE(c.result.ok);
-  EXPECT_NE(c.result.error.find("bad_volume.json:5: /entities/1: flat:"), std::string::npos) << c.result.error;
+  ASSERT_FALSE(c.result.ok());
+  EXPECT_NE(c.result.message.find("bad_volume.json:5: /entities/1: flat:"), std::string::npos) << c.result.message;
   EXPECT_EQ(c.entitiesLeft, 0u);
   EXPECT_EQ(c.bodiesLeft, 0u);
 }
@@ -430,9 +430,9 @@ TEST(SceneLoaderErrors, SemanticChecks) {
   };
   for (const Case& c : cases) {
     const BadCase r = loadBad("semantic.json", c.text);
-    EXPECT_FALSE(r.result.ok) << c.text;
-    EXPECT_NE(r.result.error.find(c.expected), std::string::npos) << r.result.error;
-    EXPECT_NE(r.result.error.find("semantic.json:1:"), std::string::npos) << r.result.error;
+    EXPECT_FALSE(r.result.ok()) << c.text;
+    EXPECT_NE(r.result.message.find(c.expected), std::string::npos) << r.result.message;
+    EXPECT_NE(r.result.message.find("semantic.json:1:"), std::string::npos) << r.result.message;
   }
 }
 

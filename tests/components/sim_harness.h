@@ -48,7 +48,7 @@ struct Sim {
     scene = loadScene(path, ctx);
     runner = SceneRunner(scene.splitters);
     camera = glm::dvec3(scene.cameraPosition);
-    return scene.ok;
+    return scene.ok();
   }
 
   // Queues a cut of `target` by the world plane {x : dot(normal, x) = offset}, requested this tick.
@@ -116,8 +116,7 @@ inline ecs::Entity addSplitableBody(Sim& sim, const std::string& name, const geo
   sim.world.add<MeshRenderer>(e, mr);
   sim.world.add<Splitable>(e, splitable);
   SplitWorld sw = sim.sw();
-  std::string error;
-  EXPECT_TRUE(makeDynamicBody(sw, e, density, ColliderMode::Auto, &error, &sim.splits)) << error;
+  EXPECT_EQ(makeDynamicBody(sw, e, density, ColliderMode::Auto, &sim.splits).message, "");
   return e;
 }
 

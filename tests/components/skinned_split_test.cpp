@@ -66,9 +66,8 @@ ecs::Entity spawnCharacter(Sim& sim, SkinnedPieceMode mode, glm::vec3 at = glm::
   sp.skinnedPieces = mode;
   sp.density = 1000.0;
   sim.world.add<Splitable>(e, sp);
-  std::string error;
   SplitWorld w = sim.sw();
-  EXPECT_TRUE(makeSkinnedBody(w, e, 1000.0, /*kinematic=*/true, &error)) << error;
+  EXPECT_EQ(makeSkinnedBody(w, e, 1000.0, /*kinematic=*/true).message, "");
   ecs::updateWorldTransforms(sim.world);
   return e;
 }

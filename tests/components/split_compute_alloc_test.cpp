@@ -21,7 +21,7 @@ size_t computeAllocations(uint32_t segments, uint32_t rings) {
   auto job = std::make_shared<SplitJob>();
   job->mesh = std::make_shared<geometry::MeshData>(geometry::primitives::uvSphere(0.5f, segments, rings));
   geometry::MeshContainer container;
-  EXPECT_EQ(container.setMesh(*job->mesh), geometry::SplitStatus::Ok);
+  EXPECT_EQ(container.setMesh(*job->mesh).code, geometry::SplitStatus::Ok);
   auto weld = std::make_shared<geometry::MeshWeld>();
   container.copyWeld(*weld);
   job->weld = weld;

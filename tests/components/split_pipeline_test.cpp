@@ -49,7 +49,7 @@ TEST(SplitPipeline, ThreadsNeverChangeTheOutcome) {
   for (uint32_t threads : {0u, 1u, 3u}) {
     for (const char* scene : {"fifty_cubes.json", "torus_cut.json", "u_shape.json"}) {
       Sim sim;
-      ASSERT_TRUE(sim.load(scenePath(scene))) << sim.scene.error;
+      ASSERT_TRUE(sim.load(scenePath(scene))) << sim.scene.message;
       setThreads(sim, threads);
       sim.runUntil(120);
       hashes.push_back(stateHash(sim));
@@ -66,7 +66,7 @@ TEST(SplitPipeline, ThreadsNeverChangeTheOutcome) {
 TEST(SplitPipeline, JobsCommitCommitDelayTicksAfterTheirPrepare) {
   for (uint32_t delay : {0u, 1u, 3u}) {
     Sim sim;
-    ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+    ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.message;
     setThreads(sim, 1, delay);
     uint64_t committedAt = 0, preparedAt = 0;
     while (sim.tick < 60 && committedAt == 0) {
@@ -90,7 +90,7 @@ TEST(SplitPipeline, JobsCommitCommitDelayTicksAfterTheirPrepare) {
 
 TEST(SplitPipeline, TargetGoneBeforeItsCommitLeavesNothingBehind) {
   Sim sim;
-  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.message;
   setThreads(sim, 1, 2);
   const ecs::Entity torus = sim.scene.find("torus");
   while (sim.splits.jobsInFlight() == 0 && sim.tick < 60) sim.step();
@@ -110,7 +110,7 @@ TEST(SplitPipeline, TargetGoneBeforeItsCommitLeavesNothingBehind) {
 TEST(SplitPipeline, HandlerEditsThePiecesOrKeepsTheOriginalWhole) {
   for (bool keep : {false, true}) {
     Sim sim;
-    ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+    ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.message;
     const ecs::Entity torus = sim.scene.find("torus");
     sim.world.get<Splitable>(torus).handler = "test.handler";
     int calls = 0;
@@ -159,7 +159,7 @@ TEST(SplitPipeline, HandlerEditsThePiecesOrKeepsTheOriginalWhole) {
 
 TEST(SplitPipeline, ASecondCutOfATargetInFlightWaitsAndRunsIfTheFirstKeptItWhole) {
   Sim sim;
-  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.message;
   setThreads(sim, 1, 2);
   const ecs::Entity torus = sim.scene.find("torus");
   sim.world.get<Splitable>(torus).handler = "test.second";
@@ -182,7 +182,7 @@ TEST(SplitPipeline, ASecondCutOfATargetInFlightWaitsAndRunsIfTheFirstKeptItWhole
 
 TEST(SplitPipeline, PiecesCarryTheirPartsAndCutsOnlyClipThem) {
   Sim sim;
-  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.message;
   const ecs::Entity torus = sim.scene.find("torus");
   ASSERT_TRUE(sim.world.has<ColliderParts>(torus));  // decomposed once, when its body was made
   std::vector<SplitEvent> events = sim.runUntil(40);

@@ -43,7 +43,7 @@ std::vector<SplitEvent> okEvents(const std::vector<SplitEvent>& events) {
 
 TEST(SplitConservation, SpinningMovingSphereKeepsMassMomentumAndAngularMomentum) {
   Sim sim;
-  ASSERT_TRUE(sim.load(scenePath("spinning_sphere.json"))) << sim.scene.error;
+  ASSERT_TRUE(sim.load(scenePath("spinning_sphere.json"))) << sim.scene.message;
   Momenta before, after;
   std::vector<SplitEvent> events;
   uint64_t splitTick = 0;
@@ -89,7 +89,7 @@ TEST(SplitConservation, SpinningMovingSphereKeepsMassMomentumAndAngularMomentum)
 // pieces keep their mass like any other.
 TEST(SplitWelds, PiecesAreCutAgainWithTheWeldTheirSplitGaveThem) {
   Sim sim;
-  ASSERT_TRUE(sim.load(scenePath("spinning_sphere.json"))) << sim.scene.error;
+  ASSERT_TRUE(sim.load(scenePath("spinning_sphere.json"))) << sim.scene.message;
   std::vector<SplitEvent> first;
   while (sim.tick < 60 && first.empty()) first = okEvents(sim.runUntil(sim.tick + 1));
   ASSERT_EQ(first.size(), 1u);
@@ -117,7 +117,7 @@ TEST(SplitWelds, PiecesAreCutAgainWithTheWeldTheirSplitGaveThem) {
 
 TEST(SplitScenes, TorusCutHorizontallyGivesTwoAnnularCapsAndComesToRest) {
   Sim sim;
-  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.error;
+  ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.message;
   const auto events = okEvents(sim.runUntil(40));
   ASSERT_EQ(events.size(), 1u);
   ASSERT_EQ(events[0].pieces.size(), 2u);
@@ -144,7 +144,7 @@ TEST(SplitScenes, TorusCutHorizontallyGivesTwoAnnularCapsAndComesToRest) {
 
 TEST(SplitScenes, UShapeCutAcrossBothArmsGivesThreeBodies) {
   Sim sim;
-  ASSERT_TRUE(sim.load(scenePath("u_shape.json"))) << sim.scene.error;
+  ASSERT_TRUE(sim.load(scenePath("u_shape.json"))) << sim.scene.message;
   const auto events = okEvents(sim.runUntil(20));
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].pieces.size(), 3u);
@@ -176,7 +176,7 @@ TEST(Splitters, PersistentSplitterCutsEachObjectOfARowExactlyOncePerPass) {
                                   rowScene(R"({"name": "disc", "lifetime": "persistent", "half_extents": [0.3, 0.02, 1],
                                              "transform": {"position": [-3, 0.25, 0]}, "velocity": [3, 0, 0],
                                              "end_tick": 150})"))))
-      << sim.scene.error;
+      << sim.scene.message;
   const ecs::Entity disc = sim.scene.splitters.at(0).entity;
   ASSERT_TRUE(sim.world.alive(disc));
   const auto events = sim.runUntil(149);
@@ -196,7 +196,7 @@ TEST(Splitters, OneTickSplitterCutsOnlyWhatItTouchesInItsTick) {
   ASSERT_TRUE(sim.load(writeScene("row_one_tick.json",
                                   rowScene(R"({"name": "swing", "lifetime": "one_tick", "half_extents": [0.3, 0.02, 1],
                                              "transform": {"position": [0, 0.25, 0]}, "fire_tick": 10})"))))
-      << sim.scene.error;
+      << sim.scene.message;
   const auto events = sim.runUntil(60);
   const auto ok = okEvents(events);
   ASSERT_EQ(ok.size(), 1u);
@@ -332,7 +332,7 @@ TEST(SplitBudget, DecisionCheckSeesATickThatStopsEarlyAndOneThatOverruns) {
 }
 
 BudgetRun runFiftyCubes(Sim& sim, bool deterministic) {
-  EXPECT_TRUE(sim.load(scenePath("fifty_cubes.json"))) << sim.scene.error;
+  EXPECT_TRUE(sim.load(scenePath("fifty_cubes.json"))) << sim.scene.message;
   SplitBudgetSettings s = sim.splits.budget().settings();
   s.deterministic = deterministic;
   sim.splits.budget().setSettings(s);
@@ -398,7 +398,7 @@ TEST(SplitBudgetScene, FiftyCubesWithMeasuredTimeStayWithinOneSplitOfTheBudget) 
 // Bodies sit above the floor at every tick and new pieces start without deep interpenetration.
 void expectNoTunnellingNorDeepStarts(const std::string& scene, uint64_t ticks, float minCentreHeight) {
   Sim sim;
-  ASSERT_TRUE(sim.load(scenePath(scene))) << sim.scene.error;
+  ASSERT_TRUE(sim.load(scenePath(scene))) << sim.scene.message;
   float lowest = 1e9f;
   float deepestStart = 0.f;
   float deepestAny = 0.f;
@@ -454,7 +454,7 @@ struct Snapshot {
 
 Snapshot runForDeterminism() {
   Sim sim;
-  EXPECT_TRUE(sim.load(scenePath("fifty_cubes.json"))) << sim.scene.error;
+  EXPECT_TRUE(sim.load(scenePath("fifty_cubes.json"))) << sim.scene.message;
   Snapshot snap;
   SplitWorld w = sim.sw();
   for (; sim.tick < 120; ++sim.tick) {

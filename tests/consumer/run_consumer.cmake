@@ -30,14 +30,14 @@ endfunction()
 if(STEP STREQUAL "install")
   file(REMOVE_RECURSE ${PREFIX})
   run(${CMAKE_COMMAND} --install ${CLEAVE_BUILD} --prefix ${PREFIX})
-  foreach(present include/cleave/geometry/mesh_splitter.h include/cleave/physics/physics_world.h
-          include/cleave/assets/model.h include/cleave/components/split_system.h)
+  foreach(present include/cleave/base/status.h include/cleave/geometry/mesh_splitter.h
+          include/cleave/physics/physics_world.h include/cleave/assets/model.h include/cleave/components/split_system.h)
     if(NOT EXISTS ${PREFIX}/${present})
       message(FATAL_ERROR "the installed tree has no ${present}")
     endif()
   endforeach()
   foreach(absent include/cleave/assets/glb_builder.h include/cleave/assets/gltf_access.h
-          include/cleave/physics/detail include/cleave/engine include/engine)
+          include/cleave/physics/detail include/cleave/base/detail include/cleave/engine include/engine)
     if(EXISTS ${PREFIX}/${absent})
       message(FATAL_ERROR "the installed tree holds ${absent}, which is internal")
     endif()

@@ -40,9 +40,9 @@ TEST(Hierarchy, TranslationChainAddsUp) {
   const Entity a = makeNode(world, Transform{{1, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}});
   const Entity b = makeNode(world, Transform{{0, 2, 0}, {1, 0, 0, 0}, {1, 1, 1}});
   const Entity c = makeNode(world, Transform{{0, 0, 3}, {1, 0, 0, 0}, {1, 1, 1}});
-  ASSERT_TRUE(setParent(world, b, a).ok);
-  ASSERT_TRUE(setParent(world, c, b).ok);
-  ASSERT_TRUE(updateWorldTransforms(world).ok);
+  ASSERT_TRUE(setParent(world, b, a).ok());
+  ASSERT_TRUE(setParent(world, c, b).ok());
+  ASSERT_TRUE(updateWorldTransforms(world).ok());
   expectNear(transformPoint(world.get<WorldTransform>(c).matrix, {0, 0, 0}), {1, 2, 3});
   expectNear(transformPoint(world.get<WorldTransform>(b).matrix, {0, 0, 0}), {1, 2, 0});
 }
@@ -55,8 +55,8 @@ TEST(Hierarchy, RotationAndScaleOfParentApplyToChildOffset) {
   parentLocal.scale = {3, 3, 3};
   const Entity parent = makeNode(world, parentLocal);
   const Entity child = makeNode(world, Transform{{1, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}});
-  ASSERT_TRUE(setParent(world, child, parent).ok);
-  ASSERT_TRUE(updateWorldTransforms(world).ok);
+  ASSERT_TRUE(setParent(world, child, parent).ok());
+  ASSERT_TRUE(updateWorldTransforms(world).ok());
   // Child origin: (1,0,0) scaled to (3,0,0), rotated 90 deg about y to (0,0,-3), moved by (10,0,0).
   expectNear(transformPoint(world.get<WorldTransform>(child).matrix, {0, 0, 0}), {10, 0, -3});
 }
@@ -65,8 +65,8 @@ TEST(Hierarchy, ChildCreatedBeforeParentIsStillComputedParentFirst) {
   World world;
   const Entity child = makeNode(world, Transform{{0, 1, 0}, {1, 0, 0, 0}, {1, 1, 1}});
   const Entity parent = makeNode(world, Transform{{5, 0, 0}, {1, 0, 0, 0}, {2, 2, 2}});
-  ASSERT_TRUE(setParent(world, child, parent).ok);
-  ASSERT_TRUE(updateWorldTransforms(world).ok);
+  ASSERT_TRUE(setParent(world, child, parent).ok());
+  ASSERT_TRUE(updateWorldTransforms(world).ok());
   expectNear(transformPoint(world.get<WorldTransform>(child).matrix, {0, 0, 0}), {5, 2, 0});
 }
 
@@ -75,18 +75,18 @@ TEST(Hierarchy, ReparentingMovesChildAndUpdatesChildrenLists) {
   const Entity a = makeNode(world, Transform{{1, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}});
   const Entity b = makeNode(world, Transform{{0, 0, 7}, {1, 0, 0, 0}, {1, 1, 1}});
   const Entity child = makeNode(world, Transform{{0, 1, 0}, {1, 0, 0, 0}, {1, 1, 1}});
-  ASSERT_TRUE(setParent(world, child, a).ok);
-  ASSERT_TRUE(setParent(world, child, b).ok);
+  ASSERT_TRUE(setParent(world, child, a).ok());
+  ASSERT_TRUE(setParent(world, child, b).ok());
   EXPECT_TRUE(world.get<Children>(a).entities.empty());
   EXPECT_EQ(world.get<Children>(b).entities, std::vector<Entity>{child});
   EXPECT_EQ(parentOf(world, child), b);
-  ASSERT_TRUE(updateWorldTransforms(world).ok);
+  ASSERT_TRUE(updateWorldTransforms(world).ok());
   expectNear(transformPoint(world.get<WorldTransform>(child).matrix, {0, 0, 0}), {0, 1, 7});
 
-  ASSERT_TRUE(setParent(world, child, kNullEntity).ok);
+  ASSERT_TRUE(setParent(world, child, kNullEntity).ok());
   EXPECT_FALSE(world.has<Parent>(child));
   EXPECT_TRUE(world.get<Children>(b).entities.empty());
-  ASSERT_TRUE(updateWorldTransforms(world).ok);
+  ASSERT_TRUE(updateWorldTransforms(world).ok());
   expectNear(transformPoint(world.get<WorldTransform>(child).matrix, {0, 0, 0}), {0, 1, 0});
 }
 
@@ -95,17 +95,17 @@ TEST(Hierarchy, SetParentRejectsCyclesSelfAndDeadEntities) {
   const Entity a = world.create();
   const Entity b = world.create();
   const Entity c = world.create();
-  ASSERT_TRUE(setParent(world, b, a).ok);
-  ASSERT_TRUE(setParent(world, c, b).ok);
+  ASSERT_TRUE(setParent(world, b, a).ok());
+  ASSERT_TRUE(setParent(world, c, b).ok());
   const HierarchyStatus cycle = setParent(world, a, c);
-  EXPECT_FALSE(cycle.ok);
-  EXPECT_NE(cycle.reason.find("cycle"), std::string::npos) << cycle.reason;
+  EXPECT_FALSE(cycle.ok());
+  EXPECT_NE(cycle.message.find("cycle"), std::string::npos) << cycle.message;
   EXPECT_FALSE(world.has<Parent>(a));
-  EXPECT_FALSE(setParent(world, a, a).ok);
+  EXPECT_FALSE(setParent(world, a, a).ok());
   const Entity dead = world.create();
   world.destroy(dead);
-  EXPECT_FALSE(setParent(world, a, dead).ok);
-  EXPECT_FALSE(setParent(world, dead, a).ok);
+  EXPECT_FALSE(setParent(world, a, dead).ok());
+  EXPECT_FALSE(setParent(world, dead, a).ok());
 }
 
 TEST(Hierarchy, CycleMadeByDirectEditsIsReportedAndTreatedAsRoot) {
@@ -115,8 +115,8 @@ TEST(Hierarchy, CycleMadeByDirectEditsIsReportedAndTreatedAsRoot) {
   world.add(a, Parent{b});
   world.add(b, Parent{a});
   const HierarchyStatus status = updateWorldTransforms(world);
-  EXPECT_FALSE(status.ok);
-  EXPECT_NE(status.reason.find("cycle"), std::string::npos) << status.reason;
+  EXPECT_FALSE(status.ok());
+  EXPECT_NE(status.message.find("cycle"), std::string::npos) << status.message;
   // Walk from a (lowest index): a -> b -> a; b is reached last and becomes the root.
   expectNear(transformPoint(world.get<WorldTransform>(b).matrix, {0, 0, 0}), {0, 1, 0});
   expectNear(transformPoint(world.get<WorldTransform>(a).matrix, {0, 0, 0}), {1, 1, 0});
@@ -129,10 +129,10 @@ TEST(Hierarchy, DestroyRecursiveRemovesSubtreeOnly) {
   const Entity child1 = world.create();
   const Entity child2 = world.create();
   const Entity grandchild = world.create();
-  ASSERT_TRUE(setParent(world, keep, root).ok);
-  ASSERT_TRUE(setParent(world, child1, keep).ok);
-  ASSERT_TRUE(setParent(world, child2, keep).ok);
-  ASSERT_TRUE(setParent(world, grandchild, child2).ok);
+  ASSERT_TRUE(setParent(world, keep, root).ok());
+  ASSERT_TRUE(setParent(world, child1, keep).ok());
+  ASSERT_TRUE(setParent(world, child2, keep).ok());
+  ASSERT_TRUE(setParent(world, grandchild, child2).ok());
   EXPECT_EQ(destroyRecursive(world, keep), 4u);
   EXPECT_TRUE(world.alive(root));
   EXPECT_FALSE(world.alive(keep));
@@ -148,7 +148,7 @@ TEST(Hierarchy, DestroyRecursiveThroughCommandBuffer) {
   World world;
   const Entity root = world.create();
   const Entity child = world.create();
-  ASSERT_TRUE(setParent(world, child, root).ok);
+  ASSERT_TRUE(setParent(world, child, root).ok());
   world.add(root, Name{"root"});
   CommandBuffer commands(world);
   world.view<Name>().each([&](Entity e, Name&) { commands.destroyRecursive(e); });
@@ -161,10 +161,10 @@ TEST(Hierarchy, PlainDestroyOfParentLeavesChildAsRoot) {
   World world;
   const Entity parent = makeNode(world, Transform{{4, 0, 0}, {1, 0, 0, 0}, {1, 1, 1}});
   const Entity child = makeNode(world, Transform{{0, 1, 0}, {1, 0, 0, 0}, {1, 1, 1}});
-  ASSERT_TRUE(setParent(world, child, parent).ok);
+  ASSERT_TRUE(setParent(world, child, parent).ok());
   world.destroy(parent);
   EXPECT_EQ(parentOf(world, child), kNullEntity);
-  ASSERT_TRUE(updateWorldTransforms(world).ok);
+  ASSERT_TRUE(updateWorldTransforms(world).ok());
   expectNear(transformPoint(world.get<WorldTransform>(child).matrix, {0, 0, 0}), {0, 1, 0});
 }
 

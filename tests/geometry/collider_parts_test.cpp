@@ -30,7 +30,7 @@ ColliderPartSet partsOf(const MeshData& mesh) {
 Cut cutWithParts(const MeshData& mesh, const ColliderPartSet& parts, const Plane& plane) {
   Cut c;
   MeshContainer container;
-  EXPECT_EQ(container.setMesh(mesh), SplitStatus::Ok);
+  EXPECT_EQ(container.setMesh(mesh).code, SplitStatus::Ok);
   auto splitter = makeConcaveSplitter();
   EXPECT_EQ(splitter->split(container, plane, SplitOptions{}, c.result), SplitStatus::Ok) << c.result.message;
   clipPartsToPieces(parts, plane, c.result, {}, c.parts);

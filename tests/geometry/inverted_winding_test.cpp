@@ -33,7 +33,7 @@ MeshData cgalTetrahedron() { return reversed(testing::cornerTetrahedron()); }
 
 void expectSplitKeepsWinding(const MeshData& mesh, const glm::mat4& model, const Plane& plane) {
   MeshContainer container;
-  ASSERT_EQ(container.setMesh(mesh), SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(mesh).code, SplitStatus::Ok);
   container.setTransform(model);
   const std::vector<glm::dvec3> cut(container.cutPositions().begin(),
                                     container.cutPositions().end());
@@ -67,7 +67,7 @@ void expectSplitKeepsWinding(const MeshData& mesh, const glm::mat4& model, const
       EXPECT_TRUE(piece.weld.closed);
       EXPECT_TRUE(piece.weld.inverted);
       MeshContainer again;
-      ASSERT_EQ(again.setMesh(piece.mesh, piece.weld), SplitStatus::Ok);
+      ASSERT_EQ(again.setMesh(piece.mesh, piece.weld).code, SplitStatus::Ok);
       EXPECT_TRUE(again.inverted());
       again.setTransform(model);
       glm::dvec3 lo, hi;
@@ -91,7 +91,7 @@ void expectSplitKeepsWinding(const MeshData& mesh, const glm::mat4& model, const
 
 TEST(InvertedWinding, ContainerTreatsAnInwardClosedMeshAsMirrored) {
   MeshContainer c;
-  ASSERT_EQ(c.setMesh(cgalTetrahedron()), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(cgalTetrahedron()).code, SplitStatus::Ok);
   EXPECT_TRUE(c.closed());
   EXPECT_TRUE(c.inverted());
   EXPECT_TRUE(c.mirrored());
@@ -102,12 +102,12 @@ TEST(InvertedWinding, ContainerTreatsAnInwardClosedMeshAsMirrored) {
   c.setTransform(glm::mat4(1.f));
   EXPECT_TRUE(c.mirrored());
   // Outward and open meshes are not inverted; an open mesh has no inside to be wound towards.
-  ASSERT_EQ(c.setMesh(primitives::box(glm::vec3(1.f))), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(primitives::box(glm::vec3(1.f))).code, SplitStatus::Ok);
   EXPECT_FALSE(c.inverted());
   EXPECT_FALSE(c.mirrored());
   MeshData open = reversed(primitives::box(glm::vec3(1.f)));
   open.indices.resize(open.indices.size() - 3);
-  ASSERT_EQ(c.setMesh(open), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(open).code, SplitStatus::Ok);
   EXPECT_FALSE(c.closed());
   EXPECT_FALSE(c.inverted());
 }
@@ -130,7 +130,7 @@ TEST(InvertedWinding, InwardTorusSectionsWithTwoBordersAndWithAHole) {
   // with a hole, which must stay a hole.
   const MeshData torus = reversed(primitives::torus(1.f, 0.3f, 32, 16));
   MeshContainer container;
-  ASSERT_EQ(container.setMesh(torus), SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(torus).code, SplitStatus::Ok);
   ASSERT_TRUE(container.mirrored());
   const std::vector<glm::dvec3> p = testing::toCutSpace(torus, glm::dmat4(1.0));
   const double inputVolume = testing::signedVolume(p, torus.indices);

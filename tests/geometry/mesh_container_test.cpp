@@ -41,9 +41,8 @@ MeshData seamCube() {
 
 TEST(MeshContainer, AcceptsAValidMeshAndWeldsItsSeams) {
   MeshContainer c;
-  std::string why = "stale";
-  ASSERT_EQ(c.setMesh(seamCube(), &why), SplitStatus::Ok);
-  EXPECT_TRUE(why.empty());
+  MeshStatus set = c.setMesh(seamCube());
+  ASSERT_EQ(set.code, SplitStatus::Ok) << set.message;
   EXPECT_EQ(c.mesh().vertexCount(), 24u);
   EXPECT_EQ(c.positionIdCount(), 8u);
   EXPECT_TRUE(c.closed());
@@ -65,16 +64,15 @@ TEST(MeshContainer, AcceptsAValidMeshAndWeldsItsSeams) {
 
 TEST(MeshContainer, TakesAWeldWorkedOutBefore) {
   MeshContainer welded;
-  ASSERT_EQ(welded.setMesh(seamCube()), SplitStatus::Ok);
+  ASSERT_EQ(welded.setMesh(seamCube()).code, SplitStatus::Ok);
   MeshWeld weld;
   welded.copyWeld(weld);
   EXPECT_EQ(weld.positionIds.size(), 24u);
   EXPECT_EQ(weld.representatives.size(), 8u);
   EXPECT_TRUE(weld.closed);
   MeshContainer c;
-  std::string why = "stale";
-  ASSERT_EQ(c.setMesh(seamCube(), weld, &why), SplitStatus::Ok);
-  EXPECT_TRUE(why.empty());
+  MeshStatus set = c.setMesh(seamCube(), weld);
+  ASSERT_EQ(set.code, SplitStatus::Ok) << set.message;
   EXPECT_EQ(c.positionIdCount(), 8u);
   EXPECT_TRUE(c.closed());
   EXPECT_NEAR(c.boundsDiagonal(), welded.boundsDiagonal(), 0.0);
@@ -95,41 +93,48 @@ TEST(MeshContainer, TakesAWeldWorkedOutBefore) {
 TEST(MeshContainer, SharesAMeshWithoutCopyingIt) {
   auto shared = std::make_shared<const MeshData>(seamCube());
   MeshContainer c;
-  std::string why;
-  ASSERT_EQ(c.setMesh(shared, nullptr, &why), SplitStatus::Ok) << why;
+  MeshStatus set;
+  set = c.setMesh(shared, nullptr);
+  ASSERT_EQ(set.code, SplitStatus::Ok) << set.message;
   EXPECT_EQ(&c.mesh(), shared.get());
   EXPECT_EQ(c.positionIdCount(), 8u);
   EXPECT_TRUE(c.closed());
   MeshWeld weld;
   c.copyWeld(weld);
   MeshContainer d;
-  ASSERT_EQ(d.setMesh(shared, &weld, &why), SplitStatus::Ok) << why;
+  set = d.setMesh(shared, &weld);
+  ASSERT_EQ(set.code, SplitStatus::Ok) << set.message;
   EXPECT_EQ(d.positionIdCount(), 8u);
   // Taking a copy afterwards (even of the shared mesh itself) stops sharing.
-  ASSERT_EQ(d.setMesh(*shared, &why), SplitStatus::Ok);
+  set = d.setMesh(*shared);
+  ASSERT_EQ(set.code, SplitStatus::Ok) << set.message;
   EXPECT_NE(&d.mesh(), shared.get());
   EXPECT_EQ(d.mesh().positions, shared->positions);
-  EXPECT_EQ(c.setMesh(std::shared_ptr<const MeshData>(), nullptr, &why), SplitStatus::InvalidInput);
-  EXPECT_FALSE(why.empty());
+  set = c.setMesh(std::shared_ptr<const MeshData>(), nullptr);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  EXPECT_FALSE(set.message.empty());
 }
 
 TEST(MeshContainer, RejectsAWeldOfAnotherMesh) {
   MeshWeld weld;
   MeshContainer welded;
-  ASSERT_EQ(welded.setMesh(seamCube()), SplitStatus::Ok);
+  ASSERT_EQ(welded.setMesh(seamCube()).code, SplitStatus::Ok);
   welded.copyWeld(weld);
   MeshContainer c;
-  std::string why;
+  MeshStatus set;
   MeshWeld shorter = weld;
   shorter.positionIds.pop_back();
-  EXPECT_EQ(c.setMesh(seamCube(), shorter, &why), SplitStatus::InvalidInput);
-  EXPECT_NE(why.find("weld"), std::string::npos) << why;
+  set = c.setMesh(seamCube(), shorter);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  EXPECT_NE(set.message.find("weld"), std::string::npos) << set.message;
   MeshWeld outOfRange = weld;
   outOfRange.positionIds[5] = 8;
-  EXPECT_EQ(c.setMesh(seamCube(), outOfRange, &why), SplitStatus::InvalidInput);
+  set = c.setMesh(seamCube(), outOfRange);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
   MeshWeld wrongRepresentative = weld;
   std::swap(wrongRepresentative.representatives[1], wrongRepresentative.representatives[2]);
-  EXPECT_EQ(c.setMesh(seamCube(), wrongRepresentative, &why), SplitStatus::InvalidInput);
+  set = c.setMesh(seamCube(), wrongRepresentative);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
   EXPECT_EQ(c.positionIdCount(), 0u);  // nothing half set
   EXPECT_TRUE(c.cutPositions().empty());
 }
@@ -138,11 +143,11 @@ TEST(MeshContainer, WeldsWithinTheToleranceScaledToTheMesh) {
   MeshData m = seamCube();
   m.positions[5] += glm::vec3(2e-7f, 0.f, 0.f);  // 2e-7 < 1e-6 * sqrt(3): same point
   MeshContainer c;
-  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(m).code, SplitStatus::Ok);
   EXPECT_EQ(c.positionIdCount(), 8u);
   EXPECT_TRUE(c.closed());
   m.positions[5] += glm::vec3(1e-4f, 0.f, 0.f);  // far beyond the tolerance: a new point, an open mesh
-  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(m).code, SplitStatus::Ok);
   EXPECT_EQ(c.positionIdCount(), 9u);
   EXPECT_FALSE(c.closed());
 }
@@ -152,7 +157,7 @@ TEST(MeshContainer, ScaledMeshWeldsWithAScaledTolerance) {
   for (glm::vec3& p : m.positions) p *= 1000.f;
   m.positions[5] += glm::vec3(1e-4f, 0.f, 0.f);  // 1e-4 < 1e-6 * 1732
   MeshContainer c;
-  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(m).code, SplitStatus::Ok);
   EXPECT_EQ(c.positionIdCount(), 8u);
 }
 
@@ -160,7 +165,7 @@ TEST(MeshContainer, OpenMeshIsNotClosed) {
   MeshData m = seamCube();
   m.indices.resize(m.indices.size() - 3);
   MeshContainer c;
-  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(m).code, SplitStatus::Ok);
   EXPECT_FALSE(c.closed());
 }
 
@@ -168,54 +173,64 @@ TEST(MeshContainer, RejectsNaNAndInfinitePositions) {
   MeshContainer c;
   MeshData m = seamCube();
   m.positions[3].y = std::numeric_limits<float>::quiet_NaN();
-  std::string why;
-  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
-  EXPECT_NE(why.find("vertex 3"), std::string::npos) << why;
+  MeshStatus set;
+  set = c.setMesh(m);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  EXPECT_NE(set.message.find("vertex 3"), std::string::npos) << set.message;
   m = seamCube();
   m.positions[7].z = std::numeric_limits<float>::infinity();
-  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
-  EXPECT_NE(why.find("vertex 7"), std::string::npos) << why;
+  set = c.setMesh(m);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  EXPECT_NE(set.message.find("vertex 7"), std::string::npos) << set.message;
   EXPECT_TRUE(c.mesh().empty());  // a rejected mesh leaves nothing to split
 }
 
 TEST(MeshContainer, RejectsBadIndices) {
   MeshContainer c;
-  std::string why;
+  MeshStatus set;
   MeshData m = seamCube();
   m.indices[10] = 24;
-  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
-  EXPECT_NE(why.find("out of range"), std::string::npos) << why;
+  set = c.setMesh(m);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  EXPECT_NE(set.message.find("out of range"), std::string::npos) << set.message;
   m = seamCube();
   m.indices.push_back(0);
-  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
-  EXPECT_NE(why.find("multiple of 3"), std::string::npos) << why;
+  set = c.setMesh(m);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  EXPECT_NE(set.message.find("multiple of 3"), std::string::npos) << set.message;
   m.indices.clear();
-  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+  set = c.setMesh(m);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
 }
 
 TEST(MeshContainer, RejectsMismatchedAttributesAndRuns) {
   MeshContainer c;
-  std::string why;
+  MeshStatus set;
   MeshData m = seamCube();
   m.normals.pop_back();
-  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
-  EXPECT_NE(why.find("normals"), std::string::npos) << why;
+  set = c.setMesh(m);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  EXPECT_NE(set.message.find("normals"), std::string::npos) << set.message;
   m = seamCube();
   m.joints.assign(24, glm::u16vec4(0));
-  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);  // joints without weights
-  EXPECT_NE(why.find("weights"), std::string::npos) << why;
+  set = c.setMesh(m);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;  // joints without weights
+  EXPECT_NE(set.message.find("weights"), std::string::npos) << set.message;
   m = seamCube();
   m.submeshes = {{0, 18, 0}, {21, 15, 1}};  // a gap
-  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+  set = c.setMesh(m);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
   m.submeshes = {{0, 18, 0}, {18, 12, 1}};  // short of the end
-  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::InvalidInput);
+  set = c.setMesh(m);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
   m.submeshes = {{0, 18, 0}, {18, 18, 1}};
-  EXPECT_EQ(c.setMesh(m, &why), SplitStatus::Ok) << why;
+  set = c.setMesh(m);
+  EXPECT_EQ(set.code, SplitStatus::Ok) << set.message;
 }
 
 TEST(MeshContainer, TransformMakesCutSpaceAndDetectsMirroring) {
   MeshContainer c;
-  ASSERT_EQ(c.setMesh(seamCube()), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(seamCube()).code, SplitStatus::Ok);
   const glm::mat4 model = glm::translate(glm::mat4(1.f), glm::vec3(1, 2, 3)) *
                           glm::scale(glm::mat4(1.f), glm::vec3(2.f, 1.f, 1.f));
   c.setTransform(model);
@@ -238,20 +253,22 @@ TEST(MeshContainer, SkinningPoseBlendsJointMatrices) {
     m.weights.emplace_back(1.f - p.x, p.x, 0.f, 0.f);
   }
   MeshContainer c;
-  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(m).code, SplitStatus::Ok);
   const std::vector<glm::mat4> joints = {glm::mat4(1.f), glm::translate(glm::mat4(1.f), glm::vec3(0, 1, 0))};
   const glm::mat4 model = glm::translate(glm::mat4(1.f), glm::vec3(10, 0, 0));
-  ASSERT_EQ(c.setSkinningPose(joints, model), SplitStatus::Ok);
+  ASSERT_EQ(c.setSkinningPose(joints, model).code, SplitStatus::Ok);
   for (size_t i = 0; i < m.positions.size(); ++i) {
     const glm::dvec3 expected = glm::dvec3(m.positions[i]) + glm::dvec3(10.0, m.positions[i].x, 0.0);
     EXPECT_NEAR(glm::length(c.cutPositions()[i] - expected), 0.0, 1e-6) << i;
   }
   EXPECT_EQ(c.jointMatrices().size(), 2u);
-  std::string why;
-  EXPECT_EQ(c.setSkinningPose(std::span<const glm::mat4>(joints.data(), 1), model, &why), SplitStatus::InvalidInput);
-  EXPECT_NE(why.find("joint 1"), std::string::npos) << why;
-  ASSERT_EQ(c.setMesh(seamCube()), SplitStatus::Ok);
-  EXPECT_EQ(c.setSkinningPose(joints, model, &why), SplitStatus::InvalidInput);  // no skin data
+  MeshStatus set;
+  set = c.setSkinningPose(std::span<const glm::mat4>(joints.data(), 1), model);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  EXPECT_NE(set.message.find("joint 1"), std::string::npos) << set.message;
+  ASSERT_EQ(c.setMesh(seamCube()).code, SplitStatus::Ok);
+  set = c.setSkinningPose(joints, model);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;  // no skin data
 }
 
 TEST(MeshContainer, ExtractTrianglesRemapsVerticesAndKeepsRuns) {
@@ -259,7 +276,7 @@ TEST(MeshContainer, ExtractTrianglesRemapsVerticesAndKeepsRuns) {
   for (size_t i = 0; i < m.positions.size(); ++i) m.colors.emplace_back(float(i), 0.f, 0.f, 1.f);
   m.submeshes = {{0, 12, 4}, {12, 24, 7}};  // faces 0-1 material 4, faces 2-5 material 7
   MeshContainer c;
-  ASSERT_EQ(c.setMesh(m), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(m).code, SplitStatus::Ok);
   MeshData out;
   const std::vector<uint32_t> triangles = {5, 0, 1};  // face 2's second triangle, face 0
   c.extractTriangles(triangles, out);
@@ -294,7 +311,7 @@ namespace {
 TEST(MeshContainer, KeepsTheCutSpaceBoundsOfItsPositions) {
   const MeshData box = primitives::box(glm::vec3(0.5f, 1.f, 2.f));
   MeshContainer c;
-  ASSERT_EQ(c.setMesh(box), SplitStatus::Ok);
+  ASSERT_EQ(c.setMesh(box).code, SplitStatus::Ok);
   EXPECT_EQ(c.boundsMin(), glm::dvec3(-0.5, -1.0, -2.0));
   EXPECT_EQ(c.boundsMax(), glm::dvec3(0.5, 1.0, 2.0));
   c.setTransform(glm::translate(glm::mat4(1.f), glm::vec3(10.f, 0.f, 0.f)));
@@ -304,7 +321,7 @@ TEST(MeshContainer, KeepsTheCutSpaceBoundsOfItsPositions) {
   MeshWeld weld;
   c.copyWeld(weld);
   MeshContainer d;
-  ASSERT_EQ(d.setMesh(box, weld), SplitStatus::Ok);
+  ASSERT_EQ(d.setMesh(box, weld).code, SplitStatus::Ok);
   EXPECT_EQ(d.boundsMax(), glm::dvec3(0.5, 1.0, 2.0));
   d.release();
   EXPECT_GT(d.boundsMin().x, d.boundsMax().x);

@@ -59,9 +59,8 @@ struct Cut {
 
 Cut cutInPose(const MeshData& mesh, std::span<const glm::mat4> joints, const Plane& plane) {
   MeshContainer container;
-  std::string why;
-  EXPECT_EQ(container.setMesh(mesh, &why), SplitStatus::Ok) << why;
-  EXPECT_EQ(container.setSkinningPose(joints, glm::mat4(1.f), &why), SplitStatus::Ok) << why;
+  EXPECT_EQ(container.setMesh(mesh).message, "");
+  EXPECT_EQ(container.setSkinningPose(joints, glm::mat4(1.f)).message, "");
   Cut cut;
   cut.status = makeConcaveSplitter()->split(container, plane, SplitOptions{}, cut.result);
   return cut;
@@ -99,7 +98,7 @@ TEST(SkinnedSplit, PiecesKeepOnlyTheJointsTheyUse) {
   EXPECT_EQ(low.result.pieces[1].joints, std::vector<uint16_t>({kLower}));
   // Static meshes report no joints.
   MeshContainer plain;
-  ASSERT_EQ(plain.setMesh(primitives::box(glm::vec3(1.f))), SplitStatus::Ok);
+  ASSERT_EQ(plain.setMesh(primitives::box(glm::vec3(1.f))).code, SplitStatus::Ok);
   SplitResult boxResult;
   ASSERT_EQ(makeConcaveSplitter()->split(plain, Plane{{0, 1, 0}, 0.0}, SplitOptions{}, boxResult),
             SplitStatus::Ok);

@@ -121,8 +121,7 @@ struct Split {
 Split run(const MeshData& mesh, const Plane& plane, SplitOptions options = {}, const glm::mat4& model = glm::mat4(1.f),
           bool convex = false) {
   MeshContainer container;
-  std::string why;
-  EXPECT_EQ(container.setMesh(mesh, &why), SplitStatus::Ok) << why;
+  EXPECT_EQ(container.setMesh(mesh).message, "");
   container.setTransform(model);
   auto splitter = convex ? makeConvexSplitter() : makeConcaveSplitter();
   Split s;
@@ -273,7 +272,7 @@ TEST(ConcaveSplitter, PlaneThroughAFaceLeavesOneSideEmptyAndMisses) {
   SplitResult result;
   auto splitter = makeConcaveSplitter();
   MeshContainer container;
-  ASSERT_EQ(container.setMesh(cube), SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(cube).code, SplitStatus::Ok);
   ASSERT_EQ(splitter->split(container, planeOf({1, 0, 0}, 0.5), {}, result), SplitStatus::Ok);
   ASSERT_EQ(result.pieces.size(), 2u);
   for (const Plane& plane : {planeOf({1, 0, 0}, 0.0), planeOf({-1, 0, 0}, 0.0), planeOf({0, 1, 0}, 1.0),
@@ -348,13 +347,13 @@ TEST(ConcaveSplitter, InvalidInputGivesNoPieces) {
   MeshData bad = seamCube();
   bad.positions[0].x = std::numeric_limits<float>::quiet_NaN();
   MeshContainer container;
-  std::string why;
-  EXPECT_EQ(container.setMesh(bad, &why), SplitStatus::InvalidInput);
-  EXPECT_FALSE(why.empty());
+  MeshStatus set = container.setMesh(bad);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput);
+  EXPECT_FALSE(set.message.empty());
   auto splitter = makeConcaveSplitter();
   SplitResult result;
   MeshContainer good;
-  ASSERT_EQ(good.setMesh(seamCube()), SplitStatus::Ok);
+  ASSERT_EQ(good.setMesh(seamCube()).code, SplitStatus::Ok);
   ASSERT_EQ(splitter->split(good, planeOf({1, 0, 0}, 0.5), {}, result), SplitStatus::Ok);
   EXPECT_EQ(splitter->split(container, planeOf({1, 0, 0}, 0.5), {}, result), SplitStatus::InvalidInput);
   EXPECT_TRUE(result.pieces.empty());
@@ -362,8 +361,9 @@ TEST(ConcaveSplitter, InvalidInputGivesNoPieces) {
 
   bad = seamCube();
   bad.indices[4] = 99;
-  EXPECT_EQ(container.setMesh(bad, &why), SplitStatus::InvalidInput);
-  EXPECT_NE(why.find("99"), std::string::npos) << why;
+  set = container.setMesh(bad);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput);
+  EXPECT_NE(set.message.find("99"), std::string::npos) << set.message;
   EXPECT_EQ(splitter->split(container, planeOf({1, 0, 0}, 0.5), {}, result), SplitStatus::InvalidInput);
   EXPECT_TRUE(result.pieces.empty());
 
@@ -691,7 +691,7 @@ TEST(ConcaveSplitter, CutPointsThatRoundToOneFloatAreOnePointOfAClosedPiece) {
     EXPECT_TRUE(testing::manifoldOnFloats(piece.mesh)) << "side " << piece.side;
     // The coinciding cut points share one position id in the piece's weld.
     MeshContainer again;
-    ASSERT_EQ(again.setMesh(piece.mesh, piece.weld), SplitStatus::Ok);
+    ASSERT_EQ(again.setMesh(piece.mesh, piece.weld).code, SplitStatus::Ok);
     EXPECT_TRUE(again.closed());
   }
 }
@@ -821,11 +821,11 @@ TEST(ConcaveSplitter, SameInputGivesTheSameBytes) {
   EXPECT_TRUE(sameBytes(first.result, second.result));
   // A reused splitter and result, dirty from another split, give the same bytes too.
   MeshContainer container;
-  ASSERT_EQ(container.setMesh(seamCube()), SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(seamCube()).code, SplitStatus::Ok);
   auto splitter = makeConcaveSplitter();
   SplitResult reused;
   ASSERT_EQ(splitter->split(container, planeOf({1, 1, 1}, 1.5), {}, reused), SplitStatus::Ok);
-  ASSERT_EQ(container.setMesh(torus), SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(torus).code, SplitStatus::Ok);
   ASSERT_EQ(splitter->split(container, plane, {}, reused), SplitStatus::Ok);
   EXPECT_TRUE(sameBytes(first.result, reused));
 }
@@ -877,7 +877,7 @@ TEST(ConcaveSplitter, WarmSplitOfASameSizeMeshDoesNotAllocate) {
   };
   for (Case& c : cases) {
     MeshContainer container;
-    ASSERT_EQ(container.setMesh(c.mesh), SplitStatus::Ok);
+    ASSERT_EQ(container.setMesh(c.mesh).code, SplitStatus::Ok);
     container.setTransform(glm::rotate(glm::mat4(1.f), 0.3f, glm::vec3(0, 0, 1)));
     auto splitter = c.convex ? makeConvexSplitter() : makeConcaveSplitter();
     SplitResult result;
@@ -900,8 +900,8 @@ TEST(ConcaveSplitter, WarmSplitOfASameSizeMeshDoesNotAllocate) {
 // splitter and result warmed up on the first: still no allocation in split().
 TEST(ConcaveSplitter, SplitOfAnotherSameSizeMeshDoesNotAllocate) {
   MeshContainer first, second;
-  ASSERT_EQ(first.setMesh(primitives::uvSphere(1.f, 40, 21)), SplitStatus::Ok);
-  ASSERT_EQ(second.setMesh(primitives::uvSphere(2.f, 40, 21)), SplitStatus::Ok);
+  ASSERT_EQ(first.setMesh(primitives::uvSphere(1.f, 40, 21)).code, SplitStatus::Ok);
+  ASSERT_EQ(second.setMesh(primitives::uvSphere(2.f, 40, 21)).code, SplitStatus::Ok);
   auto splitter = makeConcaveSplitter();
   SplitResult result;
   SplitOptions options;
@@ -922,7 +922,7 @@ TEST(ConcaveSplitter, SplitOfAnotherSameSizeMeshDoesNotAllocate) {
 // a cold splitter and result allocate on their first split.
 TEST(ConcaveSplitter, AllocationCounterSeesTheAllocationsOfAColdSplit) {
   MeshContainer container;
-  ASSERT_EQ(container.setMesh(primitives::uvSphere(1.f, 24, 12)), SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(primitives::uvSphere(1.f, 24, 12)).code, SplitStatus::Ok);
   auto splitter = makeConcaveSplitter();
   SplitResult result;
   gAllocations = 0;
@@ -938,13 +938,13 @@ TEST(ConcaveSplitter, AllocationCounterSeesTheAllocationsOfAColdSplit) {
 TEST(ConcaveSplitter, WarmSetMeshWithAKnownWeldDoesNotAllocate) {
   auto mesh = std::make_shared<const MeshData>(primitives::torus(1.f, 0.3f, 48, 16));
   MeshContainer container;
-  ASSERT_EQ(container.setMesh(mesh, nullptr), SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(mesh, nullptr).code, SplitStatus::Ok);
   MeshWeld weld;
   container.copyWeld(weld);
-  for (int warm = 0; warm < 2; ++warm) ASSERT_EQ(container.setMesh(mesh, &weld), SplitStatus::Ok);
+  for (int warm = 0; warm < 2; ++warm) ASSERT_EQ(container.setMesh(mesh, &weld).code, SplitStatus::Ok);
   gAllocations = 0;
   gCountAllocations = true;
-  const SplitStatus status = container.setMesh(mesh, &weld);
+  const SplitStatus status = container.setMesh(mesh, &weld).code;
   container.setTransform(glm::rotate(glm::mat4(1.f), 0.4f, glm::vec3(0, 1, 0)));
   gCountAllocations = false;
   ASSERT_EQ(status, SplitStatus::Ok);

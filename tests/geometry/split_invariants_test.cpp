@@ -176,13 +176,11 @@ struct Expected {
 };
 
 bool prepare(MeshContainer& container, const InvariantCase& c, std::string& why) {
-  const SplitStatus set = c.weld ? container.setMesh(c.mesh, *c.weld, &why) : container.setMesh(c.mesh, &why);
-  if (set != SplitStatus::Ok) return false;
-  if (c.jointMatrices.empty()) {
-    container.setTransform(c.model);
-    return true;
-  }
-  return container.setSkinningPose(c.jointMatrices, c.model, &why) == SplitStatus::Ok;
+  MeshStatus set = c.weld ? container.setMesh(c.mesh, *c.weld) : container.setMesh(c.mesh);
+  if (set.ok() && c.jointMatrices.empty()) container.setTransform(c.model);
+  else if (set.ok()) set = container.setSkinningPose(c.jointMatrices, c.model);
+  why = set.message;
+  return set.ok();
 }
 
 // The largest relative difference between cap area and section area over every checked split, and
@@ -356,9 +354,8 @@ std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer
     // id at one position, and closed on its ids (each directed edge once, and its reverse once).
     if (!piece.weld.positionIds.empty()) {
       MeshContainer again;
-      std::string why;
-      if (again.setMesh(m, piece.weld, &why) != SplitStatus::Ok) {
-        problem(at + "the container refuses the piece's weld: " + why);
+      if (const MeshStatus set = again.setMesh(m, piece.weld); !set.ok()) {
+        problem(at + "the container refuses the piece's weld: " + set.message);
       } else {
         if (!again.closed()) problem(at + "the piece's weld says it is open");
         if (again.inverted() != container.inverted()) problem(at + "the piece's weld has the wrong winding flag");

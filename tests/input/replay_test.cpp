@@ -46,7 +46,7 @@ Replay richReplay() {
 
 TEST(ReplayParser, ParsesTheDocumentedExample) {
   const ReplayParseResult result = parseReplay(kValid, "example.replay");
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   const Replay& replay = result.replay;
   EXPECT_EQ(replay.scene, "arena");
   EXPECT_EQ(replay.seed, 42u);
@@ -69,7 +69,7 @@ TEST(ReplayParser, ParsesTheDocumentedExample) {
 TEST(ReplayParser, MouseMoveWithoutDeltasUsesThePreviousPosition) {
   const ReplayParseResult result = parseReplay(
       "cleave-replay 1\nscene s\nseed 1\n0 mm:10,20\n1 md:left@15,25\n2 mm:12,30\n", "m.replay");
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   EXPECT_EQ(result.replay.frames[0].events[0], InputEvent(MouseMove{10, 20, 10, 20}));
   EXPECT_EQ(result.replay.frames[2].events[0], InputEvent(MouseMove{12, 30, -3, 5}));
   EXPECT_FALSE(result.replay.ticks.has_value());
@@ -79,7 +79,7 @@ TEST(ReplayParser, MouseMoveWithoutDeltasUsesThePreviousPosition) {
 TEST(ReplayParser, AcceptsCrLfLineEndsAndTabs) {
   const ReplayParseResult result =
       parseReplay("cleave-replay 1\r\nscene s\r\nseed\t7\r\n3\tkd:a\r\n", "crlf.replay");
-  ASSERT_TRUE(result.ok) << result.error;
+  ASSERT_TRUE(result.ok()) << result.message;
   EXPECT_EQ(result.replay.seed, 7u);
   EXPECT_EQ(result.replay.frames[0].events[0], InputEvent(KeyDown{Key::A}));
 }
@@ -89,16 +89,16 @@ TEST(ReplayWriter, RoundTripsThroughTheParserExactly) {
   ASSERT_EQ(validateReplay(original), "");
   const std::string text = writeReplay(original);
   const ReplayParseResult parsed = parseReplay(text, "rich.replay");
-  ASSERT_TRUE(parsed.ok) << parsed.error;
+  ASSERT_TRUE(parsed.ok()) << parsed.message;
   EXPECT_EQ(parsed.replay, original);
   EXPECT_EQ(writeReplay(parsed.replay), text);
 }
 
 TEST(ReplayWriter, RoundTripsTheDocumentedExample) {
   const ReplayParseResult first = parseReplay(kValid, "example.replay");
-  ASSERT_TRUE(first.ok);
+  ASSERT_TRUE(first.ok());
   const ReplayParseResult second = parseReplay(writeReplay(first.replay), "again.replay");
-  ASSERT_TRUE(second.ok) << second.error;
+  ASSERT_TRUE(second.ok()) << second.message;
   EXPECT_EQ(second.replay, first.replay);
 }
 
@@ -183,34 +183,34 @@ std::vector<CorruptCase> corruptCases() {
 TEST(ReplayParser, EveryCorruptCaseNamesFileLineAndReason) {
   for (const CorruptCase& c : corruptCases()) {
     const ReplayParseResult result = parseReplay(c.text, "bad.replay");
-    EXPECT_FALSE(result.ok) << c.name;
-    EXPECT_EQ(result.line, c.line) << c.name << ": " << result.error;
+    EXPECT_FALSE(result.ok()) << c.name;
+    EXPECT_EQ(result.line, c.line) << c.name << ": " << result.message;
     const std::string prefix = "bad.replay:" + std::to_string(c.line) + ": ";
-    EXPECT_EQ(result.error.rfind(prefix, 0), 0u) << c.name << ": " << result.error;
-    EXPECT_NE(result.error.find(c.reasonPart), std::string::npos)
-        << c.name << ": " << result.error;
+    EXPECT_EQ(result.message.rfind(prefix, 0), 0u) << c.name << ": " << result.message;
+    EXPECT_NE(result.message.find(c.reasonPart), std::string::npos)
+        << c.name << ": " << result.message;
   }
 }
 
 TEST(ReplayLoader, ReportsMissingFilesAndDirectories) {
   const std::string missing = std::string(CLEAVE_BINARY_DIR) + "/no_such_dir/none.replay";
   const ReplayParseResult result = loadReplay(missing);
-  EXPECT_FALSE(result.ok);
-  EXPECT_NE(result.error.find(missing), std::string::npos) << result.error;
-  EXPECT_NE(result.error.find("no such file"), std::string::npos) << result.error;
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.message.find(missing), std::string::npos) << result.message;
+  EXPECT_NE(result.message.find("no such file"), std::string::npos) << result.message;
 
   const ReplayParseResult directory = loadReplay(CLEAVE_BINARY_DIR);
-  EXPECT_FALSE(directory.ok);
-  EXPECT_NE(directory.error.find("directory"), std::string::npos) << directory.error;
+  EXPECT_FALSE(directory.ok());
+  EXPECT_NE(directory.message.find("directory"), std::string::npos) << directory.message;
 }
 
 TEST(ReplayLoader, SaveThenLoadRoundTrips) {
   const std::string path = std::string(CLEAVE_BINARY_DIR) + "/input_test_roundtrip.replay";
   const Replay original = richReplay();
   const ReplaySaveResult saved = saveReplay(path, original);
-  ASSERT_TRUE(saved.ok) << saved.error;
+  ASSERT_TRUE(saved.ok()) << saved.message;
   const ReplayParseResult loaded = loadReplay(path);
-  ASSERT_TRUE(loaded.ok) << loaded.error;
+  ASSERT_TRUE(loaded.ok()) << loaded.message;
   EXPECT_EQ(loaded.replay, original);
   std::filesystem::remove(path);
 }
@@ -222,8 +222,8 @@ TEST(ReplayLoader, ParseErrorsNameThePath) {
     file << "cleave-replay 1\nscene a\nseed 1\n4 kd:nope\n";
   }
   const ReplayParseResult loaded = loadReplay(path);
-  EXPECT_FALSE(loaded.ok);
-  EXPECT_EQ(loaded.error.rfind(path + ":4: ", 0), 0u) << loaded.error;
+  EXPECT_FALSE(loaded.ok());
+  EXPECT_EQ(loaded.message.rfind(path + ":4: ", 0), 0u) << loaded.message;
   std::filesystem::remove(path);
 }
 
@@ -232,8 +232,8 @@ TEST(ReplayLoader, SaveRefusesAnInvalidReplay) {
   replay.scene = "";
   const ReplaySaveResult saved =
       saveReplay(std::string(CLEAVE_BINARY_DIR) + "/input_test_never.replay", replay);
-  EXPECT_FALSE(saved.ok);
-  EXPECT_NE(saved.error.find("scene"), std::string::npos) << saved.error;
+  EXPECT_FALSE(saved.ok());
+  EXPECT_NE(saved.message.find("scene"), std::string::npos) << saved.message;
 }
 
 // Mutations of a valid replay must either parse into something that validates and round-trips,
@@ -270,15 +270,15 @@ TEST(ReplayParser, RandomMutationsNeverCrash) {
       }
     }
     const ReplayParseResult result = parseReplay(text, "fuzz.replay");
-    if (result.ok) {
+    if (result.ok()) {
       ++parsedCount;
       ASSERT_EQ(validateReplay(result.replay), "") << text;
       const ReplayParseResult again = parseReplay(writeReplay(result.replay), "fuzz2.replay");
-      ASSERT_TRUE(again.ok) << again.error;
+      ASSERT_TRUE(again.ok()) << again.message;
       ASSERT_EQ(again.replay, result.replay);
     } else {
       ++errorCount;
-      ASSERT_EQ(result.error.rfind("fuzz.replay:", 0), 0u) << result.error;
+      ASSERT_EQ(result.message.rfind("fuzz.replay:", 0), 0u) << result.message;
       ASSERT_GE(result.line, 1u);
     }
   }

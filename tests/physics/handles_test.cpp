@@ -21,8 +21,8 @@ TEST(PhysicsHandles, NullHandlesAreInvalidEverywhere) {
   EXPECT_FALSE(world.bodyTransform(BodyId{}).has_value());
   BodyDef def;  // shape left null
   const Result<BodyId> body = world.createBody(def);
-  EXPECT_EQ(body.status(), PhysicsStatus::StaleHandle);
-  EXPECT_FALSE(body.reason().empty());
+  EXPECT_EQ(body.code(), PhysicsStatus::StaleHandle);
+  EXPECT_FALSE(body.message().empty());
 }
 
 TEST(PhysicsHandles, DestroyedBodyIsStaleAndItsSlotReuseGetsANewGeneration) {
@@ -78,7 +78,7 @@ TEST(PhysicsHandles, ShapeOutlivesItsHandleWhileBodiesUseIt) {
   EXPECT_FALSE(world.isValid(shape));
   EXPECT_FALSE(world.destroyShape(shape));
   EXPECT_EQ(world.liveShapeCount(), 1u);  // still used by a and b
-  EXPECT_EQ(world.createBody(def).status(), PhysicsStatus::StaleHandle);
+  EXPECT_EQ(world.createBody(def).code(), PhysicsStatus::StaleHandle);
   stepFor(world, 10);  // the bodies still collide and fall with the shared shape
   EXPECT_TRUE(world.destroyBody(a));
   EXPECT_EQ(world.liveShapeCount(), 1u);

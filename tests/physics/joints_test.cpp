@@ -60,7 +60,7 @@ Chain makeChain(PhysicsWorld& world, int n, JointType type) {
     // Hinge axis (frame z) = world z: the chain swings in the x-y plane.
     const JointDef j = jointAt(world, type, previous, link, glm::vec3(0.4f * float(i), 5.0f, 0.0f));
     const Result<JointId> id = world.createJoint(j);
-    EXPECT_TRUE(id.ok()) << id.reason();
+    EXPECT_TRUE(id.ok()) << id.message();
     chain.links.push_back(link);
     chain.joints.push_back(id.value());
     previous = link;
@@ -111,7 +111,7 @@ TEST(Joints, HingeLimitsAreRespected) {
   j.lowerLimit = -0.5f;  // gravity turns the arm by -pi/2 about z: the limit stops it at -0.5
   j.upperLimit = 1.0f;
   const Result<JointId> joint = world.createJoint(j);
-  ASSERT_TRUE(joint.ok()) << joint.reason();
+  ASSERT_TRUE(joint.ok()) << joint.message();
   float minAngle = 0.0f, maxAngle = 0.0f;
   for (int step = 0; step < 240; ++step) {
     world.step(kDt);
@@ -141,7 +141,7 @@ TEST(Joints, ConeSwingLimitIsRespected) {
   j.swingSpan2 = 0.4f;
   j.twistSpan = 0.2f;
   const Result<JointId> joint = world.createJoint(j);
-  ASSERT_TRUE(joint.ok()) << joint.reason();
+  ASSERT_TRUE(joint.ok()) << joint.message();
   float maxSwing = 0.0f;
   for (int step = 0; step < 240; ++step) {
     world.step(kDt);
@@ -185,22 +185,22 @@ TEST(Joints, BadDefsAreRefusedWithAReason) {
   const BodyId a = addBody(world, ShapeDef::sphere(0.1f), 1.0f, glm::vec3(0, 1, 0));
   const BodyId still = addBody(world, ShapeDef::sphere(0.1f), 0.0f, glm::vec3(0, 2, 0));
   JointDef def = jointAt(world, JointType::ConeTwist, a, a, glm::vec3(0, 1, 0));
-  EXPECT_EQ(world.createJoint(def).status(), PhysicsStatus::InvalidArgument);
+  EXPECT_EQ(world.createJoint(def).code(), PhysicsStatus::InvalidArgument);
   def = jointAt(world, JointType::ConeTwist, ground, still, glm::vec3(0, 1, 0));
-  EXPECT_EQ(world.createJoint(def).status(), PhysicsStatus::InvalidArgument);
+  EXPECT_EQ(world.createJoint(def).code(), PhysicsStatus::InvalidArgument);
   def = jointAt(world, JointType::Hinge, ground, a, glm::vec3(0, 1, 0));
   def.lowerLimit = 1.0f;
   def.upperLimit = -1.0f;
   const Result<JointId> r = world.createJoint(def);
-  EXPECT_EQ(r.status(), PhysicsStatus::InvalidArgument);
-  EXPECT_FALSE(r.reason().empty());
+  EXPECT_EQ(r.code(), PhysicsStatus::InvalidArgument);
+  EXPECT_FALSE(r.message().empty());
   def = jointAt(world, JointType::ConeTwist, ground, a, glm::vec3(0, 1, 0));
   def.frameB.rotation = glm::quat(0, 0, 0, 0);
-  EXPECT_EQ(world.createJoint(def).status(), PhysicsStatus::InvalidArgument);
+  EXPECT_EQ(world.createJoint(def).code(), PhysicsStatus::InvalidArgument);
   def = jointAt(world, JointType::ConeTwist, ground, a, glm::vec3(0, 1, 0));
   def.swingSpan1 = NAN;
-  EXPECT_EQ(world.createJoint(def).status(), PhysicsStatus::InvalidArgument);
-  EXPECT_EQ(world.createJoint(JointDef{}).status(), PhysicsStatus::StaleHandle);
+  EXPECT_EQ(world.createJoint(def).code(), PhysicsStatus::InvalidArgument);
+  EXPECT_EQ(world.createJoint(JointDef{}).code(), PhysicsStatus::StaleHandle);
   EXPECT_EQ(world.jointCount(), 0u);
 }
 
@@ -257,7 +257,7 @@ TEST(BodyOptions, KinematicBodyIsMovedPushesAndReportsItsVelocity) {
   ASSERT_TRUE(sphere.ok());
   bad.shape = sphere.value();
   bad.mass = 1.0f;
-  EXPECT_EQ(world.createBody(bad).status(), PhysicsStatus::InvalidArgument) << "kinematic with mass";
+  EXPECT_EQ(world.createBody(bad).code(), PhysicsStatus::InvalidArgument) << "kinematic with mass";
   float x = -2.0f;
   for (int step = 0; step < 120; ++step) {
     x += 2.0f * float(kDt);  // 2 m/s along +x

@@ -26,12 +26,12 @@ inline BodyId addGround(PhysicsWorld& world, bool mesh = false) {
     position = glm::vec3(0.0f);
   }
   const Result<ShapeId> shape = world.createShape(def);
-  EXPECT_TRUE(shape.ok()) << shape.reason();
+  EXPECT_TRUE(shape.ok()) << shape.message();
   BodyDef body;
   body.shape = shape.value();
   body.position = position;
   const Result<BodyId> ground = world.createBody(body);
-  EXPECT_TRUE(ground.ok()) << ground.reason();
+  EXPECT_TRUE(ground.ok()) << ground.message();
   world.destroyShape(shape.value());  // the body keeps it alive
   return ground.value();
 }
@@ -49,12 +49,12 @@ inline std::vector<glm::vec3> boxCorners(glm::vec3 half, glm::vec3 offset = glm:
 inline BodyId addBody(PhysicsWorld& world, const ShapeDef& shapeDef, float mass,
                       glm::vec3 position, BodyDef body = {}) {
   const Result<ShapeId> shape = world.createShape(shapeDef);
-  EXPECT_TRUE(shape.ok()) << shape.reason();
+  EXPECT_TRUE(shape.ok()) << shape.message();
   body.shape = shape.value();
   body.mass = mass;
   body.position = position;
   const Result<BodyId> id = world.createBody(body);
-  EXPECT_TRUE(id.ok()) << id.reason();
+  EXPECT_TRUE(id.ok()) << id.message();
   world.destroyShape(shape.value());
   return id.value();
 }

@@ -201,16 +201,16 @@ TEST(PhysicsWorld, CreateBodyNamesTheBadFieldAndBuildsNothing) {
     def.mass = 1.0f;
     c.spoil(def);
     const Result<BodyId> body = world.createBody(def);
-    EXPECT_EQ(body.status(), c.status) << c.field;
-    EXPECT_NE(body.reason().find(c.field), std::string::npos) << body.reason();
-    EXPECT_EQ(body.reason().rfind("createBody: ", 0), 0u) << body.reason();
+    EXPECT_EQ(body.code(), c.status) << c.field;
+    EXPECT_NE(body.message().find(c.field), std::string::npos) << body.message();
+    EXPECT_EQ(body.message().rfind("createBody: ", 0), 0u) << body.message();
   }
   BodyDef heavyMesh;
   heavyMesh.shape = mesh;
   heavyMesh.mass = 2.0f;
   const Result<BodyId> refused = world.createBody(heavyMesh);
-  EXPECT_EQ(refused.status(), PhysicsStatus::UnsupportedCombination);
-  EXPECT_NE(refused.reason().find("BodyDef::shape"), std::string::npos) << refused.reason();
+  EXPECT_EQ(refused.code(), PhysicsStatus::UnsupportedCombination);
+  EXPECT_NE(refused.message().find("BodyDef::shape"), std::string::npos) << refused.message();
   EXPECT_EQ(world.bodyCount(), 0u);
   // Nothing holds the shapes: dropping their handles frees them.
   world.destroyShape(box);

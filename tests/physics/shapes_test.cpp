@@ -81,45 +81,45 @@ TEST(PhysicsShapes, InvalidHullsAreRefusedWithAReason) {
   PhysicsWorld world;
   const std::vector<glm::vec3> flat = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1, 0, 1}, {0.5f, 0, 0.5f}};
   Result<ShapeId> result = world.createShape(ShapeDef::convexHull(flat));
-  EXPECT_EQ(result.status(), PhysicsStatus::DegenerateShape);
-  EXPECT_NE(result.reason().find("coplanar"), std::string::npos) << result.reason();
+  EXPECT_EQ(result.code(), PhysicsStatus::DegenerateShape);
+  EXPECT_NE(result.message().find("coplanar"), std::string::npos) << result.message();
 
   const std::vector<glm::vec3> three = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-  EXPECT_EQ(world.createShape(ShapeDef::convexHull(three)).status(),
+  EXPECT_EQ(world.createShape(ShapeDef::convexHull(three)).code(),
             PhysicsStatus::InvalidArgument);
 
   std::vector<glm::vec3> nan = boxCorners(glm::vec3(1.0f));
   nan[3].y = NAN;
   result = world.createShape(ShapeDef::convexHull(nan));
-  EXPECT_EQ(result.status(), PhysicsStatus::InvalidArgument);
-  EXPECT_NE(result.reason().find("point 3"), std::string::npos) << result.reason();
+  EXPECT_EQ(result.code(), PhysicsStatus::InvalidArgument);
+  EXPECT_NE(result.message().find("point 3"), std::string::npos) << result.message();
 
   ShapeDef tooFew = ShapeDef::convexHull(boxCorners(glm::vec3(1.0f)));
   tooFew.maxHullVertices = 3;
-  EXPECT_EQ(world.createShape(tooFew).status(), PhysicsStatus::InvalidArgument);
+  EXPECT_EQ(world.createShape(tooFew).code(), PhysicsStatus::InvalidArgument);
   EXPECT_EQ(world.liveShapeCount(), 0u);
 }
 
 TEST(PhysicsShapes, InvalidPrimitivesAndMeshesAreRefused) {
   PhysicsWorld world;
-  EXPECT_EQ(world.createShape(ShapeDef::box(glm::vec3(1, -1, 1))).status(),
+  EXPECT_EQ(world.createShape(ShapeDef::box(glm::vec3(1, -1, 1))).code(),
             PhysicsStatus::InvalidArgument);
-  EXPECT_EQ(world.createShape(ShapeDef::sphere(0.0f)).status(), PhysicsStatus::InvalidArgument);
-  EXPECT_EQ(world.createShape(ShapeDef::sphere(INFINITY)).status(), PhysicsStatus::InvalidArgument);
-  EXPECT_EQ(world.createShape(ShapeDef::capsule(0.5f, -1.0f)).status(),
+  EXPECT_EQ(world.createShape(ShapeDef::sphere(0.0f)).code(), PhysicsStatus::InvalidArgument);
+  EXPECT_EQ(world.createShape(ShapeDef::sphere(INFINITY)).code(), PhysicsStatus::InvalidArgument);
+  EXPECT_EQ(world.createShape(ShapeDef::capsule(0.5f, -1.0f)).code(),
             PhysicsStatus::InvalidArgument);
   const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   const std::vector<uint32_t> outOfRange = {0, 1, 3};
   const Result<ShapeId> result = world.createShape(ShapeDef::concaveMesh(positions, outOfRange));
-  EXPECT_EQ(result.status(), PhysicsStatus::InvalidArgument);
-  EXPECT_NE(result.reason().find("out of range"), std::string::npos) << result.reason();
+  EXPECT_EQ(result.code(), PhysicsStatus::InvalidArgument);
+  EXPECT_NE(result.message().find("out of range"), std::string::npos) << result.message();
   const std::vector<uint32_t> notTriangles = {0, 1};
-  EXPECT_EQ(world.createShape(ShapeDef::staticMesh(positions, notTriangles)).status(),
+  EXPECT_EQ(world.createShape(ShapeDef::staticMesh(positions, notTriangles)).code(),
             PhysicsStatus::InvalidArgument);
   const std::vector<uint32_t> degenerate = {0, 1, 1};
-  EXPECT_EQ(world.createShape(ShapeDef::staticMesh(positions, degenerate)).status(),
+  EXPECT_EQ(world.createShape(ShapeDef::staticMesh(positions, degenerate)).code(),
             PhysicsStatus::DegenerateShape);
-  EXPECT_EQ(world.createShape(ShapeDef::compound({})).status(), PhysicsStatus::InvalidArgument);
+  EXPECT_EQ(world.createShape(ShapeDef::compound({})).code(), PhysicsStatus::InvalidArgument);
   EXPECT_EQ(world.liveShapeCount(), 0u);
 }
 
@@ -134,7 +134,7 @@ TEST(PhysicsShapes, InvalidBodyDefsAreRefused) {
     def.shape = box;
     def.mass = 1.0f;
     edit(def);
-    return world.createBody(def).status();
+    return world.createBody(def).code();
   };
   EXPECT_EQ(status([](BodyDef& d) { d.mass = -1.0f; }), PhysicsStatus::InvalidArgument);
   EXPECT_EQ(status([](BodyDef& d) { d.position.x = NAN; }), PhysicsStatus::InvalidArgument);
@@ -248,8 +248,8 @@ TEST(PhysicsShapes, CompoundPartErrorsNameThePart) {
   parts[0].points = boxCorners(glm::vec3(0.2f));
   parts[1].points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
   const Result<ShapeId> result = world.createShape(ShapeDef::compound(parts));
-  EXPECT_EQ(result.status(), PhysicsStatus::DegenerateShape);
-  EXPECT_NE(result.reason().find("part 1"), std::string::npos) << result.reason();
+  EXPECT_EQ(result.code(), PhysicsStatus::DegenerateShape);
+  EXPECT_NE(result.message().find("part 1"), std::string::npos) << result.message();
 }
 
 TEST(PhysicsShapes, BoxRestsOnStaticTriangleMesh) {

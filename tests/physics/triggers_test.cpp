@@ -20,7 +20,7 @@ TriggerId addTrigger(PhysicsWorld& world, const ShapeDef& shapeDef, glm::vec3 po
   def.shape = shape;
   def.position = position;
   const Result<TriggerId> trigger = world.createTrigger(def);
-  EXPECT_TRUE(trigger.ok()) << trigger.reason();
+  EXPECT_TRUE(trigger.ok()) << trigger.message();
   world.destroyShape(shape);
   return trigger.value();
 }
@@ -154,12 +154,12 @@ TEST(PhysicsTrigger, MeshShapesAndStaleShapesAreRefused) {
   const std::vector<uint32_t> indices = {0, 1, 2};
   TriggerDef def;
   def.shape = world.createShape(ShapeDef::staticMesh(positions, indices)).value();
-  EXPECT_EQ(world.createTrigger(def).status(), PhysicsStatus::UnsupportedCombination);
+  EXPECT_EQ(world.createTrigger(def).code(), PhysicsStatus::UnsupportedCombination);
   world.destroyShape(def.shape);
-  EXPECT_EQ(world.createTrigger(def).status(), PhysicsStatus::StaleHandle);
+  EXPECT_EQ(world.createTrigger(def).code(), PhysicsStatus::StaleHandle);
   def.shape = world.createShape(ShapeDef::sphere(1.0f)).value();
   def.position.x = NAN;
-  EXPECT_EQ(world.createTrigger(def).status(), PhysicsStatus::InvalidArgument);
+  EXPECT_EQ(world.createTrigger(def).code(), PhysicsStatus::InvalidArgument);
 }
 
 }  // namespace

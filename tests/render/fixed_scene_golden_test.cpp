@@ -18,6 +18,7 @@
 #include "cleave/geometry/primitives.h"
 #include "cleave/render/gl_context.h"
 #include "cleave/render/renderer.h"
+#include "tests/render/headless_gl.h"
 #include "tests/render/image_compare.h"
 
 namespace cleave::render {
@@ -31,8 +32,7 @@ struct FixedScene {
   Renderer renderer;
 
   bool init(std::string& why) {
-    context = HeadlessGlContext::create(HeadlessApi::Auto, &why);
-    return context && renderer.init(&why);
+    return testing::startHeadless(context, renderer, why);
   }
 };
 
@@ -43,22 +43,22 @@ TEST(RenderGolden, FixedSceneMatchesTheCommittedImage) {
   Renderer& r = scene.renderer;
 
   const assets::Image wood = assets::makeTexture(assets::TextureKind::Wood, 128, 7);
-  const TextureHandle woodTexture = r.createTexture(wood.width, wood.height, wood.rgba, &why);
-  ASSERT_TRUE(woodTexture.valid()) << why;
+  const TextureHandle woodTexture = r.createTexture(wood.width, wood.height, wood.rgba).valueOr({});
+  ASSERT_TRUE(woodTexture.valid());
 
-  const MeshHandle floor = r.uploadMesh(geometry::primitives::box(glm::vec3(20.f, 0.5f, 20.f)));
-  const MeshHandle cube = r.uploadMesh(geometry::primitives::box(glm::vec3(0.5f)));
-  const MeshHandle sphere = r.uploadMesh(geometry::primitives::uvSphere(0.55f, 32, 16));
-  const MeshHandle torus = r.uploadMesh(geometry::primitives::torus(0.45f, 0.18f, 40, 20));
+  const MeshHandle floor = r.uploadMesh(geometry::primitives::box(glm::vec3(20.f, 0.5f, 20.f))).valueOr({});
+  const MeshHandle cube = r.uploadMesh(geometry::primitives::box(glm::vec3(0.5f))).valueOr({});
+  const MeshHandle sphere = r.uploadMesh(geometry::primitives::uvSphere(0.55f, 32, 16)).valueOr({});
+  const MeshHandle torus = r.uploadMesh(geometry::primitives::torus(0.45f, 0.18f, 40, 20)).valueOr({});
 
   // One half of a cube cut diagonally: its cap (material 1) shows the solid checker.
   geometry::MeshContainer container;
-  ASSERT_EQ(container.setMesh(geometry::primitives::box(glm::vec3(0.5f))), geometry::SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(geometry::primitives::box(glm::vec3(0.5f))).code, geometry::SplitStatus::Ok);
   geometry::SplitResult split;
   const geometry::Plane plane{glm::normalize(glm::dvec3(1.0, 1.0, 0.3)), 0.1};
   ASSERT_EQ(geometry::makeConvexSplitter()->split(container, plane, {}, split), geometry::SplitStatus::Ok);
   ASSERT_EQ(split.pieces.size(), 2u);
-  const MeshHandle half = r.uploadMesh(split.pieces[0].side < 0 ? split.pieces[0].mesh : split.pieces[1].mesh);
+  const MeshHandle half = r.uploadMesh(split.pieces[0].side < 0 ? split.pieces[0].mesh : split.pieces[1].mesh).valueOr({});
   for (MeshHandle h : {floor, cube, sphere, torus, half}) ASSERT_TRUE(h.valid());
 
   Material floorMaterial;
@@ -127,7 +127,7 @@ TEST(RenderGolden, FixedSceneMatchesTheCommittedImage) {
   EXPECT_EQ(r.liveMeshCount() + 1, meshesBefore);
   EXPECT_EQ(r.liveTextureCount() + 1, texturesBefore);
   // A new mesh may reuse the slot but never the generation: the old handle stays stale.
-  const MeshHandle again = r.uploadMesh(geometry::primitives::box(glm::vec3(0.1f)));
+  const MeshHandle again = r.uploadMesh(geometry::primitives::box(glm::vec3(0.1f))).valueOr({});
   EXPECT_TRUE(r.isValid(again));
   EXPECT_FALSE(r.isValid(torus));
   r.beginFrame(kWidth, kHeight, camera, lighting);

@@ -16,6 +16,7 @@
 #include "cleave/geometry/primitives.h"
 #include "cleave/render/gl_context.h"
 #include "cleave/render/renderer.h"
+#include "tests/render/headless_gl.h"
 #include "tests/render/image_compare.h"
 
 namespace cleave::render {
@@ -33,15 +34,14 @@ struct Variant {
 class Scene {
  public:
   bool init(std::string& why) {
-    context_ = HeadlessGlContext::create(HeadlessApi::Auto, &why);
-    if (!context_ || !renderer_.init(&why)) return false;
-    floor_ = renderer_.uploadMesh(geometry::primitives::box(glm::vec3(20.f, 0.5f, 20.f)));
-    cube_ = renderer_.uploadMesh(geometry::primitives::box(glm::vec3(0.5f)));
-    sphere_ = renderer_.uploadMesh(geometry::primitives::uvSphere(0.55f, 32, 16));
+    if (!testing::startHeadless(context_, renderer_, why)) return false;
+    floor_ = renderer_.uploadMesh(geometry::primitives::box(glm::vec3(20.f, 0.5f, 20.f))).valueOr({});
+    cube_ = renderer_.uploadMesh(geometry::primitives::box(glm::vec3(0.5f))).valueOr({});
+    sphere_ = renderer_.uploadMesh(geometry::primitives::uvSphere(0.55f, 32, 16)).valueOr({});
     const geometry::SplitResult split = geometry::splitMesh(geometry::primitives::box(glm::vec3(0.5f)), glm::mat4(1.f),
                                                             geometry::Plane{{1.0, 1.0, 0.3}, 0.1}, {});
     if (split.status != geometry::SplitStatus::Ok) return why = split.message, false;
-    piece_ = renderer_.uploadMesh(split.pieces.back().mesh);
+    piece_ = renderer_.uploadMesh(split.pieces.back().mesh).valueOr({});
     return floor_.valid() && cube_.valid() && sphere_.valid() && piece_.valid();
   }
 

@@ -93,22 +93,21 @@ inline ImageComparison compareWithGolden(const std::string& goldenPath, int widt
   const char* update = std::getenv("CLEAVE_UPDATE_GOLDENS");
   if (update && std::string(update) == "1") {
     std::filesystem::create_directories(std::filesystem::path(goldenPath).parent_path());
-    std::string error;
-    result.ok = render::writePng(goldenPath, width, height, rgba, &error);
-    result.message = result.ok ? "golden updated: " + goldenPath : error;
+    const base::Status written = render::writePng(goldenPath, width, height, rgba);
+    result.ok = written.ok();
+    result.message = result.ok ? "golden updated: " + goldenPath : written.message;
     return result;
   }
   int gw = 0, gh = 0;
   std::vector<uint8_t> golden;
-  std::string error;
   const std::string stem = std::filesystem::path(goldenPath).stem().string();
   const std::filesystem::path outDir = std::filesystem::path(CLEAVE_BINARY_DIR) / "test-images";
   std::filesystem::create_directories(outDir);
   const std::string actualPath = (outDir / (stem + ".actual.png")).string();
   const std::string diffPath = (outDir / (stem + ".diff.png")).string();
-  if (!render::readPng(goldenPath, gw, gh, golden, &error)) {
+  if (const base::Status read = render::readPng(goldenPath, gw, gh, golden); !read.ok()) {
     render::writePng(actualPath, width, height, rgba);
-    result.message = "cannot read golden " + error + "; actual written to " + actualPath;
+    result.message = "cannot read golden " + read.message + "; actual written to " + actualPath;
     return result;
   }
   if (gw != width || gh != height) {

@@ -18,6 +18,7 @@
 #include "cleave/render/dynamic_scale.h"
 #include "cleave/render/gl_context.h"
 #include "cleave/render/renderer.h"
+#include "tests/render/headless_gl.h"
 #include "tests/render/image_compare.h"
 
 namespace cleave::render {
@@ -30,10 +31,9 @@ const glm::vec4 kHudRect(10.f, 10.f, 200.f, 40.f);  // x, y, w, h in pixels (top
 class ScaledScene {
  public:
   bool init(std::string& why) {
-    context_ = HeadlessGlContext::create(HeadlessApi::Auto, &why);
-    if (!context_ || !renderer_.init(&why)) return false;
-    floor_ = renderer_.uploadMesh(geometry::primitives::box(glm::vec3(20.f, 0.5f, 20.f)));
-    sphere_ = renderer_.uploadMesh(geometry::primitives::uvSphere(0.8f, 48, 24));
+    if (!testing::startHeadless(context_, renderer_, why)) return false;
+    floor_ = renderer_.uploadMesh(geometry::primitives::box(glm::vec3(20.f, 0.5f, 20.f))).valueOr({});
+    sphere_ = renderer_.uploadMesh(geometry::primitives::uvSphere(0.8f, 48, 24)).valueOr({});
     return floor_.valid() && sphere_.valid();
   }
 

@@ -14,6 +14,7 @@
 #include "cleave/geometry/mesh_splitter.h"
 #include "cleave/render/gl_context.h"
 #include "cleave/render/renderer.h"
+#include "tests/render/headless_gl.h"
 
 namespace cleave::render {
 namespace {
@@ -31,8 +32,7 @@ struct Scene {
   glm::mat4 model{1.f};
 
   bool init(std::string& why) {
-    context = HeadlessGlContext::create(HeadlessApi::Auto, &why);
-    if (!context || !renderer.init(&why)) return false;
+    if (!testing::startHeadless(context, renderer, why)) return false;
     for (const glm::vec4& color : character.materialColors) {
       Material m;
       m.baseColor = color;
@@ -120,14 +120,13 @@ TEST(SkinnedRendering, GpuPoseMatchesCpuPose) {
   Scene scene;
   std::string why;
   if (!scene.init(why)) GTEST_SKIP() << "no headless GL: " << why;
-  const MeshHandle skinned = scene.renderer.uploadMesh(scene.character.mesh, &why);
-  ASSERT_TRUE(skinned.valid()) << why;
-  const MeshHandle cpu =
-      scene.renderer.uploadMesh(skinOnCpu(scene.character.mesh, scene.joints), &why);
-  ASSERT_TRUE(cpu.valid()) << why;
-  const MeshHandle bind = scene.renderer.uploadMesh(scene.character.mesh, &why);
-  const std::vector<uint8_t> gpuFrame = scene.render({skinned}, true, true);
-  const std::vector<uint8_t> cpuFrame = scene.render({cpu}, false, true);
+  const base::Expected<MeshHandle> skinned = scene.renderer.uploadMesh(scene.character.mesh);
+  ASSERT_TRUE(skinned.ok()) << skinned.message();
+  const base::Expected<MeshHandle> cpu = scene.renderer.uploadMesh(skinOnCpu(scene.character.mesh, scene.joints));
+  ASSERT_TRUE(cpu.ok()) << cpu.message();
+  const MeshHandle bind = scene.renderer.uploadMesh(scene.character.mesh).valueOr({});
+  const std::vector<uint8_t> gpuFrame = scene.render({*skinned}, true, true);
+  const std::vector<uint8_t> cpuFrame = scene.render({*cpu}, false, true);
   const std::vector<uint8_t> bindFrame =
       scene.render({bind}, false, true);  // submit() ignores the skin
   const std::vector<uint8_t> empty = scene.render({}, false, true);
@@ -145,9 +144,8 @@ TEST(SkinnedRendering, CutPiecesInThePoseCoverTheirHalfOfTheCharacter) {
   std::string why;
   if (!scene.init(why)) GTEST_SKIP() << "no headless GL: " << why;
   geometry::MeshContainer container;
-  ASSERT_EQ(container.setMesh(scene.character.mesh, &why), geometry::SplitStatus::Ok) << why;
-  ASSERT_EQ(container.setSkinningPose(scene.joints, scene.model, &why), geometry::SplitStatus::Ok)
-      << why;
+  ASSERT_EQ(container.setMesh(scene.character.mesh).message, "");
+  ASSERT_EQ(container.setSkinningPose(scene.joints, scene.model).message, "");
   geometry::SplitResult result;
   const geometry::Plane plane{{0.0, 1.0, 0.0},
                               kEyeHeight};  // seen edge-on: the seam is the middle row
@@ -157,13 +155,13 @@ TEST(SkinnedRendering, CutPiecesInThePoseCoverTheirHalfOfTheCharacter) {
       << result.message;
   std::vector<MeshHandle> above, all;
   for (const geometry::SplitPiece& piece : result.pieces) {
-    const MeshHandle handle = scene.renderer.uploadMesh(piece.mesh, &why);
-    ASSERT_TRUE(handle.valid()) << why;
-    all.push_back(handle);
-    if (piece.side > 0) above.push_back(handle);
+    const base::Expected<MeshHandle> handle = scene.renderer.uploadMesh(piece.mesh);
+    ASSERT_TRUE(handle.ok()) << handle.message();
+    all.push_back(*handle);
+    if (piece.side > 0) above.push_back(*handle);
   }
   ASSERT_FALSE(above.empty());
-  const MeshHandle whole = scene.renderer.uploadMesh(scene.character.mesh, &why);
+  const MeshHandle whole = scene.renderer.uploadMesh(scene.character.mesh).valueOr({});
   const std::vector<uint8_t> uncut = scene.render({whole}, true, false);
   const std::vector<uint8_t> upper = scene.render(above, true, false);
   const std::vector<uint8_t> pieces = scene.render(all, true, false);

@@ -339,8 +339,7 @@ TEST(DemoReplay, TourFramesMatchGoldenImages) {
   for (const char* frame : {"frame_000300.png", "frame_000600.png", "frame_000899.png"}) {
     int width = 0, height = 0;
     std::vector<uint8_t> rgba;
-    std::string error;
-    ASSERT_TRUE(cleave::render::readPng((dir / frame).string(), width, height, rgba, &error)) << error;
+    ASSERT_EQ(cleave::render::readPng((dir / frame).string(), width, height, rgba).message, "");
     // The size the tour was recorded at: its drags cut what they cross there.
     ASSERT_EQ(width, 1280);
     ASSERT_EQ(height, 720);
@@ -389,8 +388,7 @@ TEST(DemoReplay, InspectorFrameMatchesGoldenImage) {
   EXPECT_EQ(inspector.at("clock").size(), 2 + std::min<size_t>(10, dump.at("splits").size()));
   int width = 0, height = 0;
   std::vector<uint8_t> rgba;
-  std::string error;
-  ASSERT_TRUE(cleave::render::readPng((dir / "frame_000149.png").string(), width, height, rgba, &error)) << error;
+  ASSERT_EQ(cleave::render::readPng((dir / "frame_000149.png").string(), width, height, rgba).message, "");
   ASSERT_EQ(width, 1280);
   ASSERT_EQ(height, 720);
   maskWallClock(rgba, width, height, inspector);

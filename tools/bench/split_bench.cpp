@@ -28,9 +28,8 @@ enum class Kind { Concave, Convex };
 
 void runSplit(benchmark::State& state, const MeshData& mesh, const Plane& plane, Kind kind) {
   MeshContainer container;
-  std::string why;
-  if (container.setMesh(mesh, &why) != SplitStatus::Ok) {
-    state.SkipWithError(("setMesh failed: " + why).c_str());
+  if (const MeshStatus set = container.setMesh(mesh); !set.ok()) {
+    state.SkipWithError(("setMesh failed: " + set.message).c_str());
     return;
   }
   container.setTransform(glm::mat4(1.f));
@@ -122,7 +121,7 @@ BENCHMARK(BM_ConcaveSplitComb32Teeth)->Unit(benchmark::kMicrosecond);
 // 0 the cell clipper (as the engine fractures), 1 one split per cell plane (FractureMethod::Splits).
 void runFracture(benchmark::State& state, const MeshData& mesh) {
   MeshContainer container;
-  if (container.setMesh(mesh) != SplitStatus::Ok) {
+  if (container.setMesh(mesh).code != SplitStatus::Ok) {
     state.SkipWithError("setMesh failed");
     return;
   }
@@ -162,9 +161,8 @@ BENCHMARK(BM_ConcaveSplitComb32TeethAlongExtrusion)->Unit(benchmark::kMicrosecon
 void runSkinnedCharacter(benchmark::State& state, bool split) {
   const assets::ProceduralCharacter character = assets::makeProceduralCharacter();
   MeshContainer container;
-  std::string why;
-  if (container.setMesh(character.mesh, &why) != SplitStatus::Ok) {
-    state.SkipWithError(("setMesh failed: " + why).c_str());
+  if (const MeshStatus set = container.setMesh(character.mesh); !set.ok()) {
+    state.SkipWithError(("setMesh failed: " + set.message).c_str());
     return;
   }
   std::unique_ptr<IMeshSplitter> splitter = makeConcaveSplitter();
@@ -206,9 +204,8 @@ BENCHMARK(BM_SkinnedCharacterPoseOnly)->Unit(benchmark::kMicrosecond);
 void BM_SkinnedCharacterSetSkinningPose(benchmark::State& state) {
   const assets::ProceduralCharacter character = assets::makeProceduralCharacter();
   MeshContainer container;
-  std::string why;
-  if (container.setMesh(character.mesh, &why) != SplitStatus::Ok) {
-    state.SkipWithError(("setMesh failed: " + why).c_str());
+  if (const MeshStatus set = container.setMesh(character.mesh); !set.ok()) {
+    state.SkipWithError(("setMesh failed: " + set.message).c_str());
     return;
   }
   anim::Pose pose;
@@ -216,7 +213,7 @@ void BM_SkinnedCharacterSetSkinningPose(benchmark::State& state) {
   anim::sampleClip(character.skeleton, character.walk, 0.3f, true, pose);
   anim::poseToJointMatrices(character.skeleton, pose, joints);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(container.setSkinningPose(joints, glm::mat4(1.f)));
+    benchmark::DoNotOptimize(container.setSkinningPose(joints, glm::mat4(1.f)).code);
     benchmark::ClobberMemory();
   }
   state.counters["vertices"] = double(character.mesh.positions.size());
@@ -257,9 +254,8 @@ void BM_SkinnedCharacterSplitSystem(benchmark::State& state) {
     Splitable sp;
     sp.skinnedPieces = mode;
     world.add<Splitable>(e, sp);
-    std::string error;
-    if (!makeSkinnedBody(w, e, 1000.0, true, &error)) {
-      state.SkipWithError(error.c_str());
+    if (const base::Status made = makeSkinnedBody(w, e, 1000.0, true); !made.ok()) {
+      state.SkipWithError(made.message.c_str());
       return;
     }
     SplitRequest request;
@@ -294,8 +290,8 @@ void BM_SkinnedRobotPoseAndSplit(benchmark::State& state) {
   const char* env = std::getenv("CLEAVE_MODELS_DIR");
   const std::string folder = env ? env : std::string(CLEAVE_SOURCE_DIR) + "/../shared/models";
   const assets::ModelLoadResult loaded = assets::loadModel(folder + "/robot.glb");
-  if (!loaded.ok || loaded.model.skins.empty()) {
-    state.SkipWithError(("robot.glb not available: " + loaded.error).c_str());
+  if (!loaded.ok() || loaded.model.skins.empty()) {
+    state.SkipWithError(("robot.glb not available: " + loaded.message).c_str());
     return;
   }
   const assets::ModelSkin& skin = loaded.model.skins[0];
@@ -304,9 +300,8 @@ void BM_SkinnedRobotPoseAndSplit(benchmark::State& state) {
     if (part.skin == 0) mesh = mesh.positions.empty() ? part.mesh : primitives::merge(mesh, part.mesh);
   }
   MeshContainer container;
-  std::string why;
-  if (container.setMesh(mesh, &why) != SplitStatus::Ok) {
-    state.SkipWithError(("setMesh failed: " + why).c_str());
+  if (const MeshStatus set = container.setMesh(mesh); !set.ok()) {
+    state.SkipWithError(("setMesh failed: " + set.message).c_str());
     return;
   }
   anim::Pose pose;

@@ -349,8 +349,8 @@ assets::Model materialsOf(assets::Model&& model) {
 // the material names only.
 assets::Model inputMaterials(const std::string& path, std::vector<std::string>& warnings) {
   assets::ModelLoadResult loaded = assets::loadModel(path);
-  if (!loaded.ok) {
-    warnings.push_back(loaded.error + " (the GLB pieces get the material names only)");
+  if (!loaded.ok()) {
+    warnings.push_back(loaded.message + " (the GLB pieces get the material names only)");
     return {};
   }
   return materialsOf(std::move(loaded.model));
@@ -411,8 +411,8 @@ void printNoClip(const Arguments& args, const assets::ModelSkin& skin) {
 // --pose: the skinned mesh of a glTF model, posed by the clip; false (told on stderr) on failure.
 bool loadPosed(const Arguments& args, Input& in) {
   assets::ModelLoadResult model = assets::loadModel(args.input);
-  if (!model.ok) {
-    std::fprintf(stderr, "cleave-split: %s\n", model.error.c_str());
+  if (!model.ok()) {
+    std::fprintf(stderr, "cleave-split: %s\n", model.message.c_str());
     return false;
   }
   in.warnings = model.warnings;
@@ -455,8 +455,8 @@ bool loadPosed(const Arguments& args, Input& in) {
 // Any mesh file; a glTF input cut into GLB pieces also gives its materials.
 bool loadStatic(const Arguments& args, Input& in) {
   assets::MeshReadResult loaded = assets::loadMesh(args.input);
-  if (!loaded.ok) {
-    std::fprintf(stderr, "cleave-split: %s\n", loaded.error.c_str());
+  if (!loaded.ok()) {
+    std::fprintf(stderr, "cleave-split: %s\n", loaded.message.c_str());
     return false;
   }
   in.mesh = std::move(loaded.mesh);
@@ -487,11 +487,11 @@ bool load(const Arguments& args, Input& in) {
 geometry::SplitStatus prepare(const Arguments& args, const Input& in,
                               geometry::MeshContainer& container, const geometry::MeshWeld* weld,
                               std::string& message) {
-  const geometry::SplitStatus status = container.setMesh(in.shared, weld, &message);
-  if (status != geometry::SplitStatus::Ok) return status;
-  if (args.poseClip) return container.setSkinningPose(in.jointMatrices, glm::mat4(1.f), &message);
-  container.setTransform(glm::mat4(1.f));
-  return geometry::SplitStatus::Ok;
+  geometry::MeshStatus set = container.setMesh(in.shared, weld);
+  if (set.ok() && args.poseClip) set = container.setSkinningPose(in.jointMatrices, glm::mat4(1.f));
+  else if (set.ok()) container.setTransform(glm::mat4(1.f));
+  message = std::move(set.message);
+  return set.code;
 }
 
 // The input's volume, bounds and closedness, as it is cut (posed with --pose).
@@ -634,8 +634,8 @@ bool write(const Arguments& args, const Input& in, const Cut& cut,
         : args.poseClip ? assets::writeSkinnedGlb(path, piece.mesh, in.skin.skeleton, in.skin.clips,
                                                   writeOptions)
                         : assets::writeGlb(path, piece.mesh, writeOptions);
-    if (!w.ok) {
-      std::fprintf(stderr, "cleave-split: %s\n", w.error.c_str());
+    if (!w.ok()) {
+      std::fprintf(stderr, "cleave-split: %s\n", w.message.c_str());
       return false;
     }
     written.push_back(path);

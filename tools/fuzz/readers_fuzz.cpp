@@ -35,7 +35,7 @@ void appendF32(std::string& s, float f) {
 
 void checkMesh(const assets::MeshReadResult& result) {
   const geometry::MeshData& mesh = result.mesh;
-  if (!result.error.empty()) fail("an accepted mesh has an error message");
+  if (!result.message.empty()) fail("an accepted mesh has an error message");
   if (mesh.indices.empty() || mesh.indices.size() % 3 != 0) fail("bad index count");
   for (uint32_t index : mesh.indices) {
     if (index >= mesh.positions.size()) fail("index out of range");
@@ -129,9 +129,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string name = "fuzz-input";
   const assets::MeshReadResult result =
       assets::readMeshFromMemory(std::span(data + 1, size - 1), format, name);
-  if (!result.ok) {
-    if (result.error.rfind(name, 0) != 0) fuzz::fail("an error does not name the input");
-    if (result.error.find('\n') != std::string::npos) fuzz::fail("an error spans several lines");
+  if (!result.ok()) {
+    if (result.message.rfind(name, 0) != 0) fuzz::fail("an error does not name the input");
+    if (result.message.find('\n') != std::string::npos) fuzz::fail("an error spans several lines");
     if (!result.mesh.positions.empty() || !result.mesh.indices.empty()) fuzz::fail("error with a mesh");
     return -1;  // rejected input: not worth keeping in a corpus
   }
@@ -142,16 +142,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   options.materialNames = result.materialNames;
   options.capMaterialId = static_cast<uint32_t>(result.materialNames.size());
   std::string obj;
-  if (!assets::writeObjToString(result.mesh, options, obj).ok) fuzz::fail("OBJ writer refused a read mesh");
+  if (!assets::writeObjToString(result.mesh, options, obj).ok()) fuzz::fail("OBJ writer refused a read mesh");
   const assets::MeshReadResult objBack = assets::readMeshFromMemory(
       std::span(reinterpret_cast<const uint8_t*>(obj.data()), obj.size()), assets::MeshFormat::Obj, "obj");
-  if (!objBack.ok || objBack.mesh.triangleCount() != result.mesh.triangleCount()) {
+  if (!objBack.ok() || objBack.mesh.triangleCount() != result.mesh.triangleCount()) {
     fuzz::fail("OBJ round trip changed the mesh");
   }
   std::vector<uint8_t> glb;
-  if (!assets::writeGlbToMemory(result.mesh, options, glb).ok) fuzz::fail("GLB writer refused a read mesh");
+  if (!assets::writeGlbToMemory(result.mesh, options, glb).ok()) fuzz::fail("GLB writer refused a read mesh");
   const assets::MeshReadResult glbBack = assets::readMeshFromMemory(glb, assets::MeshFormat::Glb, "glb");
-  if (!glbBack.ok || glbBack.mesh.positions != result.mesh.positions ||
+  if (!glbBack.ok() || glbBack.mesh.positions != result.mesh.positions ||
       glbBack.mesh.indices != result.mesh.indices) {
     fuzz::fail("GLB round trip changed the mesh");
   }

@@ -128,7 +128,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   options.separateIslands = (flags & 2) != 0;
   options.uvMode = (flags & 4) != 0 ? geometry::CapUvMode::NormalizedBounds : geometry::CapUvMode::WorldPlanar;
   geometry::MeshContainer container;
-  if (container.setMesh(mesh) != geometry::SplitStatus::Ok) return -1;
+  if (container.setMesh(mesh).code != geometry::SplitStatus::Ok) return -1;
   glm::mat4 model(1.f);
   if ((flags & 16) != 0) {
     model[0] = glm::vec4(1.5f, 0.2f, 0.f, 0.f);

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Private (not installed): a slot table with generations, behind the public handles.
+// Private (not installed): a slot table with generations, behind the public handles of physics
+// (bodies, shapes, triggers, joints) and of the renderer (meshes, textures).
 //
 // Freed slots are reused last-in first-out, so the handle sequence depends only on the sequence of
 // create/destroy calls (deterministic). Iteration is in index order.
@@ -10,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-namespace cleave::physics::detail {
+namespace cleave::base::detail {
 
 template <class T>
 class SlotPool {
@@ -49,6 +50,7 @@ class SlotPool {
     if (index >= slots_.size() || !slots_[index].item) return nullptr;
     return &*slots_[index].item;
   }
+  const T* atIndex(uint32_t index) const { return const_cast<SlotPool*>(this)->atIndex(index); }
   uint32_t generationAt(uint32_t index) const {
     return index < slots_.size() ? slots_[index].generation : 0;
   }
@@ -89,4 +91,4 @@ class SlotPool {
   uint32_t live_ = 0;
 };
 
-}  // namespace cleave::physics::detail
+}  // namespace cleave::base::detail
