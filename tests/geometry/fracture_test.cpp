@@ -163,7 +163,7 @@ TEST(Fracture, TheClipperCarvesTheCellsTheSplitsCarve) {
 TEST(Fracture, ACellInsideTheSolidIsAllCapsAndAFaceInACellPlaneGoesToTheSplits) {
   const MeshData box = primitives::box(glm::vec3(1.f));
   MeshContainer container;
-  ASSERT_EQ(container.setMesh(box), SplitStatus::Ok);
+  ASSERT_EQ(container.setMesh(box).code, SplitStatus::Ok);
   ConvexCell cube;
   for (int axis = 0; axis < 3; ++axis) {
     for (double sign : {1.0, -1.0}) {
