@@ -6,6 +6,7 @@
 #include "cleave/components/split_clock.h"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -264,10 +265,11 @@ void clipCarriedPartsToCells(PieceContext& c, SplitOutcome& out, std::span<const
     for (size_t j = i; j < pieces.size(); ++j)
       if (pieceCell[j] == pieceCell[i]) mates.push_back(j);
     for (const geometry::ConvexPolytope& part : *parts) {
-      geometry::ConvexPolytope clipped = part;
+      geometry::ConvexPolytope clipped = part, next;
       for (const geometry::Plane& world : cell.planes) {
         const geometry::Plane plane = planeInMeshSpace(world, c.job.model);
-        clipped = geometry::clipPolytope(clipped, plane.normal, plane.offset, 1e-9);
+        geometry::clipPolytope(clipped, plane.normal, plane.offset, 1e-9, next);
+        std::swap(clipped, next);
         if (clipped.empty()) break;
       }
       if (clipped.empty()) continue;

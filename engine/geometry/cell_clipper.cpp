@@ -91,8 +91,12 @@ struct CellClipper::State {
   std::vector<uint32_t> triangleRun;   // per triangle of the mesh
   uint32_t capRun = 0;
   glm::dmat3 capLinear{1.0}, capInverse{1.0};  // source to cut space (the model's linear part), and back
-  std::vector<uint8_t> touched;     // per position id: above or on some cell plane
+  static constexpr uint16_t kNever = 0xffff;
+  std::vector<uint16_t> firstMet;   // per position id: the first plane in clipping order it is not below
+  std::vector<double> idX, idY, idZ;  // the position ids' cut-space coordinates, one array each
+  std::vector<uint32_t> triangleIds;  // per triangle of the mesh, its corners' position ids
   std::vector<uint32_t> aboveCount, order;  // per cell plane: points above it; the planes in clipping order
+  std::vector<int8_t> planeSign;  // per cell plane, per position id: -1 below, 0 on, +1 above
 
   // Points (position ids first, then the cell's cut points) and their classification for one plane.
   std::vector<glm::dvec3> pos, src;  // cut space, source space
@@ -141,6 +145,8 @@ struct CellClipper::State {
 
   bool begin(const MeshContainer& c, const SplitOptions& options);
   void startCell(const ConvexCell& cell, double tolerance);
+  void classifyIds(const ConvexCell& cell, double tolerance);
+  void pushTriangle(uint32_t t, bool isActive);
   int8_t classify(uint32_t point, const Plane& plane, double tolerance);
   uint32_t cutPoint(uint32_t a, uint32_t b);
   uint32_t cutVertex(const Corner& a, const Corner& b, uint32_t point);
@@ -219,6 +225,12 @@ bool CellClipper::State::begin(const MeshContainer& c, const SplitOptions& optio
     pos[ids[v]] = c.cutPositions()[v];
     src[ids[v]] = glm::dvec3(m.positions[v]);
   }
+  idX.resize(idCount);
+  idY.resize(idCount);
+  idZ.resize(idCount);
+  for (uint32_t p = 0; p < idCount; ++p) idX[p] = pos[p].x, idY[p] = pos[p].y, idZ[p] = pos[p].z;
+  triangleIds.resize(m.indices.size());
+  for (size_t i = 0; i < m.indices.size(); ++i) triangleIds[i] = ids[m.indices[i]];
   return true;
 }
 
@@ -236,6 +248,45 @@ int8_t CellClipper::State::classify(uint32_t point, const Plane& plane, double t
 // points lie above them, most first, so that the active polygons become few soonest. (A triangle
 // above a later plane cannot be dropped before that plane comes: the sections of the planes before
 // it need it to close their loops.)
+// Every position id against every plane of the cell (planeSign), the planes in clipping order (the
+// one with most points above first) and, per id, the first plane in that order it is not below.
+void CellClipper::State::classifyIds(const ConvexCell& cell, double tolerance) {
+  const uint32_t planes = static_cast<uint32_t>(cell.planes.size());
+  const uint32_t n = idCount;  // a local: the byte stores below could alias a member
+  aboveCount.assign(planes, 0);
+  planeSign.resize(size_t(planes) * n);
+  // One array per coordinate, the products summed as glm::dot does: the same bits, in vector lanes.
+  const double* x = idX.data();
+  const double* y = idY.data();
+  const double* z = idZ.data();
+  for (uint32_t k = 0; k < planes; ++k) {
+    const double nx = cell.planes[k].normal.x, ny = cell.planes[k].normal.y, nz = cell.planes[k].normal.z;
+    const double offset = cell.planes[k].offset;
+    int8_t* signs = planeSign.data() + size_t(k) * n;
+    for (uint32_t p = 0; p < n; ++p) {
+      const double d = ((nx * x[p] + ny * y[p]) + nz * z[p]) - offset;
+      signs[p] = int8_t(int(d > tolerance) - int(d < -tolerance));  // as classify() decides
+    }
+    uint32_t above = 0;
+    for (uint32_t p = 0; p < n; ++p) above += uint32_t(signs[p] > 0);
+    aboveCount[k] = above;
+  }
+  order.resize(planes);
+  for (uint32_t k = 0; k < planes; ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return aboveCount[a] > aboveCount[b]; });
+  firstMet.assign(n, kNever);
+  uint16_t* met = firstMet.data();
+  for (uint32_t r = 0; r < planes; ++r) {
+    const int8_t* signs = planeSign.data() + size_t(order[r]) * n;
+    for (uint32_t p = 0; p < n; ++p) met[p] = met[p] == kNever && signs[p] >= 0 ? uint16_t(r) : met[p];
+  }
+}
+
+// The cell's polygons to clip (active) and those below every plane (settled). A triangle is left
+// out when the clip would drop it without a trace: at the first plane (in clipping order) that any
+// of its corners is not below, all three are above. It never crosses nor touches a plane before,
+// so no section point, edge or cut comes of it, and leaving it out gives the same piece, the same
+// bits, with far fewer polygons to clip (most of the mesh, for a small cell).
 void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
   pos.resize(idCount);
   src.resize(idCount);
@@ -251,29 +302,28 @@ void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
   corners.clear();
   settled.clear();
   active.clear();
-  touched.assign(idCount, 0);
-  const uint32_t planes = static_cast<uint32_t>(cell.planes.size());
-  aboveCount.assign(planes, 0);
-  for (uint32_t k = 0; k < planes; ++k) {
-    const Plane& plane = cell.planes[k];
-    for (uint32_t p = 0; p < idCount; ++p) {
-      const double d = glm::dot(plane.normal, pos[p]) - plane.offset;
-      if (d > -tolerance) touched[p] = 1;
-      if (d > tolerance) ++aboveCount[k];
+  if (cell.planes.size() >= kNever) {  // beyond the first-plane ranks: nothing is left out
+    order.resize(cell.planes.size());
+    for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    for (uint32_t t = 0; t < mesh->indices.size() / 3; ++t) pushTriangle(t, true);
+    return;
+  }
+  classifyIds(cell, tolerance);
+  for (uint32_t t = 0; t < mesh->indices.size() / 3; ++t) {
+    const uint32_t a = triangleIds[3 * t], b = triangleIds[3 * t + 1], c = triangleIds[3 * t + 2];
+    const uint16_t first = std::min({firstMet[a], firstMet[b], firstMet[c]});
+    if (first != kNever) {
+      const int8_t* signs = planeSign.data() + size_t(order[first]) * idCount;
+      if (signs[a] > 0 && signs[b] > 0 && signs[c] > 0) continue;
     }
+    pushTriangle(t, first != kNever);
   }
-  order.resize(planes);
-  for (uint32_t k = 0; k < planes; ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return aboveCount[a] > aboveCount[b]; });
-  const std::span<const uint32_t> ids = container->positionIds();
-  const std::vector<uint32_t>& indices = mesh->indices;
-  for (uint32_t t = 0; t < indices.size() / 3; ++t) {
-    const uint32_t a = ids[indices[3 * t]], b = ids[indices[3 * t + 1]], c = ids[indices[3 * t + 2]];
-    const bool isActive = (touched[a] | touched[b] | touched[c]) != 0;
-    std::vector<Corner>& into = isActive ? corners : fixedCorners;
-    (isActive ? active : settled).push_back(Poly{static_cast<uint32_t>(into.size()), 3, t, triangleRun[t]});
-    for (int i = 0; i < 3; ++i) into.push_back(Corner{ids[indices[3 * t + i]], indices[3 * t + i]});
-  }
+}
+
+void CellClipper::State::pushTriangle(uint32_t t, bool isActive) {
+  std::vector<Corner>& into = isActive ? corners : fixedCorners;
+  (isActive ? active : settled).push_back(Poly{static_cast<uint32_t>(into.size()), 3, t, triangleRun[t]});
+  for (int i = 0; i < 3; ++i) into.push_back(Corner{triangleIds[3 * t + i], mesh->indices[3 * t + i]});
 }
 
 // The point where plane cuts the segment of points a and b (one per pair and plane: interpolated

@@ -7,8 +7,8 @@
 // a walk over face adjacency, and the horizon (edges between seen and unseen faces) is joined to the
 // apex. Points of removed faces are handed to the new faces or dropped when inside. A point within
 // the tolerance of a face is "on" it and never creates a face, which is what makes duplicate and
-// coplanar points harmless. Adjacency is a directed-edge map used for look-ups only, so no hash
-// order leaks into the output.
+// coplanar points harmless. Adjacency is a directed-edge table (open addressing) used for look-ups
+// only, so no hash order leaks into the output.
 #include "cleave/geometry/convex_hull.h"
 
 #include <algorithm>
@@ -16,7 +16,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
-#include <unordered_map>
+#include <vector>
 
 namespace cleave::geometry {
 
@@ -37,6 +37,68 @@ namespace {
 constexpr uint32_t kNone = 0xffffffffu;
 
 uint64_t edgeKey(uint32_t a, uint32_t b) { return (uint64_t(a) << 32) | uint64_t(b); }
+
+// Directed edge -> face: linear probing in one array, erase by shifting the run back (no
+// tombstones), so a hull of a few dozen points allocates once instead of once per edge.
+class EdgeTable {
+ public:
+  // False when the edge is there already.
+  bool insert(uint64_t key, uint32_t face) {
+    if (2 * (count_ + 1) > keys_.size()) grow(std::max<size_t>(64, 2 * keys_.size()));
+    size_t i = slot(key);
+    while (keys_[i] != kEmpty) {
+      if (keys_[i] == key) return false;
+      i = (i + 1) & mask_;
+    }
+    keys_[i] = key;
+    faces_[i] = face;
+    ++count_;
+    return true;
+  }
+  uint32_t find(uint64_t key) const {
+    if (keys_.empty()) return kNone;
+    for (size_t i = slot(key); keys_[i] != kEmpty; i = (i + 1) & mask_)
+      if (keys_[i] == key) return faces_[i];
+    return kNone;
+  }
+  void erase(uint64_t key) {
+    if (keys_.empty()) return;
+    size_t i = slot(key);
+    while (keys_[i] != key) {
+      if (keys_[i] == kEmpty) return;
+      i = (i + 1) & mask_;
+    }
+    // Move back each later entry of the run that may sit in the hole (its home is not in (i, j]).
+    for (size_t j = (i + 1) & mask_; keys_[j] != kEmpty; j = (j + 1) & mask_) {
+      const size_t home = slot(keys_[j]);
+      const bool between = i <= j ? (home > i && home <= j) : (home > i || home <= j);
+      if (between) continue;
+      keys_[i] = keys_[j];
+      faces_[i] = faces_[j];
+      i = j;
+    }
+    keys_[i] = kEmpty;
+    --count_;
+  }
+
+ private:
+  static constexpr uint64_t kEmpty = ~uint64_t(0);
+  size_t slot(uint64_t key) const { return size_t((key * 0x9e3779b97f4a7c15ull) >> 32) & mask_; }
+  void grow(size_t capacity) {
+    std::vector<uint64_t> keys(capacity, kEmpty);
+    std::vector<uint32_t> faces(capacity, kNone);
+    keys.swap(keys_);
+    faces.swap(faces_);
+    mask_ = capacity - 1;
+    count_ = 0;
+    for (size_t i = 0; i < keys.size(); ++i)
+      if (keys[i] != kEmpty) insert(keys[i], faces[i]);
+  }
+  std::vector<uint64_t> keys_;
+  std::vector<uint32_t> faces_;
+  size_t mask_ = 0;
+  size_t count_ = 0;
+};
 
 struct Face {
   uint32_t v[3] = {0, 0, 0};
@@ -141,8 +203,7 @@ class QuickHull {
   bool linkFace(uint32_t f) {
     const Face& face = faces_[f];
     for (uint32_t k = 0; k < 3; ++k) {
-      auto [it, inserted] = edges_.emplace(edgeKey(face.v[k], face.v[(k + 1) % 3]), f);
-      if (!inserted) return false;
+      if (!edges_.insert(edgeKey(face.v[k], face.v[(k + 1) % 3]), f)) return false;
     }
     return true;
   }
@@ -263,9 +324,8 @@ class QuickHull {
       visible_.push_back(f);
       for (uint32_t k = 0; k < 3; ++k) {
         uint32_t a = faces_[f].v[k], b = faces_[f].v[(k + 1) % 3];
-        auto it = edges_.find(edgeKey(b, a));
-        if (it == edges_.end()) return false;
-        uint32_t g = it->second;
+        const uint32_t g = edges_.find(edgeKey(b, a));
+        if (g == kNone) return false;
         if (faces_[g].mark == markCounter_) continue;
         if (distance(faces_[g], apex) > eps_) {
           faces_[g].mark = markCounter_;
@@ -296,7 +356,7 @@ class QuickHull {
     for (size_t f = firstNew; f < faces_.size(); ++f) {
       const Face& face = faces_[f];
       for (uint32_t k = 0; k < 3; ++k) {
-        if (edges_.find(edgeKey(face.v[(k + 1) % 3], face.v[k])) == edges_.end()) return false;
+        if (edges_.find(edgeKey(face.v[(k + 1) % 3], face.v[k])) == kNone) return false;
       }
     }
     for (uint32_t p : orphans_) assignToFaces(p, firstNew);
@@ -307,7 +367,7 @@ class QuickHull {
     for (const Face& face : faces_) {
       if (!face.alive) continue;
       for (uint32_t k = 0; k < 3; ++k) {
-        if (edges_.find(edgeKey(face.v[(k + 1) % 3], face.v[k])) == edges_.end()) return false;
+        if (edges_.find(edgeKey(face.v[(k + 1) % 3], face.v[k])) == kNone) return false;
       }
     }
     return true;
@@ -318,7 +378,7 @@ class QuickHull {
   double tolerance_ = 1e-9;
   double eps_ = 0.0;
   std::vector<Face> faces_;
-  std::unordered_map<uint64_t, uint32_t> edges_;  // directed edge -> face; look-ups only
+  EdgeTable edges_;  // directed edge -> face; look-ups only
   uint32_t markCounter_ = 0;
   std::vector<uint32_t> visible_;
   std::vector<uint32_t> stack_;

@@ -44,21 +44,6 @@ void addFace(ConvexPolytope& p, const std::vector<uint32_t>& loop) {
   p.faces.push_back(face);
 }
 
-// Drops vertices no face uses and renumbers the loops.
-void compact(ConvexPolytope& p) {
-  std::vector<uint32_t> remap(p.vertices.size(), std::numeric_limits<uint32_t>::max());
-  std::vector<glm::dvec3> kept;
-  kept.reserve(p.vertices.size());
-  for (uint32_t& c : p.corners) {
-    if (remap[c] == std::numeric_limits<uint32_t>::max()) {
-      remap[c] = uint32_t(kept.size());
-      kept.push_back(p.vertices[c]);
-    }
-    c = remap[c];
-  }
-  p.vertices = std::move(kept);
-}
-
 // Reusable memory of the clips of one shrink (and of a single clip).
 struct ClipScratch {
   std::vector<double> dist;
@@ -66,7 +51,30 @@ struct ClipScratch {
   std::vector<std::pair<uint64_t, uint32_t>> crossings;  // edge key -> section vertex
   std::vector<uint32_t> section, loop, ring;
   std::vector<std::pair<double, uint32_t>> byAngle;
+  std::vector<uint32_t> remap;
+  std::vector<glm::dvec3> compacted;
 };
+
+// Drops vertices no face uses and renumbers the loops (in the order the loops first use them).
+void compact(ConvexPolytope& p, ClipScratch& s) {
+  constexpr uint32_t kUnseen = std::numeric_limits<uint32_t>::max();
+  s.remap.assign(p.vertices.size(), kUnseen);
+  s.compacted.clear();
+  for (uint32_t& c : p.corners) {
+    if (s.remap[c] == kUnseen) {
+      s.remap[c] = uint32_t(s.compacted.size());
+      s.compacted.push_back(p.vertices[c]);
+    }
+    c = s.remap[c];
+  }
+  std::swap(p.vertices, s.compacted);
+}
+
+// The scratch of this thread's clips: clipping allocates nothing once it has grown.
+ClipScratch& threadScratch() {
+  thread_local ClipScratch scratch;
+  return scratch;
+}
 
 // Orders the section points (indices into p.vertices, all on the plane) counter-clockwise seen from
 // the side `normal` points to, merging points closer than `tolerance`, into s.ring.
@@ -173,7 +181,7 @@ void clipInto(const ConvexPolytope& p, const glm::dvec3& n, double d, double tol
     out.corners.insert(out.corners.end(), s.ring.begin(), s.ring.end());
     out.faces.push_back(cap);
   }
-  compact(out);
+  compact(out, s);
 }
 
 }  // namespace
@@ -230,7 +238,7 @@ ConvexPolytope polytopeFromHull(const ConvexHull& hull) {
     // Not one simple loop (triangles only nearly coplanar): keep the group's triangles as faces.
     for (size_t e = 0; e + 2 < edges.size(); e += 3) addFace(p, {edges[e].first, edges[e + 1].first, edges[e + 2].first});
   }
-  compact(p);
+  compact(p, threadScratch());
   if (p.empty()) return ConvexPolytope{};
   return p;
 }
@@ -242,13 +250,24 @@ ConvexPolytope polytopeOfPoints(std::span<const glm::vec3> points) {
 
 ConvexPolytope clipPolytope(const ConvexPolytope& p, const glm::dvec3& normal, double offset,
                             double tolerance) {
-  const double length = glm::length(normal);
-  if (p.empty() || !(length > 0.0) || !std::isfinite(offset)) return ConvexPolytope{};
   ConvexPolytope out;
-  ClipScratch scratch;
-  clipInto(p, normal / length, offset / length, tolerance, out, scratch);
-  if (out.empty()) return ConvexPolytope{};
+  clipPolytope(p, normal, offset, tolerance, out);
   return out;
+}
+
+void clipPolytope(const ConvexPolytope& p, const glm::dvec3& normal, double offset, double tolerance,
+                  ConvexPolytope& out) {
+  out.vertices.clear();
+  out.corners.clear();
+  out.faces.clear();
+  const double length = glm::length(normal);
+  if (p.empty() || !(length > 0.0) || !std::isfinite(offset)) return;
+  clipInto(p, normal / length, offset / length, tolerance, out, threadScratch());
+  if (out.empty()) {
+    out.vertices.clear();
+    out.corners.clear();
+    out.faces.clear();
+  }
 }
 
 ConvexPolytope transformPolytope(const ConvexPolytope& p, const glm::dmat4& m) {
@@ -281,7 +300,7 @@ ConvexPolytope shrinkPolytope(const ConvexPolytope& p, double margin) {
   polytopeBounds(p, lo, hi);
   const double tolerance = 1e-9 * std::max(glm::length(hi - lo), 1e-30);
   ConvexPolytope current = p, next;
-  ClipScratch scratch;
+  ClipScratch& scratch = threadScratch();
   for (const auto& [n, o] : planes) {
     clipInto(current, n, o - margin, tolerance, next, scratch);
     if (next.empty()) return ConvexPolytope{};

@@ -52,6 +52,11 @@ ConvexPolytope polytopeOfPoints(std::span<const glm::vec3> points);
 ConvexPolytope clipPolytope(const ConvexPolytope& p, const glm::dvec3& normal, double offset,
                             double tolerance);
 
+// The same clip written into `out` (which must not be `p`), reusing its memory: for a part clipped
+// by many planes in turn. `out` is empty exactly when the value form would be.
+void clipPolytope(const ConvexPolytope& p, const glm::dvec3& normal, double offset, double tolerance,
+                  ConvexPolytope& out);
+
 // `p` with every vertex mapped by the affine `m` (any invertible matrix; a mirroring one keeps the
 // loops counter-clockwise from outside). Face planes are recomputed from the mapped loops.
 ConvexPolytope transformPolytope(const ConvexPolytope& p, const glm::dmat4& m);

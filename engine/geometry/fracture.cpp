@@ -2,6 +2,7 @@
 #include "cleave/geometry/fracture.h"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -203,7 +204,9 @@ FractureResult fracture(const MeshContainer& container, std::span<const ConvexCe
   std::unique_ptr<IMeshSplitter> splitter = makeConcaveSplitter();
   CapSimplifier simplifier;
   CellRun run{*splitter, simplifier, container, options, options.relativeTolerance * container.boundsDiagonal(), result};
-  CellClipper clipper;
+  // One clipper per thread, kept between calls: its tables and pools have grown to the meshes this
+  // thread breaks, so a fracture allocates little (begin() forgets the previous container).
+  thread_local CellClipper clipper;
   const bool clip = method == FractureMethod::Clipper && clipper.begin(container, options);
   for (uint32_t i = 0; i < cells.size(); ++i) {
     if (cells[i].empty) continue;
@@ -256,7 +259,7 @@ ConvexCell voronoiCell(std::span<const glm::dvec3> seeds, size_t i, const Convex
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     return glm::length(seeds[a] - seeds[i]) < glm::length(seeds[b] - seeds[i]);
   });
-  ConvexPolytope p = box;
+  ConvexPolytope p = box, next;
   std::vector<Plane> clipped;
   for (size_t j : order) {
     // Once a seed is more than twice the cell's reach away, its bisector and all after it miss.
@@ -266,7 +269,8 @@ ConvexCell voronoiCell(std::span<const glm::dvec3> seeds, size_t i, const Convex
     if (glm::length(seeds[j] - seeds[i]) <= tolerance) continue;  // a repeated seed: no bisector
     const Plane plane = bisector(seeds[i], seeds[j]);
     if (farthestAbove(p, plane) <= tolerance) continue;
-    p = clipPolytope(p, plane.normal, plane.offset, tolerance);
+    clipPolytope(p, plane.normal, plane.offset, tolerance, next);
+    std::swap(p, next);
     clipped.push_back(plane);
     if (p.empty()) return ConvexCell{{}, seeds[i], true};
   }

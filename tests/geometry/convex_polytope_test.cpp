@@ -94,6 +94,25 @@ TEST(ConvexPolytope, ShrinkMovesEveryFaceInwardsByTheMargin) {
   EXPECT_TRUE(convexAndOriented(inner, 1e-9));
 }
 
+TEST(ConvexPolytope, ClipIntoAnotherPolytopeGivesTheSameBitsAsTheValueForm) {
+  const ConvexPolytope ball = polytopeOfPoints(primitives::uvSphere(0.5f, 16, 8).positions);
+  ConvexPolytope out = unitBox();  // holds something first: it must be replaced, not appended to
+  for (const double offset : {0.3, 0.0, -0.49, -0.6}) {
+    const glm::dvec3 n(0.2, -1.0, 0.4);
+    const ConvexPolytope value = clipPolytope(ball, n, offset, 1e-9);
+    clipPolytope(ball, n, offset, 1e-9, out);
+    EXPECT_EQ(out.vertices, value.vertices);
+    EXPECT_EQ(out.corners, value.corners);
+    ASSERT_EQ(out.faces.size(), value.faces.size());
+    for (size_t f = 0; f < out.faces.size(); ++f) {
+      EXPECT_EQ(out.faces[f].normal, value.faces[f].normal);
+      EXPECT_EQ(out.faces[f].first, value.faces[f].first);
+    }
+    EXPECT_EQ(out.empty(), value.empty());
+  }
+  EXPECT_TRUE(out.empty());  // the last plane is below the whole ball
+}
+
 TEST(ConvexPolytope, MirroredTransformKeepsThePolytopeOutwardAndItsVolume) {
   const ConvexPolytope box = unitBox();
   const glm::dmat4 m = glm::scale(glm::translate(glm::dmat4(1.0), glm::dvec3(2, 0, 0)), glm::dvec3(-1, 2, 3));
