@@ -255,6 +255,7 @@ void clipCarriedPartsToCells(PieceContext& c, SplitOutcome& out, std::span<const
   const std::vector<geometry::SplitPiece>& pieces = c.scratch.result.pieces;
   c.clipped.assign(pieces.size(), {});
   std::vector<PieceBounds> bounds(pieces.size());
+  std::vector<geometry::HalfSpace> halfSpaces;
   for (size_t i = 0; i < pieces.size(); ++i)
     for (const glm::vec3& p : pieces[i].mesh.positions)
       bounds[i].lo = glm::min(bounds[i].lo, glm::dvec3(p)), bounds[i].hi = glm::max(bounds[i].hi, glm::dvec3(p));
@@ -264,14 +265,14 @@ void clipCarriedPartsToCells(PieceContext& c, SplitOutcome& out, std::span<const
     std::vector<size_t> mates;
     for (size_t j = i; j < pieces.size(); ++j)
       if (pieceCell[j] == pieceCell[i]) mates.push_back(j);
+    halfSpaces.clear();
+    for (const geometry::Plane& world : cell.planes) {
+      const geometry::Plane plane = planeInMeshSpace(world, c.job.model);
+      halfSpaces.push_back({plane.normal, plane.offset});
+    }
     for (const geometry::ConvexPolytope& part : *parts) {
-      geometry::ConvexPolytope clipped = part, next;
-      for (const geometry::Plane& world : cell.planes) {
-        const geometry::Plane plane = planeInMeshSpace(world, c.job.model);
-        geometry::clipPolytope(clipped, plane.normal, plane.offset, 1e-9, next);
-        std::swap(clipped, next);
-        if (clipped.empty()) break;
-      }
+      geometry::ConvexPolytope clipped;
+      geometry::clipPolytope(part, halfSpaces, 1e-9, clipped);
       if (clipped.empty()) continue;
       c.clipped[ownerOf(pieces, bounds, mates, geometry::polytopeCentroid(clipped))].push_back(std::move(clipped));
     }

@@ -1,15 +1,19 @@
 // SPDX-License-Identifier: MIT
-// Convex polytopes as face loops. Clipping follows Sutherland-Hodgman per face: each face polygon
-// keeps its corners below the plane and gains a section point where an edge crosses it; the section
-// points of one edge are shared by its two faces (keyed by the edge), and the new face is the ring of
-// section points (and of the vertices on the plane) ordered by angle about their mean. The order of
-// everything follows the input order, so the output is deterministic.
+// Convex polytopes as face loops. Clipping follows Sutherland-Hodgman per face, editing only the
+// faces a plane reaches: each keeps its corners below the plane and gains a section point where an
+// edge crosses it; the section points of one edge are shared by its two faces (keyed by the edge),
+// and the new face is the hole the clipped faces leave, edge for edge (or, where that does not chain
+// into one loop, the ring of section points ordered by angle about their mean). Shrinking moves each
+// vertex to where its faces' moved planes meet, splitting it where they no longer meet in one point,
+// and falls back to one clip per face where faces vanish. The order of everything follows the input
+// order, so the output is deterministic.
 #include "cleave/geometry/convex_polytope.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
+#include <cstdio>
 
 namespace cleave::geometry {
 namespace {
@@ -50,6 +54,9 @@ struct ClipScratch {
   std::vector<uint32_t> kept;
   std::vector<std::pair<uint64_t, uint32_t>> crossings;  // edge key -> section vertex
   std::vector<uint32_t> section, loop, ring;
+  std::vector<std::pair<uint32_t, uint32_t>> merges;  // section points merged into a ring point
+  std::vector<std::pair<uint32_t, uint32_t>> hole;    // directed edges around the hole a clip leaves
+  std::vector<char> cancelled;
   std::vector<std::pair<double, uint32_t>> byAngle;
   std::vector<uint32_t> remap;
   std::vector<glm::dvec3> compacted;
@@ -76,112 +83,272 @@ ClipScratch& threadScratch() {
   return scratch;
 }
 
-// Orders the section points (indices into p.vertices, all on the plane) counter-clockwise seen from
+// A stand-in for atan2(y, x) that orders directions the same way, from just above -pi up to pi
+// (the diamond angle: exact rational steps, no trigonometry).
+double pseudoAngle(double x, double y) {
+  const double sum = std::abs(x) + std::abs(y);
+  if (!(sum > 0.0)) return 0.0;
+  double d = 0.0;  // 0 along +x, 1 along +y, 2 along -x, 3 along -y
+  if (y >= 0.0)
+    d = x >= 0.0 ? y / sum : 1.0 - x / sum;
+  else
+    d = x < 0.0 ? 2.0 - y / sum : 3.0 + x / sum;
+  if (d > 2.0 || (d == 2.0 && std::signbit(y))) d -= 4.0;
+  return d;
+}
+
+// Orders the section points (indices into `vertices`, all on the plane) counter-clockwise seen from
 // the side `normal` points to, merging points closer than `tolerance`, into s.ring.
-void sectionRing(const ConvexPolytope& p, ClipScratch& s, const glm::dvec3& n, double tolerance) {
+void sectionRing(const std::vector<glm::dvec3>& vertices, ClipScratch& s, const glm::dvec3& n, double tolerance) {
   std::vector<uint32_t>& points = s.section;
   std::vector<uint32_t>& ring = s.ring;
   ring.clear();
+  s.merges.clear();
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
   if (points.size() < 3) return;
   glm::dvec3 mean(0.0);
-  for (uint32_t v : points) mean += p.vertices[v];
+  for (uint32_t v : points) mean += vertices[v];
   mean /= double(points.size());
   const glm::dvec3 helper = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   const glm::dvec3 u = glm::normalize(glm::cross(helper, n));
   const glm::dvec3 w = glm::cross(n, u);
   s.byAngle.clear();
   for (uint32_t v : points) {
-    const glm::dvec3 d = p.vertices[v] - mean;
-    s.byAngle.emplace_back(std::atan2(glm::dot(d, w), glm::dot(d, u)), v);
+    const glm::dvec3 d = vertices[v] - mean;
+    s.byAngle.emplace_back(pseudoAngle(glm::dot(d, u), glm::dot(d, w)), v);
   }
   std::sort(s.byAngle.begin(), s.byAngle.end());
   for (const auto& [angle, v] : s.byAngle) {
-    if (!ring.empty() && glm::length(p.vertices[v] - p.vertices[ring.back()]) <= tolerance) continue;
+    if (!ring.empty() && glm::length(vertices[v] - vertices[ring.back()]) <= tolerance) {
+      s.merges.emplace_back(v, ring.back());
+      continue;
+    }
     ring.push_back(v);
   }
-  while (ring.size() > 1 && glm::length(p.vertices[ring.front()] - p.vertices[ring.back()]) <= tolerance)
+  while (ring.size() > 1 && glm::length(vertices[ring.front()] - vertices[ring.back()]) <= tolerance) {
+    for (auto& [from, to] : s.merges)
+      if (to == ring.back()) to = ring.front();
+    s.merges.emplace_back(ring.back(), ring.front());
     ring.pop_back();
+  }
   if (ring.size() < 3) ring.clear();
 }
 
-// clipPolytope into `out` (cleared first; its capacity is reused), with unit normal `n`.
-void clipInto(const ConvexPolytope& p, const glm::dvec3& n, double d, double tolerance, ConvexPolytope& out,
-              ClipScratch& s) {
-  out.vertices.clear();
-  out.corners.clear();
-  out.faces.clear();
-  s.dist.resize(p.vertices.size());
-  bool anyBelow = false, anyAbove = false;
-  for (size_t v = 0; v < p.vertices.size(); ++v) {
-    s.dist[v] = glm::dot(n, p.vertices[v]) - d;
-    anyBelow |= s.dist[v] < -tolerance;
-    anyAbove |= s.dist[v] > tolerance;
+// A polytope clipped by many planes in turn, edited where each plane cuts: faces no plane reaches
+// keep their loops, dropped vertices are only marked, and nothing is renumbered until the end. The
+// same solid as the one-plane clips one after another (which rebuild the whole polytope each time).
+class PolytopeEditor {
+  static constexpr uint32_t kNoVertex = std::numeric_limits<uint32_t>::max();
+
+ public:
+  void reset(const ConvexPolytope& p) {
+    vertices_ = p.vertices;
+    live_.resize(vertices_.size());
+    for (uint32_t v = 0; v < live_.size(); ++v) live_[v] = v;
+    pool_ = p.corners;
+    faces_ = p.faces;
+    faceAlive_.assign(faces_.size(), 1);
   }
-  if (!anyBelow) return;
-  if (!anyAbove) {
-    out = p;
-    return;
+
+  // Keeps the part with dot(n, x) <= d (n unit). False when nothing is left.
+  bool clip(const glm::dvec3& n, double d, double tolerance, ClipScratch& s) {
+    s.dist.resize(vertices_.size());
+    bool anyBelow = false, anyAbove = false;
+    for (const uint32_t v : live_) {
+      s.dist[v] = glm::dot(n, vertices_[v]) - d;
+      anyBelow |= s.dist[v] < -tolerance;
+      anyAbove |= s.dist[v] > tolerance;
+    }
+    if (!anyBelow) return false;
+    if (!anyAbove) return true;
+    const size_t vertexMark = vertices_.size(), poolMark = pool_.size();
+    s.crossings.clear();
+    s.section.clear();
+    s.hole.clear();
+    touched_.clear();
+    for (uint32_t f = 0; f < faces_.size(); ++f)
+      if (faceAlive_[f] && reaches(faces_[f], s, tolerance)) clipFace(f, s, tolerance);
+    if (!holeRing(s)) sectionRing(vertices_, s, n, tolerance);
+    if (s.ring.size() < 3) {  // the cut-off part is a sliver whose section collapses: keep the polytope whole
+      vertices_.resize(vertexMark);
+      pool_.resize(poolMark);
+      return true;
+    }
+    for (const Touched& t : touched_) {
+      faceAlive_[t.face] = t.count >= 3;
+      faces_[t.face].first = t.first;
+      faces_[t.face].count = t.count;
+    }
+    if (!s.merges.empty()) mergeSectionPoints(s);
+    live_.erase(std::remove_if(live_.begin(), live_.end(), [&](uint32_t v) { return s.dist[v] > tolerance; }),
+                live_.end());
+    for (uint32_t v = uint32_t(vertexMark); v < vertices_.size(); ++v)
+      if (!(s.dist[v] > tolerance)) live_.push_back(v);
+    ConvexPolytope::Face cap;
+    cap.normal = n;
+    cap.offset = d;
+    cap.first = uint32_t(pool_.size());
+    cap.count = uint32_t(s.ring.size());
+    pool_.insert(pool_.end(), s.ring.begin(), s.ring.end());
+    faces_.push_back(cap);
+    faceAlive_.push_back(1);
+    return true;
   }
-  constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
-  s.kept.assign(p.vertices.size(), kNone);
-  for (size_t v = 0; v < p.vertices.size(); ++v) {
-    if (s.dist[v] > tolerance) continue;
-    s.kept[v] = uint32_t(out.vertices.size());
-    out.vertices.push_back(p.vertices[v]);
+
+  // The polytope, its vertices numbered in the order the face loops first use them.
+  void write(ConvexPolytope& out, ClipScratch& s) const {
+    out.vertices.clear();
+    out.corners.clear();
+    out.faces.clear();
+    for (uint32_t f = 0; f < faces_.size(); ++f) {
+      if (!faceAlive_[f]) continue;
+      ConvexPolytope::Face face = faces_[f];
+      face.first = uint32_t(out.corners.size());
+      out.corners.insert(out.corners.end(), pool_.begin() + faces_[f].first,
+                         pool_.begin() + faces_[f].first + faces_[f].count);
+      out.faces.push_back(face);
+    }
+    out.vertices = vertices_;
+    compact(out, s);
+    if (out.empty()) {
+      out.vertices.clear();
+      out.corners.clear();
+      out.faces.clear();
+    }
   }
-  s.crossings.clear();
-  s.section.clear();
-  auto crossing = [&](uint32_t a, uint32_t b) {
+
+ private:
+  // The cap as the hole the clipped faces leave: the edges where their loops skip corners above the
+  // plane (clipFace), less any whose reverse is one too, each taken the other way round and chained
+  // into one loop. So the cap meets every side face edge for edge, even where the section is a
+  // sliver within the tolerance. False (and s.ring empty) when they do not chain into one simple loop.
+  bool holeRing(ClipScratch& s) {
+    s.ring.clear();
+    s.merges.clear();
+    // Sorted by end vertex: a new edge whose reverse is new too leaves no hole there (the plane
+    // passed through both its ends); every other end vertex must end exactly one hole edge.
+    std::sort(s.hole.begin(), s.hole.end(), [](const auto& x, const auto& y) {
+      return x.second != y.second ? x.second < y.second : x.first < y.first;
+    });
+    auto ending = [&](uint32_t v) {
+      return std::lower_bound(s.hole.begin(), s.hole.end(), v, [](const auto& e, uint32_t w) { return e.second < w; });
+    };
+    s.cancelled.assign(s.hole.size(), 0);
+    for (size_t i = 0; i < s.hole.size(); ++i)
+      for (auto it = ending(s.hole[i].first); it != s.hole.end() && it->second == s.hole[i].first; ++it)
+        if (it->first == s.hole[i].second) s.cancelled[i] = 1;
+    size_t kept = 0;
+    for (size_t i = 0; i < s.hole.size(); ++i)
+      if (!s.cancelled[i]) s.hole[kept++] = s.hole[i];
+    s.hole.resize(kept);  // still sorted by end vertex
+    if (s.hole.size() < 3) return false;
+    // Cap edge b -> a for every hole edge a -> b: from a hole edge's end, go to its start.
+    const uint32_t start = s.hole[0].second;
+    uint32_t at = start;
+    for (size_t step = 0; step < s.hole.size(); ++step) {
+      s.ring.push_back(at);
+      const auto it = ending(at);
+      if (it == s.hole.end() || it->second != at || (it + 1 != s.hole.end() && (it + 1)->second == at)) break;
+      at = it->first;
+    }
+    if (at != start || s.ring.size() != s.hole.size()) {
+      s.ring.clear();
+      return false;
+    }
+    return true;
+  }
+
+  // Section points the ring merged (closer than the tolerance) become the ring point in every loop,
+  // a corner repeated by that is dropped, and the merged points are marked for dropping.
+  void mergeSectionPoints(ClipScratch& s) {
+    auto target = [&](uint32_t v) {
+      for (const auto& [from, to] : s.merges)
+        if (from == v) return to;
+      return v;
+    };
+    for (uint32_t f = 0; f < faces_.size(); ++f) {
+      if (!faceAlive_[f]) continue;
+      ConvexPolytope::Face& face = faces_[f];
+      uint32_t count = 0;
+      for (uint32_t i = 0; i < face.count; ++i) {
+        const uint32_t v = target(pool_[face.first + i]);
+        if (count == 0 || pool_[face.first + count - 1] != v) pool_[face.first + count++] = v;
+      }
+      while (count > 1 && pool_[face.first + count - 1] == pool_[face.first]) --count;
+      face.count = count;
+      faceAlive_[f] = count >= 3;
+    }
+    for (const auto& [from, to] : s.merges) s.dist[from] = std::numeric_limits<double>::infinity();
+  }
+
+  bool reaches(const ConvexPolytope::Face& face, const ClipScratch& s, double tolerance) const {
+    for (uint32_t i = 0; i < face.count; ++i)
+      if (s.dist[pool_[face.first + i]] > tolerance) return true;
+    return false;
+  }
+
+  // The loop of face f below the plane, appended to the pool (Sutherland-Hodgman, one section
+  // point per crossed edge shared by its two faces).
+  void clipFace(uint32_t f, ClipScratch& s, double tolerance) {
+    const ConvexPolytope::Face face = faces_[f];
+    const uint32_t first = uint32_t(pool_.size());
+    // Where the loop skips the corners above the plane, it crosses the hole the clip leaves: that
+    // edge of the new loop is a hole edge (the cap takes it the other way round).
+    bool skipped = false, skippedFirst = false;
+    auto push = [&](uint32_t v) {
+      if (skipped && pool_.size() > first) s.hole.emplace_back(pool_.back(), v);
+      skippedFirst |= skipped && pool_.size() == first;
+      skipped = false;
+      pool_.push_back(v);
+    };
+    for (uint32_t i = 0; i < face.count; ++i) {
+      const uint32_t a = pool_[face.first + i];
+      const uint32_t b = pool_[face.first + (i + 1 == face.count ? 0 : i + 1)];
+      const double da = s.dist[a], db = s.dist[b];
+      if (da <= tolerance) {
+        push(a);
+        if (std::abs(da) <= tolerance) s.section.push_back(a);
+      } else {
+        skipped = true;
+      }
+      if ((da < -tolerance && db > tolerance) || (da > tolerance && db < -tolerance)) {
+        const uint32_t c = crossing(a, b, s);
+        push(c);
+        s.section.push_back(c);
+      }
+    }
+    if ((skipped || skippedFirst) && pool_.size() > first + 1) s.hole.emplace_back(pool_.back(), pool_[first]);
+    touched_.push_back({f, first, uint32_t(pool_.size()) - first});
+  }
+
+  uint32_t crossing(uint32_t a, uint32_t b, ClipScratch& s) {
     const uint32_t lo = std::min(a, b), hi = std::max(a, b);
     const uint64_t key = (uint64_t(lo) << 32) | hi;
     for (const auto& [k, v] : s.crossings)
       if (k == key) return v;
     const double t = s.dist[lo] / (s.dist[lo] - s.dist[hi]);
-    const uint32_t v = uint32_t(out.vertices.size());
-    out.vertices.push_back(p.vertices[lo] + (p.vertices[hi] - p.vertices[lo]) * t);
+    const uint32_t v = uint32_t(vertices_.size());
+    vertices_.push_back(vertices_[lo] + (vertices_[hi] - vertices_[lo]) * t);
+    s.dist.push_back(0.0);
     s.crossings.emplace_back(key, v);
     return v;
+  }
+
+  std::vector<glm::dvec3> vertices_;
+  std::vector<uint32_t> live_;  // the vertices no plane has dropped
+  std::vector<uint32_t> pool_;  // face loops; a clipped face's new loop is appended
+  std::vector<ConvexPolytope::Face> faces_;
+  std::vector<char> faceAlive_;
+  struct Touched {
+    uint32_t face, first, count;  // a face cut by this plane and its new loop in the pool
   };
-  for (const ConvexPolytope::Face& face : p.faces) {
-    s.loop.clear();
-    for (uint32_t i = 0; i < face.count; ++i) {
-      const uint32_t a = p.corners[face.first + i];
-      const uint32_t b = p.corners[face.first + (i + 1 == face.count ? 0 : i + 1)];
-      const double da = s.dist[a], db = s.dist[b];
-      if (s.kept[a] != kNone) {
-        s.loop.push_back(s.kept[a]);
-        if (std::abs(da) <= tolerance) s.section.push_back(s.kept[a]);
-      }
-      if ((da < -tolerance && db > tolerance) || (da > tolerance && db < -tolerance)) {
-        const uint32_t c = crossing(a, b);
-        s.loop.push_back(c);
-        s.section.push_back(c);
-      }
-    }
-    if (s.loop.size() < 3) continue;
-    ConvexPolytope::Face clipped = face;
-    clipped.first = uint32_t(out.corners.size());
-    clipped.count = uint32_t(s.loop.size());
-    out.corners.insert(out.corners.end(), s.loop.begin(), s.loop.end());
-    out.faces.push_back(clipped);
-  }
-  sectionRing(out, s, n, tolerance);
-  if (s.ring.size() < 3) {  // the cut-off part is a sliver whose section collapses: keep `p` whole
-    out = p;
-    return;
-  }
-  {
-    ConvexPolytope::Face cap;
-    cap.normal = n;
-    cap.offset = d;
-    cap.first = uint32_t(out.corners.size());
-    cap.count = uint32_t(s.ring.size());
-    out.corners.insert(out.corners.end(), s.ring.begin(), s.ring.end());
-    out.faces.push_back(cap);
-  }
-  compact(out, s);
+  std::vector<Touched> touched_;
+};
+
+PolytopeEditor& threadEditor() {
+  thread_local PolytopeEditor editor;
+  return editor;
 }
 
 }  // namespace
@@ -260,14 +427,25 @@ void clipPolytope(const ConvexPolytope& p, const glm::dvec3& normal, double offs
   out.vertices.clear();
   out.corners.clear();
   out.faces.clear();
-  const double length = glm::length(normal);
-  if (p.empty() || !(length > 0.0) || !std::isfinite(offset)) return;
-  clipInto(p, normal / length, offset / length, tolerance, out, threadScratch());
-  if (out.empty()) {
-    out.vertices.clear();
-    out.corners.clear();
-    out.faces.clear();
+  const HalfSpace h{normal, offset};
+  clipPolytope(p, std::span<const HalfSpace>(&h, 1), tolerance, out);
+}
+
+void clipPolytope(const ConvexPolytope& p, std::span<const HalfSpace> halfSpaces, double tolerance,
+                  ConvexPolytope& out) {
+  out.vertices.clear();
+  out.corners.clear();
+  out.faces.clear();
+  if (p.empty()) return;
+  PolytopeEditor& editor = threadEditor();
+  ClipScratch& scratch = threadScratch();
+  editor.reset(p);
+  for (const HalfSpace& h : halfSpaces) {
+    const double length = glm::length(h.normal);
+    if (!(length > 0.0) || !std::isfinite(h.offset) || !editor.clip(h.normal / length, h.offset / length, tolerance, scratch))
+      return;
   }
+  editor.write(out, scratch);
 }
 
 ConvexPolytope transformPolytope(const ConvexPolytope& p, const glm::dmat4& m) {
@@ -286,8 +464,243 @@ ConvexPolytope transformPolytope(const ConvexPolytope& p, const glm::dmat4& m) {
   return out;
 }
 
+namespace {
+
+// One vertex of the shrunk polytope: where the moved planes of three faces at an input vertex meet
+// (a, b, c: positions in the turn of the faces around it), or of all of them (`whole`).
+struct MovedCorner {
+  uint32_t a = 0, b = 0, c = 0;
+  uint32_t vertex = 0;  // into the output's vertices
+  bool whole = false;
+};
+
+// Reusable memory of the shrinks of this thread.
+struct ShrinkScratch {
+  std::vector<uint32_t> firstFace, faceOf, cursor;  // the faces at each vertex (offsets, concatenation)
+  std::vector<uint32_t> firstMoved;                 // per input vertex, into moved
+  std::vector<MovedCorner> moved;
+  std::vector<uint32_t> origin;  // per output vertex, the input vertex it moved from
+  std::vector<std::pair<uint32_t, uint32_t>> chords;
+  std::vector<std::pair<uint32_t, uint32_t>> fan;  // (order key, output vertex)
+  std::vector<uint32_t> loop;
+};
+
+ShrinkScratch& threadShrinkScratch() {
+  thread_local ShrinkScratch scratch;
+  return scratch;
+}
+
+// Fills s.firstFace and s.faceOf: the faces at vertex v are s.faceOf[s.firstFace[v] .. s.firstFace[v + 1]).
+void facesAtVertices(const ConvexPolytope& p, ShrinkScratch& s) {
+  s.firstFace.assign(p.vertices.size() + 1, 0);
+  for (uint32_t c : p.corners) ++s.firstFace[c + 1];
+  for (size_t v = 0; v < p.vertices.size(); ++v) s.firstFace[v + 1] += s.firstFace[v];
+  s.faceOf.resize(p.corners.size());
+  s.cursor.assign(s.firstFace.begin(), s.firstFace.end() - 1);
+  for (uint32_t f = 0; f < p.faces.size(); ++f)
+    for (uint32_t i = 0; i < p.faces[f].count; ++i) s.faceOf[s.cursor[p.corners[p.faces[f].first + i]]++] = f;
+}
+
+// The corners before and after `v` in the loop of face `f`.
+void besideIn(const ConvexPolytope& p, uint32_t f, uint32_t v, uint32_t& before, uint32_t& after) {
+  const ConvexPolytope::Face& face = p.faces[f];
+  for (uint32_t i = 0; i < face.count; ++i) {
+    if (p.corners[face.first + i] != v) continue;
+    before = p.corners[face.first + (i == 0 ? face.count - 1 : i - 1)];
+    after = p.corners[face.first + (i + 1 == face.count ? 0 : i + 1)];
+    return;
+  }
+}
+
+// Orders `faces` (those at `v`) in turn around it: each next one holds the edge leaving v in the one
+// before, the other way round. False when they do not close one fan.
+bool turnAround(const ConvexPolytope& p, uint32_t v, uint32_t* faces, uint32_t count) {
+  uint32_t before = 0, after = 0, firstBefore = 0;
+  besideIn(p, faces[0], v, firstBefore, after);
+  for (uint32_t t = 0; t + 1 < count; ++t) {
+    besideIn(p, faces[t], v, before, after);
+    uint32_t found = count;
+    for (uint32_t u = t + 1; u < count && found == count; ++u) {
+      uint32_t hisBefore = 0, hisAfter = 0;
+      besideIn(p, faces[u], v, hisBefore, hisAfter);
+      if (hisBefore == after) found = u;
+    }
+    if (found == count) return false;
+    std::swap(faces[t + 1], faces[found]);
+  }
+  besideIn(p, faces[count - 1], v, before, after);
+  return after == firstBefore;
+}
+
+// Where the planes of faces a, b and c, moved inwards by `margin`, meet: solved as a move from `v`
+// (which is on all three), so nothing large cancels. False when the planes are nearly dependent.
+bool meetOfMoved(const ConvexPolytope::Face& a, const ConvexPolytope::Face& b, const ConvexPolytope::Face& c,
+                 const glm::dvec3& v, double margin, glm::dvec3& out) {
+  const glm::dvec3 ab = glm::cross(a.normal, b.normal);
+  const double det = glm::dot(ab, c.normal);
+  if (!(std::abs(det) > 1e-9)) return false;
+  auto lift = [&](const ConvexPolytope::Face& f) { return f.offset - margin - glm::dot(f.normal, v); };
+  out = v + (lift(a) * glm::cross(b.normal, c.normal) + lift(b) * glm::cross(c.normal, a.normal) + lift(c) * ab) / det;
+  return true;
+}
+
+// Whether `x` is within `tolerance` below (or on) every moved plane of `faces`; with `onAll`, on every one.
+bool withinMoved(const ConvexPolytope& p, const uint32_t* faces, uint32_t count, double margin, double tolerance,
+                 const glm::dvec3& x, bool onAll) {
+  for (uint32_t i = 0; i < count; ++i) {
+    const ConvexPolytope::Face& f = p.faces[faces[i]];
+    const double d = glm::dot(f.normal, x) - (f.offset - margin);
+    if (d > tolerance || (onAll && d < -tolerance)) return false;
+  }
+  return true;
+}
+
+// One moved vertex where the moved planes of all the faces at `v` still meet in one point (three
+// faces always do; more do when their normals lie on one cone, as at a sphere's pole).
+bool moveWhole(const ConvexPolytope& p, const glm::dvec3& v, const uint32_t* faces, uint32_t count, double margin,
+               double tolerance, glm::dvec3& out) {
+  if (count < 3) return false;
+  const ConvexPolytope::Face& a = p.faces[faces[0]];
+  uint32_t b = 1, c = 0;
+  for (uint32_t i = 2; i < count; ++i)
+    if (std::abs(glm::dot(p.faces[faces[i]].normal, a.normal)) < std::abs(glm::dot(p.faces[faces[b]].normal, a.normal)))
+      b = i;
+  const glm::dvec3 ab = glm::cross(a.normal, p.faces[faces[b]].normal);
+  double best = 0.0;
+  for (uint32_t i = 1; i < count; ++i)
+    if (i != b && std::abs(glm::dot(ab, p.faces[faces[i]].normal)) > best)
+      best = std::abs(glm::dot(ab, p.faces[faces[i]].normal)), c = i;
+  return c != 0 && meetOfMoved(a, p.faces[faces[b]], p.faces[faces[c]], v, margin, out) &&
+         withinMoved(p, faces, count, margin, tolerance, out, true);
+}
+
+// A vertex whose moved planes no longer meet in one point splits into one vertex per triangle of
+// the Delaunay triangulation of its face normals (in turn around it): a triangle's point is below
+// every other moved plane exactly when no other normal is inside its circle. Built from the edge
+// (count - 1, 0) inwards, each chord taking the first apex whose point passes all the planes.
+bool splitVertex(const ConvexPolytope& p, uint32_t v, const uint32_t* faces, uint32_t count, double margin,
+                 double tolerance, ConvexPolytope& out, ShrinkScratch& s) {
+  const size_t first = out.vertices.size();
+  s.chords.assign(1, {0u, count - 1});
+  while (!s.chords.empty()) {
+    const auto [a, b] = s.chords.back();
+    s.chords.pop_back();
+    if (b - a < 2) continue;
+    glm::dvec3 x(0.0);
+    uint32_t apex = a + 1;
+    for (; apex < b; ++apex)
+      if (meetOfMoved(p.faces[faces[a]], p.faces[faces[apex]], p.faces[faces[b]], p.vertices[v], margin, x) &&
+          withinMoved(p, faces, count, margin, tolerance, x, false))
+        break;
+    if (apex == b) return false;
+    s.moved.push_back({a, apex, b, uint32_t(out.vertices.size()), false});
+    out.vertices.push_back(x);
+    s.origin.push_back(v);
+    s.chords.emplace_back(a, apex);
+    s.chords.emplace_back(apex, b);
+  }
+  for (size_t i = first; i < out.vertices.size(); ++i)  // normals on one circle give points that coincide
+    for (size_t j = first; j < i; ++j)
+      if (glm::length(out.vertices[i] - out.vertices[j]) <= tolerance) return false;
+  return true;
+}
+
+// The moved vertices of every input vertex into out.vertices and s.moved.
+bool moveVertices(const ConvexPolytope& p, double margin, double tolerance, ConvexPolytope& out, ShrinkScratch& s) {
+  out.vertices.clear();
+  s.moved.clear();
+  s.origin.clear();
+  s.firstMoved.resize(p.vertices.size() + 1);
+  for (uint32_t v = 0; v < p.vertices.size(); ++v) {
+    s.firstMoved[v] = uint32_t(s.moved.size());
+    uint32_t* faces = s.faceOf.data() + s.firstFace[v];
+    const uint32_t count = s.firstFace[v + 1] - s.firstFace[v];
+    glm::dvec3 x(0.0);
+    if (moveWhole(p, p.vertices[v], faces, count, margin, tolerance, x)) {
+      s.moved.push_back({0, 0, 0, uint32_t(out.vertices.size()), true});
+      out.vertices.push_back(x);
+      s.origin.push_back(v);
+    } else if (count < 4 || !turnAround(p, v, faces, count) ||
+               !splitVertex(p, v, faces, count, margin, tolerance, out, s)) {
+      return false;
+    }
+  }
+  s.firstMoved[p.vertices.size()] = uint32_t(s.moved.size());
+  return true;
+}
+
+// The face loops of the shrunk polytope: each corner becomes its moved vertex, or for a split
+// vertex the split's triangles holding the face, from the one beside the edge that comes in to the
+// one beside the edge that goes out (the order around the face's own position in the turn).
+void writeLoops(const ConvexPolytope& p, double margin, ConvexPolytope& out, ShrinkScratch& s) {
+  out.corners.clear();
+  out.faces.clear();
+  for (uint32_t f = 0; f < p.faces.size(); ++f) {
+    ConvexPolytope::Face face = p.faces[f];
+    face.offset -= margin;
+    face.first = uint32_t(out.corners.size());
+    for (uint32_t i = 0; i < p.faces[f].count; ++i) {
+      const uint32_t v = p.corners[p.faces[f].first + i];
+      const MovedCorner* moved = s.moved.data() + s.firstMoved[v];
+      const uint32_t splits = s.firstMoved[v + 1] - s.firstMoved[v];
+      if (moved[0].whole) {
+        out.corners.push_back(moved[0].vertex);
+        continue;
+      }
+      const uint32_t count = s.firstFace[v + 1] - s.firstFace[v];
+      const uint32_t* turn = s.faceOf.data() + s.firstFace[v];
+      const uint32_t t = uint32_t(std::find(turn, turn + count, f) - turn);
+      auto away = [&](uint32_t q) { return (q + count - t) % count; };  // steps from t in the turn
+      s.fan.clear();
+      for (uint32_t k = 0; k < splits; ++k)
+        if (moved[k].a == t || moved[k].b == t || moved[k].c == t)
+          s.fan.emplace_back(std::max({away(moved[k].a), away(moved[k].b), away(moved[k].c)}), moved[k].vertex);
+      std::sort(s.fan.begin(), s.fan.end(), std::greater<>());
+      for (const auto& [key, vertex] : s.fan) out.corners.push_back(vertex);
+    }
+    face.count = uint32_t(out.corners.size()) - face.first;
+    out.faces.push_back(face);
+  }
+}
+
+// Whether the shrunk polytope is the inner parallel body: no edge shrank to nothing or turned over,
+// and every vertex is below every moved plane (else a face vanished and the clips must decide).
+bool shrunkHolds(const ConvexPolytope& p, double tolerance, const ConvexPolytope& out,
+                 const ShrinkScratch& s) {
+  for (const ConvexPolytope::Face& f : out.faces) {
+    for (uint32_t i = 0; i < f.count; ++i) {
+      const uint32_t a = out.corners[f.first + i], b = out.corners[f.first + (i + 1 == f.count ? 0 : i + 1)];
+      const glm::dvec3 edge = out.vertices[b] - out.vertices[a];
+      if (glm::length(edge) <= tolerance) return false;
+      if (s.origin[a] != s.origin[b] && !(glm::dot(edge, p.vertices[s.origin[b]] - p.vertices[s.origin[a]]) > 0.0))
+        return false;
+    }
+    for (const glm::dvec3& x : out.vertices)
+      if (glm::dot(f.normal, x) > f.offset + tolerance) return false;
+  }
+  return true;
+}
+
+// The shrink where moving the faces keeps them all (vertices may split): linear in the size of `p`
+// apart from the final check. False, with `out` unusable, where the clips must decide.
+bool shrinkInPlace(const ConvexPolytope& p, double margin, double tolerance, ConvexPolytope& out) {
+  ShrinkScratch& s = threadShrinkScratch();
+  facesAtVertices(p, s);
+  if (!moveVertices(p, margin, tolerance, out, s)) return false;
+  writeLoops(p, margin, out, s);
+  return shrunkHolds(p, tolerance, out, s);
+}
+
+}  // namespace
+
 ConvexPolytope shrinkPolytope(const ConvexPolytope& p, double margin) {
   if (p.empty() || !(margin > 0.0)) return p;
+  glm::dvec3 lo, hi;
+  polytopeBounds(p, lo, hi);
+  const double tolerance = 1e-9 * std::max(glm::length(hi - lo), 1e-30);
+  ClipScratch& scratch = threadScratch();
+  ConvexPolytope current;
+  if (shrinkInPlace(p, margin, tolerance, current)) return current;
   // Distinct planes only: hull triangles of one flat side share a plane and clip once.
   std::vector<std::pair<glm::dvec3, double>> planes;
   for (const ConvexPolytope::Face& f : p.faces) {
@@ -296,16 +709,11 @@ ConvexPolytope shrinkPolytope(const ConvexPolytope& p, double margin) {
       if (glm::dot(n, f.normal) > 1.0 - 1e-12 && std::abs(o - f.offset) <= 1e-12 * (1.0 + std::abs(o))) seen = true;
     if (!seen) planes.emplace_back(f.normal, f.offset);
   }
-  glm::dvec3 lo, hi;
-  polytopeBounds(p, lo, hi);
-  const double tolerance = 1e-9 * std::max(glm::length(hi - lo), 1e-30);
-  ConvexPolytope current = p, next;
-  ClipScratch& scratch = threadScratch();
-  for (const auto& [n, o] : planes) {
-    clipInto(current, n, o - margin, tolerance, next, scratch);
-    if (next.empty()) return ConvexPolytope{};
-    std::swap(current, next);
-  }
+  PolytopeEditor& editor = threadEditor();
+  editor.reset(p);
+  for (const auto& [n, o] : planes)
+    if (!editor.clip(n, o - margin, tolerance, scratch)) return ConvexPolytope{};
+  editor.write(current, scratch);
   return current;
 }
 

@@ -57,6 +57,19 @@ ConvexPolytope clipPolytope(const ConvexPolytope& p, const glm::dvec3& normal, d
 void clipPolytope(const ConvexPolytope& p, const glm::dvec3& normal, double offset, double tolerance,
                   ConvexPolytope& out);
 
+// A half-space {x : dot(normal, x) <= offset} (`normal` need not be unit length).
+struct HalfSpace {
+  glm::dvec3 normal{0.0, 0.0, 1.0};
+  double offset = 0.0;
+};
+
+// `p` clipped by each of `halfSpaces` in turn into `out` (which must not be `p`): the same solid as
+// the one-plane clips one after another with the same tolerance, and empty exactly when they would
+// give an empty one, but each plane edits only the faces it cuts instead of rebuilding the whole
+// polytope. A half-space with a zero or non-finite normal or offset gives an empty polytope.
+void clipPolytope(const ConvexPolytope& p, std::span<const HalfSpace> halfSpaces, double tolerance,
+                  ConvexPolytope& out);
+
 // `p` with every vertex mapped by the affine `m` (any invertible matrix; a mirroring one keeps the
 // loops counter-clockwise from outside). Face planes are recomputed from the mapped loops.
 ConvexPolytope transformPolytope(const ConvexPolytope& p, const glm::dmat4& m);

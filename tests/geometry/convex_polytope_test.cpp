@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: MIT
 // Convex polytopes as carried collider parts: exact clips of small cases, clips through vertices and
-// faces that add no sliver, shrinking by a margin, mirrored transforms, simplification that never
+// faces that add no sliver, shrinking by a margin (against one clip per face, vertices that split),
+// clips by many planes against the one-plane clips, mirrored transforms, simplification that never
 // grows a part, and invariants of random clips (volumes add up, both sides stay convex).
 #include "cleave/geometry/convex_polytope.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -40,6 +44,63 @@ ConvexPolytope unitBox(glm::vec3 half = glm::vec3(0.5f)) { return polytopeOfPoin
     if (glm::dot(n, face.normal) <= 0.0) return ::testing::AssertionFailure() << "face " << f << " winds inwards";
   }
   return ::testing::AssertionSuccess();
+}
+
+// Every directed edge of the face loops used once, and its reverse once.
+::testing::AssertionResult closedOnLoops(const ConvexPolytope& p) {
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  for (const auto& f : p.faces)
+    for (uint32_t i = 0; i < f.count; ++i)
+      edges.emplace_back(p.corners[f.first + i], p.corners[f.first + (i + 1) % f.count]);
+  std::sort(edges.begin(), edges.end());
+  for (size_t e = 0; e < edges.size(); ++e) {
+    if (e + 1 < edges.size() && edges[e] == edges[e + 1]) return ::testing::AssertionFailure() << "an edge used twice";
+    if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(edges[e].second, edges[e].first)))
+      return ::testing::AssertionFailure() << "an edge without its reverse";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// The inner parallel body the slow way: one one-plane clip per distinct face plane moved inwards.
+ConvexPolytope shrunkByClips(const ConvexPolytope& p, double margin) {
+  glm::dvec3 lo, hi;
+  polytopeBounds(p, lo, hi);
+  const double tolerance = 1e-9 * glm::length(hi - lo);
+  ConvexPolytope current = p;
+  for (const auto& f : p.faces) {
+    current = clipPolytope(current, f.normal, f.offset - margin, tolerance);
+    if (current.empty()) return current;
+  }
+  return current;
+}
+
+// Every vertex of `a` within `tol` of a vertex of `b` and the other way round.
+::testing::AssertionResult sameVertices(const ConvexPolytope& a, const ConvexPolytope& b, double tol) {
+  if (a.vertices.size() != b.vertices.size())
+    return ::testing::AssertionFailure() << a.vertices.size() << " vertices against " << b.vertices.size();
+  for (int pass = 0; pass < 2; ++pass) {
+    const ConvexPolytope& from = pass ? b : a;
+    const ConvexPolytope& to = pass ? a : b;
+    for (const glm::dvec3& v : from.vertices) {
+      double nearest = 1e300;
+      for (const glm::dvec3& w : to.vertices) nearest = std::min(nearest, glm::length(v - w));
+      if (nearest > tol) return ::testing::AssertionFailure() << "a vertex " << nearest << " from the other polytope's";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// The hull of a sphere cut by a few random planes: a carried part after cuts, with short edges and
+// vertices where a plane passed near a corner.
+ConvexPolytope cutBall(testing::SeededRandom& rng, int planes) {
+  ConvexPolytope p = polytopeOfPoints(primitives::uvSphere(0.5f, 12, 8).positions);
+  for (int k = 0; k < planes && !p.empty(); ++k) {
+    glm::dvec3 n(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    if (glm::length(n) < 1e-3) continue;
+    const ConvexPolytope next = clipPolytope(p, glm::normalize(n), rng.uniform(0.05, 0.4), 1e-10);
+    if (!next.empty()) p = next;
+  }
+  return p;
 }
 
 TEST(ConvexPolytope, BoxCutThroughItsMiddleGivesTwoExactHalves) {
@@ -113,6 +174,99 @@ TEST(ConvexPolytope, ClipIntoAnotherPolytopeGivesTheSameBitsAsTheValueForm) {
   EXPECT_TRUE(out.empty());  // the last plane is below the whole ball
 }
 
+TEST(ConvexPolytope, ShrinkSplitsAnApexWhoseMovedFacesNoLongerMeetInOnePoint) {
+  // A pyramid over a 2 x 1 rectangle: four faces meet at the apex; moved inwards they meet along a
+  // ridge, so the apex becomes two vertices. A square pyramid keeps one apex (its normals lie on a cone).
+  const std::vector<glm::vec3> rectangle = {{-1, 0, -0.5f}, {1, 0, -0.5f}, {1, 0, 0.5f}, {-1, 0, 0.5f}, {0, 1, 0}};
+  const ConvexPolytope pyramid = polytopeOfPoints(rectangle);
+  ASSERT_EQ(pyramid.faces.size(), 5u);
+  const ConvexPolytope ridge = shrinkPolytope(pyramid, 0.05);
+  EXPECT_EQ(ridge.vertices.size(), 6u);
+  EXPECT_TRUE(convexAndOriented(ridge, 1e-12));
+  EXPECT_TRUE(sameVertices(ridge, shrunkByClips(pyramid, 0.05), 1e-12));
+  EXPECT_NEAR(polytopeVolume(ridge), polytopeVolume(shrunkByClips(pyramid, 0.05)), 1e-14);
+  const std::vector<glm::vec3> square = {{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}, {0, 1, 0}};
+  const ConvexPolytope apex = shrinkPolytope(polytopeOfPoints(square), 0.05);
+  EXPECT_EQ(apex.vertices.size(), 5u);
+  EXPECT_TRUE(sameVertices(apex, shrunkByClips(polytopeOfPoints(square), 0.05), 1e-12));
+}
+
+TEST(ConvexPolytope, ShrinkIsTheInnerParallelBodyOnCutPartsAndSpheres) {
+  // Small margins keep every face (vertices move, some split); large ones make short edges turn over
+  // and faces vanish. The shrunk polytope is closed and convex, every face on a moved face plane of
+  // the part and every vertex below all of them: so it is exactly the part's inner parallel body.
+  testing::SeededRandom rng(23);
+  size_t compared = 0, vanished = 0;
+  for (int k = 0; k < 120; ++k) {
+    const ConvexPolytope part = k % 10 == 0 ? polytopeOfPoints(primitives::uvSphere(0.5f, 16, 8).positions)
+                                            : cutBall(rng, 1 + k % 7);
+    ASSERT_FALSE(part.empty());
+    const double margin = std::array<double, 4>{0.002, 0.01, 0.03, 0.08}[size_t(k) % 4];
+    const ConvexPolytope shrunk = shrinkPolytope(part, margin);
+    const ConvexPolytope clips = shrunkByClips(part, margin);
+    ASSERT_EQ(shrunk.empty(), clips.empty()) << "part " << k;
+    if (shrunk.empty()) continue;
+    ASSERT_TRUE(convexAndOriented(shrunk, 1e-8)) << "part " << k;
+    for (const auto& face : shrunk.faces) {
+      bool moved = false;
+      for (const auto& f : part.faces)
+        moved |= glm::length(f.normal - face.normal) < 1e-12 && std::abs(f.offset - margin - face.offset) < 1e-12;
+      ASSERT_TRUE(moved) << "part " << k << ": a face not on a moved plane of the part";
+    }
+    for (const auto& f : part.faces)
+      for (const glm::dvec3& v : shrunk.vertices) ASSERT_LE(glm::dot(f.normal, v) - f.offset, -margin + 1e-8);
+    ASSERT_TRUE(closedOnLoops(shrunk)) << "part " << k;
+    ASSERT_TRUE(closedOnLoops(clips)) << "part " << k;
+    ASSERT_NEAR(polytopeVolume(shrunk), polytopeVolume(clips), 1e-9 * polytopeVolume(part)) << "part " << k;
+    ++compared;
+    vanished += shrunk.faces.size() < part.faces.size();
+    ASSERT_EQ(shrinkPolytope(part, margin).vertices, shrunk.vertices);  // deterministic
+  }
+  std::printf("[ checked  ] shrink against one clip per face: %zu parts, all closed, %zu lost faces\n", compared,
+              vanished);
+  EXPECT_GT(compared, 90u);
+  EXPECT_GT(vanished, 10u);
+}
+
+TEST(ConvexPolytope, ClipByManyPlanesIsTheSolidOfTheOnePlaneClipsInTurn) {
+  const ConvexPolytope ball = polytopeOfPoints(primitives::uvSphere(0.5f, 24, 12).positions);
+  testing::SeededRandom rng(31);
+  size_t emptied = 0;
+  for (int k = 0; k < 100; ++k) {
+    std::vector<HalfSpace> planes;
+    for (int j = 0; j < 2 + k % 14; ++j) {
+      glm::dvec3 n(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+      if (glm::length(n) < 1e-3) continue;
+      // Not unit length on purpose; one in five through a vertex of the ball.
+      const double d = j % 5 == 0 ? glm::dot(n, ball.vertices[size_t(k + j) % ball.vertices.size()])
+                                  : rng.uniform(0.0, 0.5) * glm::length(n);
+      planes.push_back({n, d});
+    }
+    ConvexPolytope one = ball;
+    for (const HalfSpace& h : planes) {
+      one = clipPolytope(one, h.normal, h.offset, 1e-10);
+      if (one.empty()) break;
+    }
+    ConvexPolytope many;
+    clipPolytope(ball, planes, 1e-10, many);
+    ASSERT_EQ(many.empty(), one.empty()) << "set " << k;
+    if (many.empty()) {
+      ++emptied;
+      continue;
+    }
+    EXPECT_EQ(many.faces.size(), one.faces.size()) << "set " << k;
+    ASSERT_TRUE(closedOnLoops(many)) << "set " << k;
+    ASSERT_TRUE(sameVertices(many, one, 1e-12)) << "set " << k;
+    ASSERT_NEAR(polytopeVolume(many), polytopeVolume(one), 1e-12) << "set " << k;
+    ASSERT_TRUE(convexAndOriented(many, 1e-8)) << "set " << k;
+  }
+  EXPECT_GT(emptied, 0u);
+  EXPECT_LT(emptied, 50u);
+  ConvexPolytope out = unitBox();
+  clipPolytope(ball, std::vector<HalfSpace>{{glm::dvec3(0.0), 1.0}}, 1e-10, out);
+  EXPECT_TRUE(out.empty());  // a zero normal: nothing, and `out` replaced
+}
+
 TEST(ConvexPolytope, MirroredTransformKeepsThePolytopeOutwardAndItsVolume) {
   const ConvexPolytope box = unitBox();
   const glm::dmat4 m = glm::scale(glm::translate(glm::dmat4(1.0), glm::dvec3(2, 0, 0)), glm::dvec3(-1, 2, 3));
@@ -151,9 +305,11 @@ TEST(ConvexPolytope, RandomClipsKeepVolumeAndConvexityAndAreDeterministic) {
     ASSERT_NEAR(sum, whole, 1e-9 * whole) << "plane " << k;
     if (!below.empty()) {
       ASSERT_TRUE(convexAndOriented(below, 1e-8)) << "plane " << k;
+      ASSERT_TRUE(closedOnLoops(below)) << "plane " << k;
     }
     if (!above.empty()) {
       ASSERT_TRUE(convexAndOriented(above, 1e-8)) << "plane " << k;
+      ASSERT_TRUE(closedOnLoops(above)) << "plane " << k;
     }
     cut += !below.empty() && !above.empty();
     const ConvexPolytope again = clipPolytope(ball, n, d, 1e-10);
