@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "cleave/geometry/cap_triangulator.h"
 
@@ -73,6 +74,7 @@ struct Poly {
   uint32_t first, count;  // corners, counter-clockwise seen from outside
   uint32_t source;        // the container's triangle, or kFromCap | plane
   uint32_t run;           // output material run
+  uint32_t last;          // the last plane (clipping order) it is not below: settled once past it
 };
 
 glm::vec3 normalizedOr(const glm::dvec3& v, const glm::vec3& fallback) {
@@ -93,10 +95,22 @@ struct CellClipper::State {
   glm::dmat3 capLinear{1.0}, capInverse{1.0};  // source to cut space (the model's linear part), and back
   static constexpr uint16_t kNever = 0xffff;
   std::vector<uint16_t> firstMet;   // per position id: the first plane in clipping order it is not below
+  std::vector<uint16_t> lastMet;    // per position id: the last such plane (0 when there is none)
   std::vector<double> idX, idY, idZ;  // the position ids' cut-space coordinates, one array each
   std::vector<uint32_t> triangleIds;  // per triangle of the mesh, its corners' position ids
   std::vector<uint32_t> aboveCount, order;  // per cell plane: points above it; the planes in clipping order
   std::vector<int8_t> planeSign;  // per cell plane, per position id: -1 below, 0 on, +1 above
+  // The signs of every plane classified since begin, kept for the neighbour cell: the bisector of two
+  // seeds is, bit for bit, the negated plane of the other seed's cell, so its signs are the negated
+  // ones (d is negated exactly: IEEE rounding is symmetric). Keyed by the bits of the plane.
+  struct KnownPlane {
+    Plane plane;
+    double tolerance;
+    uint32_t at;  // into knownSigns, idCount each
+  };
+  std::vector<KnownPlane> knownPlanes;
+  std::vector<int8_t> knownSigns;
+  PairTable knownByBits;
 
   // Points (position ids first, then the cell's cut points) and their classification for one plane.
   std::vector<glm::dvec3> pos, src;  // cut space, source space
@@ -146,12 +160,14 @@ struct CellClipper::State {
   bool begin(const MeshContainer& c, const SplitOptions& options);
   void startCell(const ConvexCell& cell, double tolerance);
   void classifyIds(const ConvexCell& cell, double tolerance);
-  void pushTriangle(uint32_t t, bool isActive);
+  uint32_t planeSigns(const Plane& plane, double tolerance, int8_t* signs);
+  void pushTriangle(uint32_t t, bool isActive, uint32_t last);
+  void keep(const Poly& poly, uint32_t rank);
   int8_t classify(uint32_t point, const Plane& plane, double tolerance);
   uint32_t cutPoint(uint32_t a, uint32_t b);
   uint32_t cutVertex(const Corner& a, const Corner& b, uint32_t point);
-  bool clipPlane(const Plane& plane, double tolerance, bool& crossed);
-  bool clipPolygon(const Poly& poly, const Plane& plane, double tolerance, bool& crossed);
+  bool clipPlane(const Plane& plane, uint32_t rank, double tolerance, bool& crossed);
+  bool clipPolygon(const Poly& poly, const Plane& plane, uint32_t rank, double tolerance, bool& crossed);
   void keepOnPlaneEdges(uint32_t first, uint32_t count);
   bool cancelSegments();
   bool traceRings(const std::vector<uint64_t>& edgesOfCap);
@@ -231,7 +247,62 @@ bool CellClipper::State::begin(const MeshContainer& c, const SplitOptions& optio
   for (uint32_t p = 0; p < idCount; ++p) idX[p] = pos[p].x, idY[p] = pos[p].y, idZ[p] = pos[p].z;
   triangleIds.resize(m.indices.size());
   for (size_t i = 0; i < m.indices.size(); ++i) triangleIds[i] = ids[m.indices[i]];
+  knownPlanes.clear();
+  knownSigns.clear();
+  knownByBits.reset();
   return true;
+}
+
+namespace {
+
+uint64_t planeBits(const Plane& plane) {
+  const double parts[4] = {plane.normal.x, plane.normal.y, plane.normal.z, plane.offset};
+  uint64_t h = 0x243f6a8885a308d3ull;
+  for (double part : parts) {
+    uint64_t bits;
+    std::memcpy(&bits, &part, sizeof bits);
+    h = (h ^ bits) * 0x100000001b3ull;
+    h ^= h >> 29;
+  }
+  return h;
+}
+
+bool samePlane(const Plane& a, const Plane& b) {
+  return a.normal.x == b.normal.x && a.normal.y == b.normal.y && a.normal.z == b.normal.z && a.offset == b.offset;
+}
+
+}  // namespace
+
+// The signs of every position id against `plane` into `signs`: the negated signs of its opposite
+// plane when a neighbour cell classified that one, else computed and kept. Returns how many are above.
+uint32_t CellClipper::State::planeSigns(const Plane& plane, double tolerance, int8_t* signs) {
+  const uint32_t n = idCount;  // a local: the byte stores below could alias a member
+  const Plane opposite{-plane.normal, -plane.offset};
+  const uint32_t known = knownByBits.get(planeBits(opposite));
+  uint32_t above = 0;
+  if (known != kNone && samePlane(knownPlanes[known].plane, opposite) && knownPlanes[known].tolerance == tolerance) {
+    const int8_t* from = knownSigns.data() + knownPlanes[known].at;
+    for (uint32_t p = 0; p < n; ++p) signs[p] = int8_t(-from[p]);
+    for (uint32_t p = 0; p < n; ++p) above += uint32_t(signs[p] > 0);
+    return above;
+  }
+  // One array per coordinate, the products summed as glm::dot does: the same bits, in vector lanes.
+  const double* x = idX.data();
+  const double* y = idY.data();
+  const double* z = idZ.data();
+  const double nx = plane.normal.x, ny = plane.normal.y, nz = plane.normal.z;
+  const double offset = plane.offset;
+  for (uint32_t p = 0; p < n; ++p) {
+    const double d = ((nx * x[p] + ny * y[p]) + nz * z[p]) - offset;
+    signs[p] = int8_t(int(d > tolerance) - int(d < -tolerance));  // as classify() decides
+  }
+  for (uint32_t p = 0; p < n; ++p) above += uint32_t(signs[p] > 0);
+  if (knownByBits.get(planeBits(plane)) == kNone) {
+    knownByBits.put(planeBits(plane), static_cast<uint32_t>(knownPlanes.size()));
+    knownPlanes.push_back({plane, tolerance, static_cast<uint32_t>(knownSigns.size())});
+    knownSigns.insert(knownSigns.end(), signs, signs + n);
+  }
+  return above;
 }
 
 int8_t CellClipper::State::classify(uint32_t point, const Plane& plane, double tolerance) {
@@ -252,33 +323,24 @@ int8_t CellClipper::State::classify(uint32_t point, const Plane& plane, double t
 // one with most points above first) and, per id, the first plane in that order it is not below.
 void CellClipper::State::classifyIds(const ConvexCell& cell, double tolerance) {
   const uint32_t planes = static_cast<uint32_t>(cell.planes.size());
-  const uint32_t n = idCount;  // a local: the byte stores below could alias a member
+  const uint32_t n = idCount;
   aboveCount.assign(planes, 0);
   planeSign.resize(size_t(planes) * n);
-  // One array per coordinate, the products summed as glm::dot does: the same bits, in vector lanes.
-  const double* x = idX.data();
-  const double* y = idY.data();
-  const double* z = idZ.data();
-  for (uint32_t k = 0; k < planes; ++k) {
-    const double nx = cell.planes[k].normal.x, ny = cell.planes[k].normal.y, nz = cell.planes[k].normal.z;
-    const double offset = cell.planes[k].offset;
-    int8_t* signs = planeSign.data() + size_t(k) * n;
-    for (uint32_t p = 0; p < n; ++p) {
-      const double d = ((nx * x[p] + ny * y[p]) + nz * z[p]) - offset;
-      signs[p] = int8_t(int(d > tolerance) - int(d < -tolerance));  // as classify() decides
-    }
-    uint32_t above = 0;
-    for (uint32_t p = 0; p < n; ++p) above += uint32_t(signs[p] > 0);
-    aboveCount[k] = above;
-  }
+  for (uint32_t k = 0; k < planes; ++k)
+    aboveCount[k] = planeSigns(cell.planes[k], tolerance, planeSign.data() + size_t(k) * n);
   order.resize(planes);
   for (uint32_t k = 0; k < planes; ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return aboveCount[a] > aboveCount[b]; });
   firstMet.assign(n, kNever);
+  lastMet.assign(n, 0);
   uint16_t* met = firstMet.data();
+  uint16_t* last = lastMet.data();
   for (uint32_t r = 0; r < planes; ++r) {
     const int8_t* signs = planeSign.data() + size_t(order[r]) * n;
-    for (uint32_t p = 0; p < n; ++p) met[p] = met[p] == kNever && signs[p] >= 0 ? uint16_t(r) : met[p];
+    for (uint32_t p = 0; p < n; ++p) {
+      met[p] = met[p] == kNever && signs[p] >= 0 ? uint16_t(r) : met[p];
+      last[p] = signs[p] >= 0 ? uint16_t(r) : last[p];
+    }
   }
 }
 
@@ -305,7 +367,7 @@ void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
   if (cell.planes.size() >= kNever) {  // beyond the first-plane ranks: nothing is left out
     order.resize(cell.planes.size());
     for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
-    for (uint32_t t = 0; t < mesh->indices.size() / 3; ++t) pushTriangle(t, true);
+    for (uint32_t t = 0; t < mesh->indices.size() / 3; ++t) pushTriangle(t, true, kNone);
     return;
   }
   classifyIds(cell, tolerance);
@@ -316,13 +378,13 @@ void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
       const int8_t* signs = planeSign.data() + size_t(order[first]) * idCount;
       if (signs[a] > 0 && signs[b] > 0 && signs[c] > 0) continue;
     }
-    pushTriangle(t, first != kNever);
+    pushTriangle(t, first != kNever, std::max({lastMet[a], lastMet[b], lastMet[c]}));
   }
 }
 
-void CellClipper::State::pushTriangle(uint32_t t, bool isActive) {
+void CellClipper::State::pushTriangle(uint32_t t, bool isActive, uint32_t last) {
   std::vector<Corner>& into = isActive ? corners : fixedCorners;
-  (isActive ? active : settled).push_back(Poly{static_cast<uint32_t>(into.size()), 3, t, triangleRun[t]});
+  (isActive ? active : settled).push_back(Poly{static_cast<uint32_t>(into.size()), 3, t, triangleRun[t], last});
   for (int i = 0; i < 3; ++i) into.push_back(Corner{triangleIds[3 * t + i], mesh->indices[3 * t + i]});
 }
 
@@ -389,7 +451,19 @@ void CellClipper::State::keepOnPlaneEdges(uint32_t first, uint32_t count) {
 
 // One polygon against the plane: dropped (above), kept as it is, or clipped (its new corners
 // appended to the corner pool). False: it lies in the plane.
-bool CellClipper::State::clipPolygon(const Poly& poly, const Plane& plane, double tolerance, bool& crossed) {
+// A polygon kept by the plane of `rank`: active for the planes after, or settled when it is below
+// all of them (its corners are, so every part of it is: no later plane visits it).
+void CellClipper::State::keep(const Poly& poly, uint32_t rank) {
+  if (poly.last > rank) {
+    nextActive.push_back(poly);
+    return;
+  }
+  settled.push_back(Poly{static_cast<uint32_t>(fixedCorners.size()), poly.count, poly.source, poly.run, poly.last});
+  fixedCorners.insert(fixedCorners.end(), corners.begin() + poly.first, corners.begin() + poly.first + poly.count);
+}
+
+bool CellClipper::State::clipPolygon(const Poly& poly, const Plane& plane, uint32_t rank, double tolerance,
+                                     bool& crossed) {
   int8_t s[kMaxCorners];
   bool anyAbove = false, anyBelow = false, anyOn = false;
   for (uint32_t i = 0; i < poly.count; ++i) {
@@ -400,8 +474,8 @@ bool CellClipper::State::clipPolygon(const Poly& poly, const Plane& plane, doubl
   }
   if (!anyBelow) return anyAbove;  // above (or touching it): dropped; wholly in the plane: refused
   if (!anyAbove) {
-    nextActive.push_back(poly);
     if (anyOn) keepOnPlaneEdges(poly.first, poly.count);
+    keep(poly, rank);
     return true;
   }
   crossed = true;
@@ -419,13 +493,13 @@ bool CellClipper::State::clipPolygon(const Poly& poly, const Plane& plane, doubl
   }
   const uint32_t count = static_cast<uint32_t>(corners.size()) - first;
   if (count > kMaxCorners) return false;
-  nextActive.push_back(Poly{first, count, poly.source, poly.run});
   keepOnPlaneEdges(first, count);
+  keep(Poly{first, count, poly.source, poly.run, poly.last}, rank);
   return true;
 }
 
 // All active polygons against one plane; the kept ones become the active set. False: fall back.
-bool CellClipper::State::clipPlane(const Plane& plane, double tolerance, bool& crossed) {
+bool CellClipper::State::clipPlane(const Plane& plane, uint32_t rank, double tolerance, bool& crossed) {
   ++epoch;
   dist.resize(pos.size());
   sign.resize(pos.size());
@@ -436,7 +510,7 @@ bool CellClipper::State::clipPlane(const Plane& plane, double tolerance, bool& c
   segments.clear();
   crossed = false;
   for (const Poly& poly : active) {
-    if (poly.count > kMaxCorners || !clipPolygon(poly, plane, tolerance, crossed)) return false;
+    if (poly.count > kMaxCorners || !clipPolygon(poly, plane, rank, tolerance, crossed)) return false;
   }
   std::swap(active, nextActive);
   return true;
@@ -587,6 +661,8 @@ bool CellClipper::State::triangulateLoops(const glm::dvec3& u, const glm::dvec3&
     for (size_t h = 0; h < rings.size(); ++h) {
       if (outerOf[h] == o) polygon.push_back(rings[h]);
     }
+    // Most cell faces are convex without holes: fanned at once, ear-clipped only when not.
+    if (polygon.size() == 1 && triangulator.triangulateConvex(flat, polygon[0], capTris, tolerance)) continue;
     if (!triangulator.triangulate(flat, polygon, capTris, tolerance)) return false;
   }
   return true;
@@ -648,7 +724,7 @@ bool CellClipper::State::emitCap(const Cap& c, const Plane& plane, const SplitOp
     capVertex[i] = capVertexOf(loopPoints[i], n, u, v, uv, options);
   }
   for (size_t t = 0; t + 2 < capTris.size(); t += 3) {
-    active.push_back(Poly{static_cast<uint32_t>(corners.size()), 3, kFromCap | k, capRun});
+    active.push_back(Poly{static_cast<uint32_t>(corners.size()), 3, kFromCap | k, capRun, kNone});
     for (int c = 0; c < 3; ++c) corners.push_back(Corner{loopPoints[capTris[t + c]], capVertex[capTris[t + c]]});
   }
   return true;
@@ -708,7 +784,7 @@ CellClipper::Outcome CellClipper::clip(const ConvexCell& cell, uint32_t cellInde
   for (uint32_t i = 0; i < cell.planes.size() && (!s.active.empty() || s.capCount > 0); ++i) {
     const uint32_t k = s.order[i];
     bool crossed = false;
-    if (!s.clipPlane(cell.planes[k], tolerance, crossed)) return Outcome::Fallback;
+    if (!s.clipPlane(cell.planes[k], i, tolerance, crossed)) return Outcome::Fallback;
     made += crossed ? 1 : 0;
     if (!s.capPlane(cell, k, tolerance)) return Outcome::Fallback;
   }

@@ -51,9 +51,8 @@ void addFace(ConvexPolytope& p, const std::vector<uint32_t>& loop) {
 // Reusable memory of the clips of one shrink (and of a single clip).
 struct ClipScratch {
   std::vector<double> dist;
-  std::vector<uint32_t> kept;
   std::vector<std::pair<uint64_t, uint32_t>> crossings;  // edge key -> section vertex
-  std::vector<uint32_t> section, loop, ring;
+  std::vector<uint32_t> section, ring;
   std::vector<std::pair<uint32_t, uint32_t>> merges;  // section points merged into a ring point
   std::vector<std::pair<uint32_t, uint32_t>> hole;    // directed edges around the hole a clip leaves
   std::vector<char> cancelled;
@@ -482,7 +481,7 @@ struct ShrinkScratch {
   std::vector<uint32_t> origin;  // per output vertex, the input vertex it moved from
   std::vector<std::pair<uint32_t, uint32_t>> chords;
   std::vector<std::pair<uint32_t, uint32_t>> fan;  // (order key, output vertex)
-  std::vector<uint32_t> loop;
+  ConvexPolytope step, collapsed;                   // the shrink's polytope after a change, and the next
 };
 
 ShrinkScratch& threadShrinkScratch() {
@@ -580,7 +579,7 @@ bool moveWhole(const ConvexPolytope& p, const glm::dvec3& v, const uint32_t* fac
 // (count - 1, 0) inwards, each chord taking the first apex whose point passes all the planes.
 bool splitVertex(const ConvexPolytope& p, uint32_t v, const uint32_t* faces, uint32_t count, double margin,
                  double tolerance, ConvexPolytope& out, ShrinkScratch& s) {
-  const size_t first = out.vertices.size();
+  const size_t first = out.vertices.size(), firstMoved = s.moved.size();
   s.chords.assign(1, {0u, count - 1});
   while (!s.chords.empty()) {
     const auto [a, b] = s.chords.back();
@@ -599,7 +598,20 @@ bool splitVertex(const ConvexPolytope& p, uint32_t v, const uint32_t* faces, uin
     s.chords.emplace_back(a, apex);
     s.chords.emplace_back(apex, b);
   }
-  for (size_t i = first; i < out.vertices.size(); ++i)  // normals on one circle give points that coincide
+  // Normals on one circle (or nearly: within the tolerance) give points that coincide: all of them,
+  // the vertex stays whole there (each point is below all its moved planes); some of them, the
+  // clips decide.
+  bool allAtFirst = true;
+  for (size_t i = first + 1; i < out.vertices.size(); ++i)
+    allAtFirst = allAtFirst && glm::length(out.vertices[i] - out.vertices[first]) <= tolerance;
+  if (allAtFirst) {
+    s.moved.resize(firstMoved);
+    s.moved.push_back({0, 0, 0, uint32_t(first), true});
+    out.vertices.resize(first + 1);
+    s.origin.resize(first + 1);
+    return true;
+  }
+  for (size_t i = first; i < out.vertices.size(); ++i)
     for (size_t j = first; j < i; ++j)
       if (glm::length(out.vertices[i] - out.vertices[j]) <= tolerance) return false;
   return true;
@@ -681,14 +693,106 @@ bool shrunkHolds(const ConvexPolytope& p, double tolerance, const ConvexPolytope
   return true;
 }
 
-// The shrink where moving the faces keeps them all (vertices may split): linear in the size of `p`
-// apart from the final check. False, with `out` unusable, where the clips must decide.
+// The margin, at most `margin`, at which the first edge of `p` shrinks to nothing, from the moved
+// polytope `out` at `margin` (moveVertices and writeLoops): every moved vertex is the meet of three
+// moved planes, so it moves on a line, v + (t / margin) (x - v), and an edge between the vertices
+// moved from its two ends keeps its direction, its length falling linearly to nothing at t =
+// margin / (1 - lambda), lambda its length at `margin` over its length in `p` (signed).
+double firstCollapse(const ConvexPolytope& p, double margin, const ConvexPolytope& out, const ShrinkScratch& s) {
+  double first = margin;
+  for (const ConvexPolytope::Face& f : out.faces) {
+    for (uint32_t i = 0; i < f.count; ++i) {
+      const uint32_t a = out.corners[f.first + i], b = out.corners[f.first + (i + 1 == f.count ? 0 : i + 1)];
+      if (s.origin[a] == s.origin[b]) continue;  // an edge a split made: it grows
+      const glm::dvec3 before = p.vertices[s.origin[b]] - p.vertices[s.origin[a]];
+      const double lambda = glm::dot(out.vertices[b] - out.vertices[a], before) / glm::dot(before, before);
+      if (lambda < 1.0 - 1e-12) first = std::min(first, margin / (1.0 - lambda));
+    }
+  }
+  return first;
+}
+
+// `p` shrunk by `t` (below the first collapse at `margin`, or at it) from the moved polytope `out` at
+// `margin`: every vertex moved back along its line to `t`, the ends of every edge that has shrunk
+// to nothing by then (within a relative 1e-9 of it) merged, the loops cleaned of repeated corners
+// and the faces left with fewer than three dropped (a small face that vanished).
+void collapseAt(const ConvexPolytope& p, double margin, double t, ConvexPolytope& out, ShrinkScratch& s,
+                ClipScratch& clip) {
+  const double share = t / margin;
+  for (uint32_t v = 0; v < out.vertices.size(); ++v) {
+    const glm::dvec3& from = p.vertices[s.origin[v]];
+    out.vertices[v] = from + share * (out.vertices[v] - from);
+  }
+  std::vector<uint32_t>& root = s.cursor;
+  root.resize(out.vertices.size());
+  for (uint32_t v = 0; v < root.size(); ++v) root[v] = v;
+  auto find = [&](uint32_t x) {
+    while (root[x] != x) x = root[x] = root[root[x]];
+    return x;
+  };
+  const double limit = t * (1.0 + 1e-9);
+  // Lengths at t are tiny exactly where the edges collapse; decide on the times, not the lengths.
+  for (const ConvexPolytope::Face& f : out.faces) {
+    for (uint32_t i = 0; i < f.count; ++i) {
+      const uint32_t a = out.corners[f.first + i], b = out.corners[f.first + (i + 1 == f.count ? 0 : i + 1)];
+      if (s.origin[a] == s.origin[b]) continue;
+      const glm::dvec3 before = p.vertices[s.origin[b]] - p.vertices[s.origin[a]];
+      const glm::dvec3 at = out.vertices[b] - out.vertices[a];  // the edge at t
+      // lambda(t) = 1 - (t / tEdge): the edge collapses by `limit` when lambda(t) <= 1 - t / limit.
+      const double lambda = glm::dot(at, before) / glm::dot(before, before);
+      if (lambda <= 1.0 - t / limit) root[find(a)] = find(b);
+    }
+  }
+  ConvexPolytope& next = s.collapsed;
+  next.corners.clear();
+  next.faces.clear();
+  for (const ConvexPolytope::Face& f : out.faces) {
+    ConvexPolytope::Face face = f;
+    face.offset += margin - t;
+    face.first = uint32_t(next.corners.size());
+    for (uint32_t i = 0; i < f.count; ++i) {
+      const uint32_t v = find(out.corners[f.first + i]);
+      if (next.corners.size() == face.first || next.corners.back() != v) next.corners.push_back(v);
+    }
+    while (next.corners.size() > face.first + 1 && next.corners.back() == next.corners[face.first]) next.corners.pop_back();
+    face.count = uint32_t(next.corners.size()) - face.first;
+    if (face.count < 3) {
+      next.corners.resize(face.first);
+      continue;
+    }
+    next.faces.push_back(face);
+  }
+  std::swap(next.vertices, out.vertices);
+  compact(next, clip);
+  std::swap(out, next);
+}
+
+// The shrink followed through the changes of its faces: moved in place (vertices may split) up to
+// the first edge that shrinks to nothing, that edge's ends merged there (a vertex where four faces
+// meet, which the next step splits the other way: the edge turned over; a face whose edges all went
+// vanished), and on from there, up to a few times. False, with `out` unusable, where the clips must
+// decide (a vertex that cannot be moved, a change that is not one of these, too many changes).
 bool shrinkInPlace(const ConvexPolytope& p, double margin, double tolerance, ConvexPolytope& out) {
+  constexpr int kMaxChanges = 6;
   ShrinkScratch& s = threadShrinkScratch();
-  facesAtVertices(p, s);
-  if (!moveVertices(p, margin, tolerance, out, s)) return false;
-  writeLoops(p, margin, out, s);
-  return shrunkHolds(p, tolerance, out, s);
+  ClipScratch& clip = threadScratch();
+  const ConvexPolytope* from = &p;
+  double left = margin;
+  for (int step = 0; step <= kMaxChanges; ++step) {
+    facesAtVertices(*from, s);
+    if (!moveVertices(*from, left, tolerance, out, s)) return false;
+    writeLoops(*from, left, out, s);
+    // An edge that turns over before `left` is the next change; else the result must hold.
+    const double t = firstCollapse(*from, left, out, s);
+    if (!(t < left)) return shrunkHolds(*from, tolerance, out, s);
+    if (!(t > 0.0)) return false;
+    collapseAt(*from, left, t, out, s, clip);
+    if (out.faces.size() < 4) return false;
+    std::swap(s.step, out);
+    from = &s.step;
+    left -= t;
+  }
+  return false;
 }
 
 }  // namespace

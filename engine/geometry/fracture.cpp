@@ -259,23 +259,32 @@ ConvexCell voronoiCell(std::span<const glm::dvec3> seeds, size_t i, const Convex
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     return glm::length(seeds[a] - seeds[i]) < glm::length(seeds[b] - seeds[i]);
   });
+  // The bisectors nearest first, a batch at a time (one in-place clip by all of a batch's planes),
+  // until a seed is more than twice the cell's reach away: its bisector and all after it miss.
+  constexpr size_t kBatch = 8;
   ConvexPolytope p = box, next;
-  std::vector<Plane> clipped;
-  for (size_t j : order) {
-    // Once a seed is more than twice the cell's reach away, its bisector and all after it miss.
+  std::vector<Plane> candidates;
+  std::vector<HalfSpace> batch;
+  for (size_t at = 0; at < order.size();) {
     double reach = 0.0;
     for (const glm::dvec3& v : p.vertices) reach = std::max(reach, glm::length(v - seeds[i]));
-    if (glm::length(seeds[j] - seeds[i]) > 2.0 * reach + tolerance) break;
-    if (glm::length(seeds[j] - seeds[i]) <= tolerance) continue;  // a repeated seed: no bisector
-    const Plane plane = bisector(seeds[i], seeds[j]);
-    if (farthestAbove(p, plane) <= tolerance) continue;
-    clipPolytope(p, plane.normal, plane.offset, tolerance, next);
+    batch.clear();
+    for (; at < order.size() && batch.size() < kBatch; ++at) {
+      const size_t j = order[at];
+      if (glm::length(seeds[j] - seeds[i]) > 2.0 * reach + tolerance) break;
+      if (glm::length(seeds[j] - seeds[i]) <= tolerance) continue;  // a repeated seed: no bisector
+      const Plane plane = bisector(seeds[i], seeds[j]);
+      if (farthestAbove(p, plane) <= tolerance) continue;
+      batch.push_back({plane.normal, plane.offset});
+      candidates.push_back(plane);
+    }
+    if (batch.empty()) break;
+    clipPolytope(p, batch, tolerance, next);
     std::swap(p, next);
-    clipped.push_back(plane);
     if (p.empty()) return ConvexCell{{}, seeds[i], true};
   }
   // A plane that clipped early may no longer touch the final cell: only those with a vertex on them.
-  for (const Plane& plane : clipped) {
+  for (const Plane& plane : candidates) {
     if (farthestAbove(p, plane) >= -tolerance) cell.planes.push_back(plane);
   }
   return cell;

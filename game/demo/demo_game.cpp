@@ -195,6 +195,10 @@ void DemoGame::createFloor() {
 
 ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const glm::quat& rotation) {
   ecs::World& world = app_->world();
+  // Every spawn of a kind shares the kind's mesh, made at its first spawn (as a game shares an
+  // asset's): the split system then welds and decomposes it once for all of them.
+  std::shared_ptr<const geometry::MeshData>& shared = kindMeshes_[size_t(kind)];
+  const bool known = shared != nullptr;
   geometry::MeshData mesh;
   components::Splitable splitable;
   // Pieces move apart a little (m/s, each along the plane normal away from the cut), so a cut made
@@ -204,21 +208,21 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
   std::string name;
   switch (kind) {
     case ObjectKind::WoodenCube:
-      mesh = geometry::primitives::box(glm::vec3(0.5f));
+      if (!known) mesh = geometry::primitives::box(glm::vec3(0.5f));
       splitable.convexHint = true;
       splitable.density = 600.0;
       look = 0;
       name = "wooden cube";
       break;
     case ObjectKind::MetalSphere:
-      mesh = geometry::primitives::uvSphere(0.5f, 32, 16);
+      if (!known) mesh = geometry::primitives::uvSphere(0.5f, 32, 16);
       splitable.convexHint = true;
       splitable.density = 7800.0;
       look = 1;
       name = "metal sphere";
       break;
     case ObjectKind::MarbleCylinder:
-      mesh = geometry::primitives::cylinder(0.4f, 1.2f, 32);
+      if (!known) mesh = geometry::primitives::cylinder(0.4f, 1.2f, 32);
       splitable.convexHint = true;
       splitable.density = 2700.0;
       splitable.splitImpulse = 1.5;
@@ -226,10 +230,10 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
       name = "marble cylinder";
       break;
     case ObjectKind::MelonEllipsoid:
-      mesh = geometry::primitives::ellipsoid(glm::vec3(0.45f, 0.35f, 0.35f), 32, 16);
+      if (!known) mesh = geometry::primitives::ellipsoid(glm::vec3(0.45f, 0.35f, 0.35f), 32, 16);
       // The outside is rind: the texture's u in [0, 0.5) (procedural_textures.h); the ellipsoid's
       // u runs once around it in [0, 1], kept a texel short of the flesh at the seam.
-      for (glm::vec2& uv : mesh.uv0) uv.x *= 0.49f;
+      for (glm::vec2& uv : mesh.uv0) uv.x *= 0.49f;  // (nothing when the mesh is shared)
       splitable.convexHint = true;
       splitable.density = 950.0;
       splitable.capUvMode = geometry::CapUvMode::NormalizedBounds;
@@ -242,13 +246,13 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
     case ObjectKind::Skinned:
       return spawnCharacter(position, rotation);
     case ObjectKind::Torus:
-      mesh = geometry::primitives::torus(0.5f, 0.2f, 48, 24);
+      if (!known) mesh = geometry::primitives::torus(0.5f, 0.2f, 48, 24);
       splitable.density = 1200.0;
       look = 6;
       name = "torus";
       break;
     case ObjectKind::StoneBlock:
-      mesh = geometry::primitives::box(glm::vec3(0.4f, 0.3f, 0.3f));
+      if (!known) mesh = geometry::primitives::box(glm::vec3(0.4f, 0.3f, 0.3f));
       splitable.convexHint = true;
       splitable.density = 2400.0;
       look = 2;  // marble
@@ -262,7 +266,8 @@ ecs::Entity DemoGame::spawn(ObjectKind kind, const glm::vec3& position, const gl
   object.name = name;
   object.transform.position = position;
   object.transform.rotation = rotation;
-  object.mesh = std::make_shared<geometry::MeshData>(std::move(mesh));
+  if (!known) shared = std::make_shared<const geometry::MeshData>(std::move(mesh));
+  object.mesh = shared;
   object.materials = {looks_[size_t(look)], capLooks_[size_t(look)]};
   object.splitable = splitable;
   components::SplitWorld sw = splitWorld();

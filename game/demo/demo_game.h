@@ -142,6 +142,8 @@ class DemoGame {
   std::shared_ptr<const components::SkinnedAsset> characterAsset_;
   std::shared_ptr<const geometry::MeshData> characterMesh_;
   std::shared_ptr<const geometry::MeshData> figureMesh_;
+  // The generated mesh of each other kind (by ObjectKind), made at its first spawn and shared after.
+  std::array<std::shared_ptr<const geometry::MeshData>, 9> kindMeshes_{};
   std::vector<render::Material> characterMaterials_;
   std::vector<render::TextureHandle> textures_;
 

@@ -191,6 +191,41 @@ TEST(ConvexPolytope, ShrinkSplitsAnApexWhoseMovedFacesNoLongerMeetInOnePoint) {
   EXPECT_TRUE(sameVertices(apex, shrunkByClips(polytopeOfPoints(square), 0.05), 1e-12));
 }
 
+TEST(ConvexPolytope, ShrinkFollowsFacesThatVanishOnTheWay) {
+  // An octahedron whose apex is a short ridge (0.02 long, along x): at a small margin the ridge and
+  // its two thin faces stay; at 0.05 its edges shrink to nothing on the way, the thin faces vanish
+  // and the four faces around meet in one apex on the axis, as clipping by every moved face gives.
+  const std::vector<glm::vec3> ridged = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1},
+                                         {-0.01f, 0, 1}, {0.01f, 0, 1}};
+  const ConvexPolytope roof = polytopeOfPoints(ridged);
+  ASSERT_EQ(roof.faces.size(), 10u);
+  EXPECT_EQ(shrinkPolytope(roof, 0.001).faces.size(), 10u);
+  const ConvexPolytope apex = shrinkPolytope(roof, 0.05);
+  const ConvexPolytope clipped = shrunkByClips(roof, 0.05);
+  ASSERT_FALSE(apex.empty());
+  EXPECT_EQ(apex.faces.size(), 8u);
+  EXPECT_EQ(apex.vertices.size(), 6u);
+  EXPECT_TRUE(convexAndOriented(apex, 1e-12));
+  EXPECT_TRUE(closedOnLoops(apex));
+  EXPECT_TRUE(sameVertices(apex, clipped, 1e-12));
+  EXPECT_NEAR(polytopeVolume(apex), polytopeVolume(clipped), 1e-14);
+  glm::dvec3 lo, hi;
+  polytopeBounds(apex, lo, hi);
+  for (const glm::dvec3& v : apex.vertices)
+    if (v.z > hi.z - 1e-9) {
+      EXPECT_LT(std::abs(v.x) + std::abs(v.y), 1e-12);
+    }
+  // A unit box with one edge bevelled 0.014 wide: moved in by 0.02, the bevel face vanishes and the
+  // box shrinks as if it had none.
+  const ConvexPolytope bevelled = clipPolytope(unitBox(), glm::normalize(glm::dvec3(1, 1, 0)), 0.99 / std::sqrt(2.0), 1e-9);
+  ASSERT_EQ(bevelled.faces.size(), 7u);
+  const ConvexPolytope box = shrinkPolytope(bevelled, 0.02);
+  EXPECT_EQ(box.faces.size(), 6u);
+  EXPECT_EQ(box.vertices.size(), 8u);
+  EXPECT_NEAR(polytopeVolume(box), 0.96 * 0.96 * 0.96, 1e-12);
+  EXPECT_TRUE(sameVertices(box, shrunkByClips(bevelled, 0.02), 1e-12));
+}
+
 TEST(ConvexPolytope, ShrinkIsTheInnerParallelBodyOnCutPartsAndSpheres) {
   // Small margins keep every face (vertices move, some split); large ones make short edges turn over
   // and faces vanish. The shrunk polytope is closed and convex, every face on a moved face plane of
