@@ -305,7 +305,7 @@ uint32_t CellClipper::State::planeSigns(const Plane& plane, double tolerance, in
   return above;
 }
 
-int8_t CellClipper::State::classify(uint32_t point, const Plane& plane, double tolerance) {
+inline int8_t CellClipper::State::classify(uint32_t point, const Plane& plane, double tolerance) {
   if (stamp[point] == epoch) return sign[point];
   const double d = glm::dot(plane.normal, pos[point]) - plane.offset;
   stamp[point] = epoch;
@@ -390,7 +390,7 @@ void CellClipper::State::pushTriangle(uint32_t t, bool isActive, uint32_t last) 
 
 // The point where plane cuts the segment of points a and b (one per pair and plane: interpolated
 // from the lower id, so both polygons of an edge get the same bits).
-uint32_t CellClipper::State::cutPoint(uint32_t a, uint32_t b) {
+inline uint32_t CellClipper::State::cutPoint(uint32_t a, uint32_t b) {
   const uint64_t key = pairKey(a, b);
   uint32_t point = pointCuts.get(key);
   if (point != kNone) return point;
@@ -441,7 +441,7 @@ uint32_t CellClipper::State::cutVertex(const Corner& a, const Corner& b, uint32_
 }
 
 // The on-plane edges of the polygon just written (both ends on the plane), reversed: the cap's border.
-void CellClipper::State::keepOnPlaneEdges(uint32_t first, uint32_t count) {
+inline void CellClipper::State::keepOnPlaneEdges(uint32_t first, uint32_t count) {
   for (uint32_t i = 0; i < count; ++i) {
     const Corner& a = corners[first + i];
     const Corner& b = corners[first + (i + 1 == count ? 0 : i + 1)];
@@ -813,7 +813,7 @@ CellClipper::Outcome CellClipper::clip(const ConvexCell& cell, uint32_t cellInde
 }
 
 // The output vertex of a corner: its attributes copied on first use, its position id likewise.
-uint32_t CellClipper::State::vertexOf(const Corner& c, FracturePiece& piece) {
+inline uint32_t CellClipper::State::vertexOf(const Corner& c, FracturePiece& piece) {
   if (vertexOut[c.vertex] != kNone) return vertexOut[c.vertex];
   const MeshData& m = *mesh;
   MeshData& out = piece.mesh;

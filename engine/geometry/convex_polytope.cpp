@@ -168,7 +168,13 @@ class PolytopeEditor {
     touched_.clear();
     for (uint32_t f = 0; f < faces_.size(); ++f)
       if (faceAlive_[f] && reaches(faces_[f], s, tolerance)) clipFace(f, s, tolerance);
-    if (!holeRing(s)) sectionRing(vertices_, s, n, tolerance);
+    if (!holeRing(s)) {
+      // The section points for the angle ring: the corners of the new loops on the plane.
+      for (const Touched& t : touched_)
+        for (uint32_t i = 0; i < t.count; ++i)
+          if (std::abs(s.dist[pool_[t.first + i]]) <= tolerance) s.section.push_back(pool_[t.first + i]);
+      sectionRing(vertices_, s, n, tolerance);
+    }
     if (s.ring.size() < 3) {  // the cut-off part is a sliver whose section collapses: keep the polytope whole
       vertices_.resize(vertexMark);
       pool_.resize(poolMark);
@@ -307,14 +313,12 @@ class PolytopeEditor {
       const double da = s.dist[a], db = s.dist[b];
       if (da <= tolerance) {
         push(a);
-        if (std::abs(da) <= tolerance) s.section.push_back(a);
       } else {
         skipped = true;
       }
       if ((da < -tolerance && db > tolerance) || (da > tolerance && db < -tolerance)) {
         const uint32_t c = crossing(a, b, s);
         push(c);
-        s.section.push_back(c);
       }
     }
     if ((skipped || skippedFirst) && pool_.size() > first + 1) s.hole.emplace_back(pool_.back(), pool_[first]);
