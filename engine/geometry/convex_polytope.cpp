@@ -758,7 +758,8 @@ void collapseAt(const ConvexPolytope& p, double margin, double t, ConvexPolytope
       const uint32_t v = find(out.corners[f.first + i]);
       if (next.corners.size() == face.first || next.corners.back() != v) next.corners.push_back(v);
     }
-    while (next.corners.size() > face.first + 1 && next.corners.back() == next.corners[face.first]) next.corners.pop_back();
+    while (next.corners.size() > face.first + 1 && next.corners.back() == next.corners[face.first])
+      next.corners.pop_back();
     face.count = uint32_t(next.corners.size()) - face.first;
     if (face.count < 3) {
       next.corners.resize(face.first);
@@ -769,6 +770,15 @@ void collapseAt(const ConvexPolytope& p, double margin, double t, ConvexPolytope
   std::swap(next.vertices, out.vertices);
   compact(next, clip);
   std::swap(out, next);
+}
+
+// Whether every vertex of `shrunk` is below every face plane of `p` moved in by `margin` (the faces
+// that vanished on the way too): the shrink never reaches outside the inner parallel body.
+bool belowMovedFaces(const ConvexPolytope& p, double margin, double tolerance, const ConvexPolytope& shrunk) {
+  for (const ConvexPolytope::Face& f : p.faces)
+    for (const glm::dvec3& x : shrunk.vertices)
+      if (glm::dot(f.normal, x) > f.offset - margin + tolerance) return false;
+  return true;
 }
 
 // The shrink followed through the changes of its faces: moved in place (vertices may split) up to
@@ -788,7 +798,8 @@ bool shrinkInPlace(const ConvexPolytope& p, double margin, double tolerance, Con
     writeLoops(*from, left, out, s);
     // An edge that turns over before `left` is the next change; else the result must hold.
     const double t = firstCollapse(*from, left, out, s);
-    if (!(t < left)) return shrunkHolds(*from, tolerance, out, s);
+    if (!(t < left))
+      return shrunkHolds(*from, tolerance, out, s) && (step == 0 || belowMovedFaces(p, margin, tolerance, out));
     if (!(t > 0.0)) return false;
     collapseAt(*from, left, t, out, s, clip);
     if (out.faces.size() < 4) return false;

@@ -217,7 +217,8 @@ TEST(ConvexPolytope, ShrinkFollowsFacesThatVanishOnTheWay) {
     }
   // A unit box with one edge bevelled 0.014 wide: moved in by 0.02, the bevel face vanishes and the
   // box shrinks as if it had none.
-  const ConvexPolytope bevelled = clipPolytope(unitBox(), glm::normalize(glm::dvec3(1, 1, 0)), 0.99 / std::sqrt(2.0), 1e-9);
+  const ConvexPolytope bevelled =
+      clipPolytope(unitBox(), glm::normalize(glm::dvec3(1, 1, 0)), 0.99 / std::sqrt(2.0), 1e-9);
   ASSERT_EQ(bevelled.faces.size(), 7u);
   const ConvexPolytope box = shrinkPolytope(bevelled, 0.02);
   EXPECT_EQ(box.faces.size(), 6u);
