@@ -2,6 +2,7 @@
 #include "cleave/geometry/cell_clipper.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -32,6 +33,18 @@ class PairTable {
       if (stamps_[i] != epoch_) return kNone;
       if (keys_[i] == key) return values_[i];
     }
+  }
+  // The value of `key`, or kNone after giving it `value` (one probe for both).
+  uint32_t putIfAbsent(uint64_t key, uint32_t value) {
+    if (2 * (count_ + 1) > keys_.size()) grow(2 * keys_.size());
+    size_t i = slot(key);
+    for (; stamps_[i] == epoch_; i = (i + 1) & mask_)
+      if (keys_[i] == key) return values_[i];
+    keys_[i] = key;
+    values_[i] = value;
+    stamps_[i] = epoch_;
+    ++count_;
+    return kNone;
   }
   void put(uint64_t key, uint32_t value) {
     if (2 * (count_ + 1) > keys_.size()) grow(2 * keys_.size());
@@ -93,9 +106,9 @@ struct CellClipper::State {
   std::vector<uint32_t> triangleRun;   // per triangle of the mesh
   uint32_t capRun = 0;
   glm::dmat3 capLinear{1.0}, capInverse{1.0};  // source to cut space (the model's linear part), and back
-  static constexpr uint16_t kNever = 0xffff;
-  std::vector<uint16_t> firstMet;   // per position id: the first plane in clipping order it is not below
-  std::vector<uint16_t> lastMet;    // per position id: the last such plane (0 when there is none)
+  static constexpr uint32_t kMaskedPlanes = 32;  // cells with more planes leave nothing out (startCell)
+  std::vector<uint32_t> notBelow;  // per position id: bit r set when it is not below the plane of rank r
+  std::vector<uint32_t> aboveAt;   // per position id: bit r set when it is above the plane of rank r
   std::vector<double> idX, idY, idZ;  // the position ids' cut-space coordinates, one array each
   std::vector<uint32_t> triangleIds;  // per triangle of the mesh, its corners' position ids
   std::vector<uint32_t> aboveCount, order;  // per cell plane: points above it; the planes in clipping order
@@ -180,6 +193,7 @@ struct CellClipper::State {
   bool oneIsland();
   bool closedOnPoints();
   uint32_t vertexOf(const Corner& c, FracturePiece& piece);
+  void reserveVertices(FracturePiece& piece, size_t vertices, size_t points) const;
   void writePiece(FracturePiece& piece);
   bool finishPiece(FracturePiece& piece);
   bool floatClean(const FracturePiece& piece) const;
@@ -297,8 +311,7 @@ uint32_t CellClipper::State::planeSigns(const Plane& plane, double tolerance, in
     signs[p] = int8_t(int(d > tolerance) - int(d < -tolerance));  // as classify() decides
   }
   for (uint32_t p = 0; p < n; ++p) above += uint32_t(signs[p] > 0);
-  if (knownByBits.get(planeBits(plane)) == kNone) {
-    knownByBits.put(planeBits(plane), static_cast<uint32_t>(knownPlanes.size()));
+  if (knownByBits.putIfAbsent(planeBits(plane), static_cast<uint32_t>(knownPlanes.size())) == kNone) {
     knownPlanes.push_back({plane, tolerance, static_cast<uint32_t>(knownSigns.size())});
     knownSigns.insert(knownSigns.end(), signs, signs + n);
   }
@@ -314,13 +327,10 @@ inline int8_t CellClipper::State::classify(uint32_t point, const Plane& plane, d
   return sign[point];
 }
 
-// The cell's polygons to start from: the mesh's triangles below every plane (none on one either)
-// are settled, as no plane touches them; the others are active. `order`: the planes by how many
-// points lie above them, most first, so that the active polygons become few soonest. (A triangle
-// above a later plane cannot be dropped before that plane comes: the sections of the planes before
-// it need it to close their loops.)
-// Every position id against every plane of the cell (planeSign), the planes in clipping order (the
-// one with most points above first) and, per id, the first plane in that order it is not below.
+// Every position id against every plane of the cell (planeSign); `order`, the planes by how many
+// points lie above them, most first, so that the active polygons become few soonest; and per id,
+// as bits by rank in that order, the planes it is not below and those it is above (for cells of at
+// most kMaskedPlanes planes).
 void CellClipper::State::classifyIds(const ConvexCell& cell, double tolerance) {
   const uint32_t planes = static_cast<uint32_t>(cell.planes.size());
   const uint32_t n = idCount;
@@ -331,24 +341,27 @@ void CellClipper::State::classifyIds(const ConvexCell& cell, double tolerance) {
   order.resize(planes);
   for (uint32_t k = 0; k < planes; ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return aboveCount[a] > aboveCount[b]; });
-  firstMet.assign(n, kNever);
-  lastMet.assign(n, 0);
-  uint16_t* met = firstMet.data();
-  uint16_t* last = lastMet.data();
+  if (planes > kMaskedPlanes) return;
+  notBelow.assign(n, 0);
+  aboveAt.assign(n, 0);
+  uint32_t* met = notBelow.data();
+  uint32_t* above = aboveAt.data();
   for (uint32_t r = 0; r < planes; ++r) {
     const int8_t* signs = planeSign.data() + size_t(order[r]) * n;
     for (uint32_t p = 0; p < n; ++p) {
-      met[p] = met[p] == kNever && signs[p] >= 0 ? uint16_t(r) : met[p];
-      last[p] = signs[p] >= 0 ? uint16_t(r) : last[p];
+      met[p] |= uint32_t(signs[p] >= 0) << r;
+      above[p] |= uint32_t(signs[p] > 0) << r;
     }
   }
 }
 
-// The cell's polygons to clip (active) and those below every plane (settled). A triangle is left
-// out when the clip would drop it without a trace: at the first plane (in clipping order) that any
+// The cell's polygons to clip (active) and those below every plane (settled: no plane touches
+// them). A triangle is left out when the clip would drop it without a trace: at the first plane (in clipping order) that any
 // of its corners is not below, all three are above. It never crosses nor touches a plane before,
 // so no section point, edge or cut comes of it, and leaving it out gives the same piece, the same
-// bits, with far fewer polygons to clip (most of the mesh, for a small cell).
+// bits, with far fewer polygons to clip (most of the mesh, for a small cell). (A triangle above
+// only a later plane cannot be dropped before that plane comes: the sections of the planes before
+// it need it to close their loops.)
 void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
   pos.resize(idCount);
   src.resize(idCount);
@@ -364,21 +377,24 @@ void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
   corners.clear();
   settled.clear();
   active.clear();
-  if (cell.planes.size() >= kNever) {  // beyond the first-plane ranks: nothing is left out
-    order.resize(cell.planes.size());
-    for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
-    for (uint32_t t = 0; t < mesh->indices.size() / 3; ++t) pushTriangle(t, true, kNone);
+  classifyIds(cell, tolerance);
+  const uint32_t triangles = static_cast<uint32_t>(mesh->indices.size() / 3);
+  if (cell.planes.size() > kMaskedPlanes) {  // beyond the masks' ranks: nothing is left out
+    for (uint32_t t = 0; t < triangles; ++t) pushTriangle(t, true, kNone);
     return;
   }
-  classifyIds(cell, tolerance);
-  for (uint32_t t = 0; t < mesh->indices.size() / 3; ++t) {
+  const uint32_t* met = notBelow.data();
+  const uint32_t* above = aboveAt.data();
+  for (uint32_t t = 0; t < triangles; ++t) {
     const uint32_t a = triangleIds[3 * t], b = triangleIds[3 * t + 1], c = triangleIds[3 * t + 2];
-    const uint16_t first = std::min({firstMet[a], firstMet[b], firstMet[c]});
-    if (first != kNever) {
-      const int8_t* signs = planeSign.data() + size_t(order[first]) * idCount;
-      if (signs[a] > 0 && signs[b] > 0 && signs[c] > 0) continue;
+    const uint32_t any = met[a] | met[b] | met[c];
+    if (any == 0) {
+      pushTriangle(t, false, 0);
+      continue;
     }
-    pushTriangle(t, first != kNever, std::max({lastMet[a], lastMet[b], lastMet[c]}));
+    const int first = std::countr_zero(any);  // the first plane any corner is not below
+    if ((above[a] & above[b] & above[c]) >> first & 1) continue;
+    pushTriangle(t, true, uint32_t(31 - std::countl_zero(any)));  // the last such plane
   }
 }
 
@@ -391,12 +407,11 @@ void CellClipper::State::pushTriangle(uint32_t t, bool isActive, uint32_t last) 
 // The point where plane cuts the segment of points a and b (one per pair and plane: interpolated
 // from the lower id, so both polygons of an edge get the same bits).
 inline uint32_t CellClipper::State::cutPoint(uint32_t a, uint32_t b) {
-  const uint64_t key = pairKey(a, b);
-  uint32_t point = pointCuts.get(key);
-  if (point != kNone) return point;
+  const uint32_t point = static_cast<uint32_t>(pos.size());
+  const uint32_t known = pointCuts.putIfAbsent(pairKey(a, b), point);
+  if (known != kNone) return known;
   const uint32_t lo = std::min(a, b), hi = std::max(a, b);
   const double t = dist[lo] / (dist[lo] - dist[hi]);
-  point = static_cast<uint32_t>(pos.size());
   pos.push_back(pos[lo] + t * (pos[hi] - pos[lo]));
   src.push_back(src[lo] + t * (src[hi] - src[lo]));
   donor.push_back(kNone);
@@ -404,22 +419,20 @@ inline uint32_t CellClipper::State::cutPoint(uint32_t a, uint32_t b) {
   dist.push_back(0.0);
   sign.push_back(0);
   stamp.push_back(epoch);
-  pointCuts.put(key, point);
   return point;
 }
 
 // The vertex at cut point `point` between corners a and b: every attribute interpolated from the
 // corner at the lower point id (one vertex per vertex pair and plane: seams keep their sides).
 uint32_t CellClipper::State::cutVertex(const Corner& a, const Corner& b, uint32_t point) {
-  const uint64_t key = pairKey(a.vertex, b.vertex);
-  uint32_t vertex = vertexCuts.get(key);
-  if (vertex != kNone) return vertex;
+  const uint32_t vertex = vertexCount + static_cast<uint32_t>(extra.positions.size());
+  const uint32_t known = vertexCuts.putIfAbsent(pairKey(a.vertex, b.vertex), vertex);
+  if (known != kNone) return known;
   const Corner& lo = a.point < b.point ? a : b;
   const Corner& hi = a.point < b.point ? b : a;
   const double t = dist[lo.point] / (dist[lo.point] - dist[hi.point]);
   const float tf = static_cast<float>(t);
   const MeshData& m = *mesh;
-  vertex = vertexCount + static_cast<uint32_t>(extra.positions.size());
   extra.positions.push_back(glm::vec3(src[point]));
   if (!m.normals.empty()) {
     const glm::vec3 na = attribute(m.normals, extra.normals, lo.vertex), nb = attribute(m.normals, extra.normals, hi.vertex);
@@ -436,7 +449,6 @@ uint32_t CellClipper::State::cutVertex(const Corner& a, const Corner& b, uint32_
     extra.colors.push_back(glm::mix(attribute(m.colors, extra.colors, lo.vertex), attribute(m.colors, extra.colors, hi.vertex), tf));
   }
   if (donor[point] == kNone) donor[point] = vertex;
-  vertexCuts.put(key, vertex);
   return vertex;
 }
 
@@ -751,27 +763,21 @@ bool CellClipper::State::oneIsland() {
   return one;
 }
 
-// Every edge of the polygons met once each way (on points).
+// Every edge of the polygons met once each way (on points): no directed edge twice, and each one's
+// reverse met too (counted when the second of the two comes).
 bool CellClipper::State::closedOnPoints() {
   pointCuts.reset();
   bool closed = true;
-  uint32_t count = 0;
+  uint32_t count = 0, paired = 0;
   forEachPoly([&](const Poly& poly, const Corner* c) {
     for (uint32_t i = 0; i < poly.count && closed; ++i) {
-      const uint64_t e = directedKey(c[i].point, c[i + 1 == poly.count ? 0 : i + 1].point);
-      closed = keyFrom(e) != keyTo(e) && pointCuts.get(e) == kNone;
-      pointCuts.put(e, 0);
+      const uint32_t a = c[i].point, b = c[i + 1 == poly.count ? 0 : i + 1].point;
+      closed = a != b && pointCuts.putIfAbsent(directedKey(a, b), 0) == kNone;
+      paired += pointCuts.get(directedKey(b, a)) != kNone ? 2 : 0;
       ++count;
     }
   });
-  if (!closed) return false;
-  uint32_t matched = 0;
-  forEachPoly([&](const Poly& poly, const Corner* c) {
-    for (uint32_t i = 0; i < poly.count; ++i) {
-      matched += pointCuts.get(directedKey(c[i + 1 == poly.count ? 0 : i + 1].point, c[i].point)) != kNone ? 1 : 0;
-    }
-  });
-  return matched == count;
+  return closed && paired == count;
 }
 
 CellClipper::Outcome CellClipper::clip(const ConvexCell& cell, uint32_t cellIndex, const SplitOptions& options,
@@ -833,13 +839,36 @@ inline uint32_t CellClipper::State::vertexOf(const Corner& c, FracturePiece& pie
   return v;
 }
 
+// Room for `vertices` output vertices (each attribute the mesh has) and `points` welded points:
+// the piece's arrays grow once.
+void CellClipper::State::reserveVertices(FracturePiece& piece, size_t vertices, size_t points) const {
+  const MeshData& m = *mesh;
+  MeshData& out = piece.mesh;
+  out.positions.reserve(vertices);
+  if (!m.normals.empty()) out.normals.reserve(vertices);
+  if (!m.tangents.empty()) out.tangents.reserve(vertices);
+  if (!m.uv0.empty()) out.uv0.reserve(vertices);
+  if (!m.uv1.empty()) out.uv1.reserve(vertices);
+  if (!m.colors.empty()) out.colors.reserve(vertices);
+  piece.weld.positionIds.reserve(vertices);
+  piece.weld.representatives.reserve(points);
+}
+
 // The polygons fanned into triangles, run by run (the mesh's materials in order, then the cap's).
 void CellClipper::State::writePiece(FracturePiece& piece) {
   runCount.assign(runMaterials.size(), 0);
-  forEachPoly([&](const Poly& poly, const Corner*) { runCount[poly.run] += poly.count - 2; });
+  size_t cornerCount = 0, triangles = 0;
+  forEachPoly([&](const Poly& poly, const Corner*) {
+    runCount[poly.run] += poly.count - 2;
+    cornerCount += poly.count;
+    triangles += poly.count - 2;
+  });
   vertexOut.assign(vertexCount + extra.positions.size(), kNone);
   pointOut.assign(pos.size(), kNone);
   MeshData& out = piece.mesh;
+  reserveVertices(piece, std::min(cornerCount, vertexOut.size()), std::min(cornerCount, pointOut.size()));
+  out.indices.reserve(3 * triangles);
+  piece.sourceTriangles.reserve(triangles);
   for (uint32_t run = 0; run < runMaterials.size(); ++run) {
     if (runCount[run] == 0) continue;
     out.submeshes.push_back(SubMesh{static_cast<uint32_t>(out.indices.size()), 3 * runCount[run], runMaterials[run]});

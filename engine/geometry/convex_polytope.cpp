@@ -66,6 +66,7 @@ void compact(ConvexPolytope& p, ClipScratch& s) {
   constexpr uint32_t kUnseen = std::numeric_limits<uint32_t>::max();
   s.remap.assign(p.vertices.size(), kUnseen);
   s.compacted.clear();
+  s.compacted.reserve(p.vertices.size());  // at most one allocation: the buffers change hands below
   for (uint32_t& c : p.corners) {
     if (s.remap[c] == kUnseen) {
       s.remap[c] = uint32_t(s.compacted.size());
@@ -166,8 +167,12 @@ class PolytopeEditor {
     s.section.clear();
     s.hole.clear();
     touched_.clear();
-    for (uint32_t f = 0; f < faces_.size(); ++f)
-      if (faceAlive_[f] && reaches(faces_[f], s, tolerance)) clipFace(f, s, tolerance);
+    for (uint32_t f = 0; f < faces_.size(); ++f) {
+      if (!faceAlive_[f]) continue;
+      const Reach reach = reachOf(faces_[f], s, tolerance);
+      if (reach == Reach::Crossed) clipFace(f, s, tolerance);
+      if (reach == Reach::Above) touched_.push_back({f, uint32_t(pool_.size()), 0});  // no corner kept, no hole edge
+    }
     if (!holeRing(s)) {
       // The section points for the angle ring: the corners of the new loops on the plane.
       for (const Touched& t : touched_)
@@ -201,21 +206,34 @@ class PolytopeEditor {
     return true;
   }
 
-  // The polytope, its vertices numbered in the order the face loops first use them.
+  // The polytope, its vertices numbered in the order the face loops first use them (as compact()
+  // numbers them), each array allocated once.
   void write(ConvexPolytope& out, ClipScratch& s) const {
+    constexpr uint32_t kUnseen = std::numeric_limits<uint32_t>::max();
     out.vertices.clear();
     out.corners.clear();
     out.faces.clear();
+    size_t faces = 0, corners = 0;
+    for (uint32_t f = 0; f < faces_.size(); ++f)
+      if (faceAlive_[f]) ++faces, corners += faces_[f].count;
+    out.faces.reserve(faces);
+    out.corners.reserve(corners);
+    out.vertices.reserve(live_.size());
+    s.remap.assign(vertices_.size(), kUnseen);
     for (uint32_t f = 0; f < faces_.size(); ++f) {
       if (!faceAlive_[f]) continue;
       ConvexPolytope::Face face = faces_[f];
       face.first = uint32_t(out.corners.size());
-      out.corners.insert(out.corners.end(), pool_.begin() + faces_[f].first,
-                         pool_.begin() + faces_[f].first + faces_[f].count);
+      for (uint32_t i = 0; i < face.count; ++i) {
+        const uint32_t v = pool_[faces_[f].first + i];
+        if (s.remap[v] == kUnseen) {
+          s.remap[v] = uint32_t(out.vertices.size());
+          out.vertices.push_back(vertices_[v]);
+        }
+        out.corners.push_back(s.remap[v]);
+      }
       out.faces.push_back(face);
     }
-    out.vertices = vertices_;
-    compact(out, s);
     if (out.empty()) {
       out.vertices.clear();
       out.corners.clear();
@@ -287,10 +305,13 @@ class PolytopeEditor {
     for (const auto& [from, to] : s.merges) s.dist[from] = std::numeric_limits<double>::infinity();
   }
 
-  bool reaches(const ConvexPolytope::Face& face, const ClipScratch& s, double tolerance) const {
-    for (uint32_t i = 0; i < face.count; ++i)
-      if (s.dist[pool_[face.first + i]] > tolerance) return true;
-    return false;
+  // Whether the plane leaves face f whole (every corner within the tolerance or below), drops it
+  // (every corner above) or cuts it.
+  enum class Reach : uint8_t { Below, Above, Crossed };
+  Reach reachOf(const ConvexPolytope::Face& face, const ClipScratch& s, double tolerance) const {
+    uint32_t above = 0;
+    for (uint32_t i = 0; i < face.count; ++i) above += s.dist[pool_[face.first + i]] > tolerance ? 1 : 0;
+    return above == 0 ? Reach::Below : (above == face.count ? Reach::Above : Reach::Crossed);
   }
 
   // The loop of face f below the plane, appended to the pool (Sutherland-Hodgman, one section
@@ -624,6 +645,9 @@ bool splitVertex(const ConvexPolytope& p, uint32_t v, const uint32_t* faces, uin
 // The moved vertices of every input vertex into out.vertices and s.moved.
 bool moveVertices(const ConvexPolytope& p, double margin, double tolerance, ConvexPolytope& out, ShrinkScratch& s) {
   out.vertices.clear();
+  // A vertex of k >= 3 faces gives at most k - 2 (moveWhole refuses fewer than three: false below).
+  const size_t twice = 2 * p.vertices.size();
+  out.vertices.reserve(p.corners.size() > twice ? p.corners.size() - twice : p.vertices.size());
   s.moved.clear();
   s.origin.clear();
   s.firstMoved.resize(p.vertices.size() + 1);
@@ -651,6 +675,15 @@ bool moveVertices(const ConvexPolytope& p, double margin, double tolerance, Conv
 void writeLoops(const ConvexPolytope& p, double margin, ConvexPolytope& out, ShrinkScratch& s) {
   out.corners.clear();
   out.faces.clear();
+  // Each moved vertex is in the loops of its faces: a whole one in all those of its input vertex, a
+  // split one in three.
+  size_t corners = 0;
+  for (uint32_t v = 0; v < p.vertices.size(); ++v) {
+    const uint32_t splits = s.firstMoved[v + 1] - s.firstMoved[v];
+    corners += s.moved[s.firstMoved[v]].whole ? s.firstFace[v + 1] - s.firstFace[v] : 3 * splits;
+  }
+  out.corners.reserve(corners);
+  out.faces.reserve(p.faces.size());
   for (uint32_t f = 0; f < p.faces.size(); ++f) {
     ConvexPolytope::Face face = p.faces[f];
     face.offset -= margin;
