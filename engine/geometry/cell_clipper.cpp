@@ -88,7 +88,13 @@ struct Poly {
   uint32_t source;        // the container's triangle, or kFromCap | plane
   uint32_t run;           // output material run
   uint32_t last;          // the last plane (clipping order) it is not below: settled once past it
+  uint32_t touch;         // bit r: a corner may not be below the plane of rank r (clear: all are)
 };
+
+constexpr uint32_t kMayTouchAll = 0xffffffffu;  // clipped polygons and caps: classified at every plane
+
+// Whether the plane of `rank` may reach the polygon (ranks past the mask's bits always may).
+inline bool mayTouch(const Poly& poly, uint32_t rank) { return rank >= 32 || (poly.touch >> rank & 1); }
 
 glm::vec3 normalizedOr(const glm::dvec3& v, const glm::vec3& fallback) {
   const double len = glm::length(v);
@@ -129,15 +135,19 @@ struct CellClipper::State {
   std::vector<glm::dvec3> pos, src;  // cut space, source space
   std::vector<uint32_t> donor;       // a vertex at the point (cap colours), or kNone
   std::vector<uint32_t> cutFrom;     // a cut point: the lower id of the two it lies between
-  std::vector<double> dist;
-  std::vector<int8_t> sign;
-  std::vector<uint32_t> stamp;
+  struct PointClass {
+    double dist = 0.0;    // to the plane (0 within the tolerance)
+    uint32_t stamp = 0;   // the plane (epoch) it was classified for
+    int8_t sign = 0;      // -1 below, 0 on, +1 above
+  };
+  std::vector<PointClass> cls;
   uint32_t epoch = 0;
   MeshData extra;  // vertices the cell adds
 
   std::vector<Corner> fixedCorners;    // of the settled polygons (below every plane: never clipped)
   std::vector<Corner> corners;       // of the active ones (a pool: clipped polygons append theirs)
-  std::vector<Poly> settled, active, nextActive;
+  std::vector<Poly> settled, active;
+  uint32_t activeKept = 0;  // during a plane's clip: the active polygons kept so far (compacted in place)
   PairTable pointCuts, vertexCuts;
 
   // The caps: per plane that made one, its border as directed point pairs (sorted), clipped by
@@ -174,7 +184,7 @@ struct CellClipper::State {
   void startCell(const ConvexCell& cell, double tolerance);
   void classifyIds(const ConvexCell& cell, double tolerance);
   uint32_t planeSigns(const Plane& plane, double tolerance, int8_t* signs);
-  void pushTriangle(uint32_t t, bool isActive, uint32_t last);
+  void pushTriangle(uint32_t t, bool isActive, uint32_t last, uint32_t touch);
   void keep(const Poly& poly, uint32_t rank);
   int8_t classify(uint32_t point, const Plane& plane, double tolerance);
   uint32_t cutPoint(uint32_t a, uint32_t b);
@@ -319,12 +329,13 @@ uint32_t CellClipper::State::planeSigns(const Plane& plane, double tolerance, in
 }
 
 inline int8_t CellClipper::State::classify(uint32_t point, const Plane& plane, double tolerance) {
-  if (stamp[point] == epoch) return sign[point];
+  PointClass& c = cls[point];
+  if (c.stamp == epoch) return c.sign;
   const double d = glm::dot(plane.normal, pos[point]) - plane.offset;
-  stamp[point] = epoch;
-  dist[point] = std::abs(d) <= tolerance ? 0.0 : d;
-  sign[point] = std::abs(d) <= tolerance ? 0 : (d > 0.0 ? 1 : -1);
-  return sign[point];
+  c.stamp = epoch;
+  c.dist = std::abs(d) <= tolerance ? 0.0 : d;
+  c.sign = std::abs(d) <= tolerance ? 0 : (d > 0.0 ? 1 : -1);
+  return c.sign;
 }
 
 // Every position id against every plane of the cell (planeSign); `order`, the planes by how many
@@ -380,7 +391,7 @@ void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
   classifyIds(cell, tolerance);
   const uint32_t triangles = static_cast<uint32_t>(mesh->indices.size() / 3);
   if (cell.planes.size() > kMaskedPlanes) {  // beyond the masks' ranks: nothing is left out
-    for (uint32_t t = 0; t < triangles; ++t) pushTriangle(t, true, kNone);
+    for (uint32_t t = 0; t < triangles; ++t) pushTriangle(t, true, kNone, kMayTouchAll);
     return;
   }
   const uint32_t* met = notBelow.data();
@@ -389,18 +400,18 @@ void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
     const uint32_t a = triangleIds[3 * t], b = triangleIds[3 * t + 1], c = triangleIds[3 * t + 2];
     const uint32_t any = met[a] | met[b] | met[c];
     if (any == 0) {
-      pushTriangle(t, false, 0);
+      pushTriangle(t, false, 0, 0);
       continue;
     }
     const int first = std::countr_zero(any);  // the first plane any corner is not below
     if ((above[a] & above[b] & above[c]) >> first & 1) continue;
-    pushTriangle(t, true, uint32_t(31 - std::countl_zero(any)));  // the last such plane
+    pushTriangle(t, true, uint32_t(31 - std::countl_zero(any)), any);  // the last such plane
   }
 }
 
-void CellClipper::State::pushTriangle(uint32_t t, bool isActive, uint32_t last) {
+void CellClipper::State::pushTriangle(uint32_t t, bool isActive, uint32_t last, uint32_t touch) {
   std::vector<Corner>& into = isActive ? corners : fixedCorners;
-  (isActive ? active : settled).push_back(Poly{static_cast<uint32_t>(into.size()), 3, t, triangleRun[t], last});
+  (isActive ? active : settled).push_back(Poly{static_cast<uint32_t>(into.size()), 3, t, triangleRun[t], last, touch});
   for (int i = 0; i < 3; ++i) into.push_back(Corner{triangleIds[3 * t + i], mesh->indices[3 * t + i]});
 }
 
@@ -411,14 +422,12 @@ inline uint32_t CellClipper::State::cutPoint(uint32_t a, uint32_t b) {
   const uint32_t known = pointCuts.putIfAbsent(pairKey(a, b), point);
   if (known != kNone) return known;
   const uint32_t lo = std::min(a, b), hi = std::max(a, b);
-  const double t = dist[lo] / (dist[lo] - dist[hi]);
+  const double t = cls[lo].dist / (cls[lo].dist - cls[hi].dist);
   pos.push_back(pos[lo] + t * (pos[hi] - pos[lo]));
   src.push_back(src[lo] + t * (src[hi] - src[lo]));
   donor.push_back(kNone);
   cutFrom.push_back(lo);
-  dist.push_back(0.0);
-  sign.push_back(0);
-  stamp.push_back(epoch);
+  cls.push_back(PointClass{0.0, epoch, 0});
   return point;
 }
 
@@ -430,7 +439,7 @@ uint32_t CellClipper::State::cutVertex(const Corner& a, const Corner& b, uint32_
   if (known != kNone) return known;
   const Corner& lo = a.point < b.point ? a : b;
   const Corner& hi = a.point < b.point ? b : a;
-  const double t = dist[lo.point] / (dist[lo.point] - dist[hi.point]);
+  const double t = cls[lo.point].dist / (cls[lo.point].dist - cls[hi.point].dist);
   const float tf = static_cast<float>(t);
   const MeshData& m = *mesh;
   extra.positions.push_back(glm::vec3(src[point]));
@@ -457,7 +466,7 @@ inline void CellClipper::State::keepOnPlaneEdges(uint32_t first, uint32_t count)
   for (uint32_t i = 0; i < count; ++i) {
     const Corner& a = corners[first + i];
     const Corner& b = corners[first + (i + 1 == count ? 0 : i + 1)];
-    if (sign[a.point] == 0 && sign[b.point] == 0) segments.push_back(directedKey(b.point, a.point));
+    if (cls[a.point].sign == 0 && cls[b.point].sign == 0) segments.push_back(directedKey(b.point, a.point));
   }
 }
 
@@ -467,10 +476,10 @@ inline void CellClipper::State::keepOnPlaneEdges(uint32_t first, uint32_t count)
 // all of them (its corners are, so every part of it is: no later plane visits it).
 void CellClipper::State::keep(const Poly& poly, uint32_t rank) {
   if (poly.last > rank) {
-    nextActive.push_back(poly);
+    active[activeKept++] = poly;  // never past the one being clipped
     return;
   }
-  settled.push_back(Poly{static_cast<uint32_t>(fixedCorners.size()), poly.count, poly.source, poly.run, poly.last});
+  settled.push_back(Poly{static_cast<uint32_t>(fixedCorners.size()), poly.count, poly.source, poly.run, poly.last, poly.touch});
   fixedCorners.insert(fixedCorners.end(), corners.begin() + poly.first, corners.begin() + poly.first + poly.count);
 }
 
@@ -506,25 +515,29 @@ bool CellClipper::State::clipPolygon(const Poly& poly, const Plane& plane, uint3
   const uint32_t count = static_cast<uint32_t>(corners.size()) - first;
   if (count > kMaxCorners) return false;
   keepOnPlaneEdges(first, count);
-  keep(Poly{first, count, poly.source, poly.run, poly.last}, rank);
+  keep(Poly{first, count, poly.source, poly.run, poly.last, kMayTouchAll}, rank);
   return true;
 }
 
 // All active polygons against one plane; the kept ones become the active set. False: fall back.
 bool CellClipper::State::clipPlane(const Plane& plane, uint32_t rank, double tolerance, bool& crossed) {
   ++epoch;
-  dist.resize(pos.size());
-  sign.resize(pos.size());
-  stamp.resize(pos.size(), 0);
+  cls.resize(pos.size());
   pointCuts.reset();
   vertexCuts.reset();
-  nextActive.clear();
+  activeKept = 0;
   segments.clear();
   crossed = false;
-  for (const Poly& poly : active) {
+  const size_t count = active.size();
+  for (size_t i = 0; i < count; ++i) {
+    const Poly poly = active[i];  // a copy: keep() writes the kept ones over the front of `active`
+    if (!mayTouch(poly, rank)) {  // a triangle of the mesh wholly below this plane (its ids' signs say so)
+      keep(poly, rank);
+      continue;
+    }
     if (poly.count > kMaxCorners || !clipPolygon(poly, plane, rank, tolerance, crossed)) return false;
   }
-  std::swap(active, nextActive);
+  active.resize(activeKept);
   return true;
 }
 
@@ -590,8 +603,8 @@ bool CellClipper::State::clipCap(Cap& c, const glm::dvec3& capNormal, const Plan
       continue;
     }
     const uint64_t kept = keptEdges.back();
-    if (sign[keyTo(kept)] == 0) ends.push_back(End{0.0, keyTo(kept), true});
-    if (sign[keyFrom(kept)] == 0) ends.push_back(End{0.0, keyFrom(kept), false});
+    if (cls[keyTo(kept)].sign == 0) ends.push_back(End{0.0, keyTo(kept), true});
+    if (cls[keyFrom(kept)].sign == 0) ends.push_back(End{0.0, keyFrom(kept), false});
   }
   if (ends.empty()) {
     c.edges.swap(keptEdges);
@@ -736,7 +749,7 @@ bool CellClipper::State::emitCap(const Cap& c, const Plane& plane, const SplitOp
     capVertex[i] = capVertexOf(loopPoints[i], n, u, v, uv, options);
   }
   for (size_t t = 0; t + 2 < capTris.size(); t += 3) {
-    active.push_back(Poly{static_cast<uint32_t>(corners.size()), 3, kFromCap | k, capRun, kNone});
+    active.push_back(Poly{static_cast<uint32_t>(corners.size()), 3, kFromCap | k, capRun, kNone, kMayTouchAll});
     for (int c = 0; c < 3; ++c) corners.push_back(Corner{loopPoints[capTris[t + c]], capVertex[capTris[t + c]]});
   }
   return true;
