@@ -506,6 +506,7 @@ struct ShrinkScratch {
   std::vector<uint32_t> origin;  // per output vertex, the input vertex it moved from
   std::vector<std::pair<uint32_t, uint32_t>> chords;
   std::vector<std::pair<uint32_t, uint32_t>> fan;  // (order key, output vertex)
+  std::vector<uint32_t> mergedTo;                  // per point of one split: the point it became
   ConvexPolytope step, collapsed;                   // the shrink's polytope after a change, and the next
 };
 
@@ -598,6 +599,33 @@ bool moveWhole(const ConvexPolytope& p, const glm::dvec3& v, const uint32_t* fac
          withinMoved(p, faces, count, margin, tolerance, out, true);
 }
 
+// Points of one split that coincide within the tolerance (normals of four or more of its faces on
+// one circle: their planes still meet in one point there) become one vertex, the first of them; the
+// moved corners that had the others take it, and writeLoops drops the repeated corners.
+void mergeCoincident(size_t first, size_t firstMoved, double tolerance, ConvexPolytope& out, ShrinkScratch& s) {
+  std::vector<uint32_t>& to = s.mergedTo;
+  to.resize(out.vertices.size() - first);
+  uint32_t kept = 0;
+  for (size_t i = first; i < out.vertices.size(); ++i) {
+    size_t j = first;
+    while (j < i && !(to[j - first] == j - first && glm::length(out.vertices[i] - out.vertices[j]) <= tolerance)) ++j;
+    to[i - first] = uint32_t(j - first);  // itself when none before it coincides
+  }
+  for (size_t i = first; i < out.vertices.size(); ++i) {  // compacted: kept points renumbered in order
+    if (to[i - first] != i - first) {
+      to[i - first] = to[to[i - first]];
+      continue;
+    }
+    out.vertices[first + kept] = out.vertices[i];
+    s.origin[first + kept] = s.origin[i];
+    to[i - first] = kept++;
+  }
+  if (kept == out.vertices.size() - first) return;
+  for (size_t m = firstMoved; m < s.moved.size(); ++m) s.moved[m].vertex = uint32_t(first) + to[s.moved[m].vertex - first];
+  out.vertices.resize(first + kept);
+  s.origin.resize(first + kept);
+}
+
 // A vertex whose moved planes no longer meet in one point splits into one vertex per triangle of
 // the Delaunay triangulation of its face normals (in turn around it): a triangle's point is below
 // every other moved plane exactly when no other normal is inside its circle. Built from the edge
@@ -636,9 +664,7 @@ bool splitVertex(const ConvexPolytope& p, uint32_t v, const uint32_t* faces, uin
     s.origin.resize(first + 1);
     return true;
   }
-  for (size_t i = first; i < out.vertices.size(); ++i)
-    for (size_t j = first; j < i; ++j)
-      if (glm::length(out.vertices[i] - out.vertices[j]) <= tolerance) return false;
+  mergeCoincident(first, firstMoved, tolerance, out, s);
   return true;
 }
 
@@ -705,9 +731,15 @@ void writeLoops(const ConvexPolytope& p, double margin, ConvexPolytope& out, Shr
         if (moved[k].a == t || moved[k].b == t || moved[k].c == t)
           s.fan.emplace_back(std::max({away(moved[k].a), away(moved[k].b), away(moved[k].c)}), moved[k].vertex);
       std::sort(s.fan.begin(), s.fan.end(), std::greater<>());
-      for (const auto& [key, vertex] : s.fan) out.corners.push_back(vertex);
+      for (const auto& [key, vertex] : s.fan)
+        if (out.corners.size() == face.first || out.corners.back() != vertex) out.corners.push_back(vertex);
     }
+    while (out.corners.size() > face.first + 1 && out.corners.back() == out.corners[face.first]) out.corners.pop_back();
     face.count = uint32_t(out.corners.size()) - face.first;
+    if (face.count < 3) {  // all its corners merged into fewer than three: no face left (shrunkHolds decides)
+      out.corners.resize(face.first);
+      continue;
+    }
     out.faces.push_back(face);
   }
 }
