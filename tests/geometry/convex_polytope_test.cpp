@@ -191,6 +191,29 @@ TEST(ConvexPolytope, ShrinkSplitsAnApexWhoseMovedFacesNoLongerMeetInOnePoint) {
   EXPECT_TRUE(sameVertices(apex, shrunkByClips(polytopeOfPoints(square), 0.05), 1e-12));
 }
 
+TEST(ConvexPolytope, ShrinkMergesSplitPointsOfFacesWhoseNormalsShareACircle) {
+  // A pyramid whose apex is met by six faces: four lean equally (their normals on one circle about
+  // the axis), two lean further out. Moved inwards, the apex splits in four by the Delaunay of the
+  // normals, two of them the same point (the four equal faces still meet there): one vertex.
+  ConvexPolytope p = unitBox(glm::vec3(4.f));
+  p = clipPolytope(p, glm::dvec3(0, -1, 0), 0.0, 1e-12);
+  const double pi = 3.14159265358979323846;
+  const double lean[6] = {1.0, 1.0, 1.0, 1.0, 0.7, 0.7};
+  for (int k = 0; k < 6; ++k) {
+    const double a = pi / 3.0 * k;
+    const glm::dvec3 n(std::cos(a), lean[k], std::sin(a));  // through the apex (0, 1, 0) and a base line
+    p = clipPolytope(p, n, lean[k], 1e-12);
+  }
+  ASSERT_EQ(p.faces.size(), 7u);
+  const ConvexPolytope shrunk = shrinkPolytope(p, 0.02);
+  const ConvexPolytope clips = shrunkByClips(p, 0.02);
+  ASSERT_FALSE(shrunk.empty());
+  EXPECT_TRUE(convexAndOriented(shrunk, 1e-12));
+  EXPECT_TRUE(closedOnLoops(shrunk));
+  EXPECT_TRUE(sameVertices(shrunk, clips, 1e-9));
+  EXPECT_NEAR(polytopeVolume(shrunk), polytopeVolume(clips), 1e-12);
+}
+
 TEST(ConvexPolytope, ShrinkFollowsFacesThatVanishOnTheWay) {
   // An octahedron whose apex is a short ridge (0.02 long, along x): at a small margin the ridge and
   // its two thin faces stay; at 0.05 its edges shrink to nothing on the way, the thin faces vanish
