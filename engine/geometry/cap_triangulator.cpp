@@ -645,20 +645,21 @@ bool CapTriangulator::triangulateConvex(std::span<const glm::dvec2> points, CapR
   prepareRing(points, ring);
   uint32_t first = ring.begin;
   while (!kept_[first]) ++first;
-  // Strictly convex with one turn: every kept corner turns left, and the turns add up to 2 pi.
-  double turning = 0.0;
-  uint32_t count = 0;
+  // Strictly convex with one turn: every kept corner turns left (by less than pi), and the edge
+  // direction, turning counter-clockwise all the way, passes the +x direction once (from below the
+  // x axis to on or above it: once per full turn).
+  uint32_t count = 0, turns = 0;
   uint32_t p = first;
   do {
     const uint32_t q = nextKept_[p], r = nextKept_[q];
     const glm::dvec2 u = points[q] - points[p], v = points[r] - points[q];
     const double cross = u.x * v.y - u.y * v.x;
     if (!(cross > 0.0)) return false;
-    turning += std::atan2(cross, glm::dot(u, v));
+    turns += u.y < 0.0 && v.y >= 0.0 ? 1 : 0;
     ++count;
     p = q;
   } while (p != first);
-  if (count < 3 || turning > 3.0 * 3.14159265358979323846) return false;
+  if (count < 3 || turns != 1) return false;
   uint32_t a = nextKept_[first];
   while (nextKept_[a] != first) {
     raw_.push_back(first);

@@ -198,8 +198,12 @@ struct CellClipper::State {
   bool capPlane(const ConvexCell& cell, uint32_t k, double tolerance);
   bool emitCap(const Cap& c, const Plane& plane, const SplitOptions& options);
   bool triangulateLoops(const glm::dvec3& u, const glm::dvec3& v);
-  uint32_t capVertexOf(uint32_t point, const glm::dvec3& n, const glm::dvec3& u, const glm::dvec3& v,
-                       const glm::dvec2& uv, const SplitOptions& options);
+  struct CapFrame {
+    glm::vec3 normal, tangent;  // in the source space
+    float handedness;           // the tangent's w
+  };
+  CapFrame capFrame(const glm::dvec3& n, const glm::dvec3& u, const glm::dvec3& v) const;
+  uint32_t capVertexOf(uint32_t point, const CapFrame& frame, const glm::dvec2& uv, const SplitOptions& options);
   bool oneIsland();
   bool closedOnPoints();
   uint32_t vertexOf(const Corner& c, FracturePiece& piece);
@@ -693,22 +697,24 @@ bool CellClipper::State::triangulateLoops(const glm::dvec3& u, const glm::dvec3&
   return true;
 }
 
-// A cap vertex at a loop point: the point's position, the cap's normal and tangent taken back to
-// the source space, the UV in the atlas, the colour of a vertex at the point.
-uint32_t CellClipper::State::capVertexOf(uint32_t point, const glm::dvec3& n, const glm::dvec3& u, const glm::dvec3& v,
-                                         const glm::dvec2& uv, const SplitOptions& options) {
+// A cap's normal and tangent taken back to the source space (one per cap: every vertex shares them).
+CellClipper::State::CapFrame CellClipper::State::capFrame(const glm::dvec3& n, const glm::dvec3& u,
+                                                          const glm::dvec3& v) const {
+  const glm::dvec3 normal = glm::normalize(glm::transpose(capLinear) * n);
+  const glm::dvec3 tangent = glm::normalize(capInverse * u);
+  const float w = glm::dot(glm::cross(normal, tangent), capInverse * v) < 0.0 ? -1.f : 1.f;
+  return CapFrame{glm::vec3(normal), glm::vec3(tangent), w};
+}
+
+// A cap vertex at a loop point: the point's position, the cap's frame, the UV in the atlas, the
+// colour of a vertex at the point.
+uint32_t CellClipper::State::capVertexOf(uint32_t point, const CapFrame& frame, const glm::dvec2& uv,
+                                         const SplitOptions& options) {
   const MeshData& m = *mesh;
-  const glm::dmat3& linear = capLinear;
-  const glm::dmat3& inverse = capInverse;
   const uint32_t vertex = vertexCount + static_cast<uint32_t>(extra.positions.size());
   extra.positions.push_back(glm::vec3(src[point]));
-  const glm::dvec3 normal = glm::normalize(glm::transpose(linear) * n);
-  const glm::dvec3 tangent = glm::normalize(inverse * u);
-  if (!m.normals.empty()) extra.normals.push_back(glm::vec3(normal));
-  if (!m.tangents.empty()) {
-    const float w = glm::dot(glm::cross(normal, tangent), inverse * v) < 0.0 ? -1.f : 1.f;
-    extra.tangents.push_back(glm::vec4(glm::vec3(tangent), w));
-  }
+  if (!m.normals.empty()) extra.normals.push_back(frame.normal);
+  if (!m.tangents.empty()) extra.tangents.push_back(glm::vec4(frame.tangent, frame.handedness));
   const glm::vec2 mapped(glm::dvec2(options.atlasRect.x, options.atlasRect.y) +
                          uv * glm::dvec2(options.atlasRect.z, options.atlasRect.w));
   if (!m.uv0.empty()) extra.uv0.push_back(mapped);
@@ -738,6 +744,7 @@ bool CellClipper::State::emitCap(const Cap& c, const Plane& plane, const SplitOp
     hi = glm::max(hi, planar);
   }
   capVertex.resize(loopPoints.size());
+  const CapFrame frame = capFrame(n, u, v);
   for (size_t i = 0; i < loopPoints.size(); ++i) {
     const glm::dvec3& p = pos[loopPoints[i]];
     const glm::dvec2 planar(glm::dot(p, u), glm::dot(p, v));
@@ -746,7 +753,7 @@ bool CellClipper::State::emitCap(const Cap& c, const Plane& plane, const SplitOp
       const glm::dvec2 size = hi - lo;
       uv = glm::dvec2(size.x > 0.0 ? (planar.x - lo.x) / size.x : 0.0, size.y > 0.0 ? (planar.y - lo.y) / size.y : 0.0);
     }
-    capVertex[i] = capVertexOf(loopPoints[i], n, u, v, uv, options);
+    capVertex[i] = capVertexOf(loopPoints[i], frame, uv, options);
   }
   for (size_t t = 0; t + 2 < capTris.size(); t += 3) {
     active.push_back(Poly{static_cast<uint32_t>(corners.size()), 3, kFromCap | k, capRun, kNone, kMayTouchAll});
