@@ -88,10 +88,11 @@ struct Poly {
   uint32_t source;        // the container's triangle, or kFromCap | plane
   uint32_t run;           // output material run
   uint32_t last;          // the last plane (clipping order) it is not below: settled once past it
-  uint32_t touch;         // bit r: a corner may not be below the plane of rank r (clear: all are)
+  uint32_t touch;         // bit r: a corner of its mesh triangle may not be below the plane of rank r
+                          // (clear: the triangle is below it, so every part of it is)
 };
 
-constexpr uint32_t kMayTouchAll = 0xffffffffu;  // clipped polygons and caps: classified at every plane
+constexpr uint32_t kMayTouchAll = 0xffffffffu;  // caps, and cells past the masks: classified at every plane
 
 // Whether the plane of `rank` may reach the polygon (ranks past the mask's bits always may).
 inline bool mayTouch(const Poly& poly, uint32_t rank) { return rank >= 32 || (poly.touch >> rank & 1); }
@@ -519,7 +520,7 @@ bool CellClipper::State::clipPolygon(const Poly& poly, const Plane& plane, uint3
   const uint32_t count = static_cast<uint32_t>(corners.size()) - first;
   if (count > kMaxCorners) return false;
   keepOnPlaneEdges(first, count);
-  keep(Poly{first, count, poly.source, poly.run, poly.last, kMayTouchAll}, rank);
+  keep(Poly{first, count, poly.source, poly.run, poly.last, poly.touch}, rank);  // part of its triangle
   return true;
 }
 
