@@ -475,8 +475,6 @@ inline void CellClipper::State::keepOnPlaneEdges(uint32_t first, uint32_t count)
   }
 }
 
-// One polygon against the plane: dropped (above), kept as it is, or clipped (its new corners
-// appended to the corner pool). False: it lies in the plane.
 // A polygon kept by the plane of `rank`: active for the planes after, or settled when it is below
 // all of them (its corners are, so every part of it is: no later plane visits it).
 void CellClipper::State::keep(const Poly& poly, uint32_t rank) {
@@ -488,6 +486,8 @@ void CellClipper::State::keep(const Poly& poly, uint32_t rank) {
   fixedCorners.insert(fixedCorners.end(), corners.begin() + poly.first, corners.begin() + poly.first + poly.count);
 }
 
+// One polygon against the plane: dropped (above), kept as it is, or clipped (its new corners
+// appended to the corner pool). False: it lies in the plane.
 bool CellClipper::State::clipPolygon(const Poly& poly, const Plane& plane, uint32_t rank, double tolerance,
                                      bool& crossed) {
   int8_t s[kMaxCorners];

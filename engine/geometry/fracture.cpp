@@ -265,20 +265,26 @@ ConvexCell voronoiCell(std::span<const glm::dvec3> seeds, size_t i, const Convex
   ConvexPolytope p = box, next;
   std::vector<Plane> candidates;
   std::vector<HalfSpace> batch;
-  for (size_t at = 0; at < order.size();) {
+  // A batch holds up to kBatch bisectors that touch the cell (those that miss are passed over).
+  bool done = false;  // no seed is left, or every one left is too far for its bisector to touch the cell
+  for (size_t at = 0; !done;) {
     double reach = 0.0;
     for (const glm::dvec3& v : p.vertices) reach = std::max(reach, glm::length(v - seeds[i]));
     batch.clear();
     for (; at < order.size() && batch.size() < kBatch; ++at) {
       const size_t j = order[at];
-      if (glm::length(seeds[j] - seeds[i]) > 2.0 * reach + tolerance) break;
+      if (glm::length(seeds[j] - seeds[i]) > 2.0 * reach + tolerance) {
+        done = true;
+        break;
+      }
       if (glm::length(seeds[j] - seeds[i]) <= tolerance) continue;  // a repeated seed: no bisector
       const Plane plane = bisector(seeds[i], seeds[j]);
       if (farthestAbove(p, plane) <= tolerance) continue;
       batch.push_back({plane.normal, plane.offset});
       candidates.push_back(plane);
     }
-    if (batch.empty()) break;
+    done = done || at == order.size();
+    if (batch.empty()) continue;
     clipPolytope(p, batch, tolerance, next);
     std::swap(p, next);
     if (p.empty()) return ConvexCell{{}, seeds[i], true};

@@ -130,9 +130,18 @@ void DemoGame::createMaterials() {
   capLooks_[0].baseColor = glm::vec4(1.1f, 1.05f, 0.95f, 1.f);
   capLooks_[1].reflectivity = 0.2f;
   capLooks_[1].baseColor = glm::vec4(0.8f, 0.8f, 0.85f, 1.f);
+  createCharacterLooks();
 
-  // The generated character: its colours by material id, skin soft and slightly glossy, and the
-  // cut caps (material 1) red flesh.
+  floorMaterial_.shading = render::Shading::Checker;
+  floorMaterial_.baseColor = glm::vec4(0.62f, 0.62f, 0.6f, 1.f);
+  floorMaterial_.checkerColor = glm::vec4(0.16f, 0.17f, 0.19f, 1.f);
+  floorMaterial_.checkerScale = 1.f;
+  floorMaterial_.specular = 0.1f;
+}
+
+// The generated character and its multi-part figure: its colours by material id, skin soft and
+// slightly glossy, and the cut caps (material 1) red flesh.
+void DemoGame::createCharacterLooks() {
   const assets::ProceduralCharacter made = assets::makeProceduralCharacter();
   auto asset = std::make_shared<components::SkinnedAsset>();
   asset->skeleton = made.skeleton;
@@ -154,12 +163,6 @@ void DemoGame::createMaterials() {
   flesh.shininess = 48.f;
   if (characterMaterials_.size() < 2) characterMaterials_.resize(2);
   characterMaterials_[1] = flesh;
-
-  floorMaterial_.shading = render::Shading::Checker;
-  floorMaterial_.baseColor = glm::vec4(0.62f, 0.62f, 0.6f, 1.f);
-  floorMaterial_.checkerColor = glm::vec4(0.16f, 0.17f, 0.19f, 1.f);
-  floorMaterial_.checkerScale = 1.f;
-  floorMaterial_.specular = 0.1f;
 }
 
 components::ResourceCounts DemoGame::resources() const {

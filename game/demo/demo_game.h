@@ -70,6 +70,7 @@ class DemoGame {
 
  private:
   void createMaterials();
+  void createCharacterLooks();  // the character's asset, meshes and materials
   void createFloor();
   // Object 6: the generated character, walking a small circle, cut into ragdolls by default.
   ecs::Entity spawnCharacter(const glm::vec3& position, const glm::quat& rotation);

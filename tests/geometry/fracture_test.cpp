@@ -287,6 +287,27 @@ TEST(Fracture, VoronoiCellsTileTheBoxByNearestSeed) {
   }
 }
 
+TEST(Fracture, AVoronoiCellKeepsAFarBisectorBehindNearOnesThatMiss) {
+  // Seed 0 at the origin, a row of seeds along +x from 3 to 4.9 (only the first one's bisector
+  // bounds cell 0: the others' lie beyond it) and one at (0, 5, 0), farther than all but the row's
+  // end: more than a batch of near bisectors that miss comes before the one that bounds the cell
+  // at y = 2.5.
+  std::vector<glm::dvec3> seeds = {glm::dvec3(0.0)};
+  for (int k = 0; k < 20; ++k) seeds.emplace_back(3.0 + 0.1 * k, 0.0, 0.0);
+  seeds.emplace_back(0.0, 5.0, 0.0);
+  const std::vector<ConvexCell> cells = voronoiCells(seeds, glm::dvec3(-10.0), glm::dvec3(10.0));
+  ASSERT_FALSE(cells[0].empty);
+  auto inside = [&](const glm::dvec3& x) {
+    for (const Plane& p : cells[0].planes)
+      if (glm::dot(p.normal, x) > p.offset + 1e-12) return false;
+    return true;
+  };
+  EXPECT_EQ(cells[0].planes.size(), 2u);
+  EXPECT_TRUE(inside(glm::dvec3(-1.0, 2.0, 0.0)));
+  EXPECT_FALSE(inside(glm::dvec3(0.0, 3.0, 0.0))) << "nearer (0, 5, 0) than the origin";
+  EXPECT_FALSE(inside(glm::dvec3(2.0, 0.0, 0.0))) << "nearer (3, 0, 0) than the origin";
+}
+
 TEST(Fracture, SeedsGatherAroundTheImpactPoint) {
   const glm::dvec3 lo(-1.0), hi(1.0), impact(0.6, 0.0, 0.0);
   const std::vector<glm::dvec3> seeds = fractureSeeds(40, 9, lo, hi, impact, 0.3, 0.5);
