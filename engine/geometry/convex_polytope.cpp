@@ -507,6 +507,7 @@ struct ShrinkScratch {
   std::vector<std::pair<uint32_t, uint32_t>> chords;
   std::vector<std::pair<uint32_t, uint32_t>> fan;  // (order key, output vertex)
   std::vector<uint32_t> mergedTo;                  // per point of one split: the point it became
+  std::vector<double> edgeTime;                    // per corner: the margin its edge shrinks to nothing at
   ConvexPolytope step, collapsed;                   // the shrink's polytope after a change, and the next
 };
 
@@ -766,16 +767,20 @@ bool shrunkHolds(const ConvexPolytope& p, double tolerance, const ConvexPolytope
 // polytope `out` at `margin` (moveVertices and writeLoops): every moved vertex is the meet of three
 // moved planes, so it moves on a line, v + (t / margin) (x - v), and an edge between the vertices
 // moved from its two ends keeps its direction, its length falling linearly to nothing at t =
-// margin / (1 - lambda), lambda its length at `margin` over its length in `p` (signed).
-double firstCollapse(const ConvexPolytope& p, double margin, const ConvexPolytope& out, const ShrinkScratch& s) {
+// margin / (1 - lambda), lambda its length at `margin` over its length in `p` (signed). Each edge's
+// time (infinite for one that does not shrink) is kept in s.edgeTime, by the corner it leaves.
+double firstCollapse(const ConvexPolytope& p, double margin, const ConvexPolytope& out, ShrinkScratch& s) {
   double first = margin;
+  s.edgeTime.assign(out.corners.size(), std::numeric_limits<double>::infinity());
   for (const ConvexPolytope::Face& f : out.faces) {
     for (uint32_t i = 0; i < f.count; ++i) {
       const uint32_t a = out.corners[f.first + i], b = out.corners[f.first + (i + 1 == f.count ? 0 : i + 1)];
       if (s.origin[a] == s.origin[b]) continue;  // an edge a split made: it grows
       const glm::dvec3 before = p.vertices[s.origin[b]] - p.vertices[s.origin[a]];
       const double lambda = glm::dot(out.vertices[b] - out.vertices[a], before) / glm::dot(before, before);
-      if (lambda < 1.0 - 1e-12) first = std::min(first, margin / (1.0 - lambda));
+      if (!(lambda < 1.0 - 1e-12)) continue;
+      s.edgeTime[f.first + i] = margin / (1.0 - lambda);
+      first = std::min(first, s.edgeTime[f.first + i]);
     }
   }
   return first;
@@ -800,16 +805,11 @@ void collapseAt(const ConvexPolytope& p, double margin, double t, ConvexPolytope
     return x;
   };
   const double limit = t * (1.0 + 1e-9);
-  // Lengths at t are tiny exactly where the edges collapse; decide on the times, not the lengths.
+  // Lengths at t are tiny exactly where the edges collapse; decide on the times (firstCollapse's).
   for (const ConvexPolytope::Face& f : out.faces) {
     for (uint32_t i = 0; i < f.count; ++i) {
       const uint32_t a = out.corners[f.first + i], b = out.corners[f.first + (i + 1 == f.count ? 0 : i + 1)];
-      if (s.origin[a] == s.origin[b]) continue;
-      const glm::dvec3 before = p.vertices[s.origin[b]] - p.vertices[s.origin[a]];
-      const glm::dvec3 at = out.vertices[b] - out.vertices[a];  // the edge at t
-      // lambda(t) = 1 - (t / tEdge): the edge collapses by `limit` when lambda(t) <= 1 - t / limit.
-      const double lambda = glm::dot(at, before) / glm::dot(before, before);
-      if (lambda <= 1.0 - t / limit) root[find(a)] = find(b);
+      if (s.edgeTime[f.first + i] <= limit) root[find(a)] = find(b);
     }
   }
   ConvexPolytope& next = s.collapsed;
