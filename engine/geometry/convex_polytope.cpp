@@ -478,6 +478,8 @@ ConvexPolytope transformPolytope(const ConvexPolytope& p, const glm::dmat4& m) {
   out.vertices.reserve(p.vertices.size());
   for (const glm::dvec3& v : p.vertices) out.vertices.push_back(glm::dvec3(m * glm::dvec4(v, 1.0)));
   const bool mirrored = glm::determinant(glm::dmat3(m)) < 0.0;
+  out.corners.reserve(p.corners.size());
+  out.faces.reserve(p.faces.size());
   std::vector<uint32_t> loop;
   for (const ConvexPolytope::Face& face : p.faces) {
     loop.assign(p.corners.begin() + face.first, p.corners.begin() + face.first + face.count);
