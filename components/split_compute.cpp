@@ -274,7 +274,8 @@ void clipCarriedPartsToCells(PieceContext& c, SplitOutcome& out, std::span<const
       geometry::ConvexPolytope clipped;
       geometry::clipPolytope(part, halfSpaces, 1e-9, clipped);
       if (clipped.empty()) continue;
-      c.clipped[ownerOf(pieces, bounds, mates, geometry::polytopeCentroid(clipped))].push_back(std::move(clipped));
+      const size_t owner = mates.size() == 1 ? i : ownerOf(pieces, bounds, mates, geometry::polytopeCentroid(clipped));
+      c.clipped[owner].push_back(std::move(clipped));
     }
   }
   c.carried = true;
