@@ -259,8 +259,10 @@ void clipCarriedPartsToCells(PieceContext& c, SplitOutcome& out, std::span<const
   for (size_t i = 0; i < pieces.size(); ++i)
     for (const glm::vec3& p : pieces[i].mesh.positions)
       bounds[i].lo = glm::min(bounds[i].lo, glm::dvec3(p)), bounds[i].hi = glm::max(bounds[i].hi, glm::dvec3(p));
+  std::vector<char> cellDone(cells.size(), 0);  // its parts went to its pieces with an earlier piece
   for (size_t i = 0; i < pieces.size(); ++i) {
-    if (!c.clipped[i].empty()) continue;  // filled with an earlier piece of its cell
+    if (cellDone[pieceCell[i]]) continue;
+    cellDone[pieceCell[i]] = 1;
     const geometry::ConvexCell& cell = cells[pieceCell[i]];
     std::vector<size_t> mates;
     for (size_t j = i; j < pieces.size(); ++j)
@@ -274,7 +276,8 @@ void clipCarriedPartsToCells(PieceContext& c, SplitOutcome& out, std::span<const
       geometry::ConvexPolytope clipped;
       geometry::clipPolytope(part, halfSpaces, 1e-9, clipped);
       if (clipped.empty()) continue;
-      const size_t owner = mates.size() == 1 ? i : ownerOf(pieces, bounds, mates, geometry::polytopeCentroid(clipped));
+      const size_t owner =
+          mates.size() == 1 ? i : ownerOf(pieces, bounds, mates, geometry::polytopeCentroid(clipped));
       c.clipped[owner].push_back(std::move(clipped));
     }
   }

@@ -113,9 +113,11 @@ struct CellClipper::State {
   std::vector<uint32_t> triangleRun;   // per triangle of the mesh
   uint32_t capRun = 0;
   glm::dmat3 capLinear{1.0}, capInverse{1.0};  // source to cut space (the model's linear part), and back
-  static constexpr uint32_t kMaskedPlanes = 32;  // cells with more planes leave nothing out (startCell)
+  static constexpr uint32_t kMaskedPlanes = 32;  // cells with more planes take 16-bit ranks (startWideCell)
   std::vector<uint32_t> notBelow;  // per position id: bit r set when it is not below the plane of rank r
   std::vector<uint32_t> aboveAt;   // per position id: bit r set when it is above the plane of rank r
+  static constexpr uint16_t kNever = 0xffff;
+  std::vector<uint16_t> firstMet, lastMet;  // wide cells, per id: the first and last rank it is not below
   std::vector<double> idX, idY, idZ;  // the position ids' cut-space coordinates, one array each
   std::vector<uint32_t> triangleIds;  // per triangle of the mesh, its corners' position ids
   std::vector<uint32_t> aboveCount, order;  // per cell plane: points above it; the planes in clipping order
@@ -183,6 +185,7 @@ struct CellClipper::State {
 
   bool begin(const MeshContainer& c, const SplitOptions& options);
   void startCell(const ConvexCell& cell, double tolerance);
+  void startWideCell();
   void classifyIds(const ConvexCell& cell, double tolerance);
   uint32_t planeSigns(const Plane& plane, double tolerance, int8_t* signs);
   void pushTriangle(uint32_t t, bool isActive, uint32_t last, uint32_t touch);
@@ -372,12 +375,12 @@ void CellClipper::State::classifyIds(const ConvexCell& cell, double tolerance) {
 }
 
 // The cell's polygons to clip (active) and those below every plane (settled: no plane touches
-// them). A triangle is left out when the clip would drop it without a trace: at the first plane (in clipping order) that any
-// of its corners is not below, all three are above. It never crosses nor touches a plane before,
-// so no section point, edge or cut comes of it, and leaving it out gives the same piece, the same
-// bits, with far fewer polygons to clip (most of the mesh, for a small cell). (A triangle above
-// only a later plane cannot be dropped before that plane comes: the sections of the planes before
-// it need it to close their loops.)
+// them). A triangle is left out when the clip would drop it without a trace: at the first plane (in
+// clipping order) that any of its corners is not below, all three are above. It never crosses nor
+// touches a plane before, so no section point, edge or cut comes of it, and leaving it out gives
+// the same piece, the same bits, with far fewer polygons to clip (most of the mesh, for a small
+// cell). (A triangle above only a later plane cannot be dropped before that plane comes: the
+// sections of the planes before it need it to close their loops.)
 void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
   pos.resize(idCount);
   src.resize(idCount);
@@ -394,11 +397,11 @@ void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
   settled.clear();
   active.clear();
   classifyIds(cell, tolerance);
-  const uint32_t triangles = static_cast<uint32_t>(mesh->indices.size() / 3);
-  if (cell.planes.size() > kMaskedPlanes) {  // beyond the masks' ranks: nothing is left out
-    for (uint32_t t = 0; t < triangles; ++t) pushTriangle(t, true, kNone, kMayTouchAll);
+  if (cell.planes.size() > kMaskedPlanes) {
+    startWideCell();
     return;
   }
+  const uint32_t triangles = static_cast<uint32_t>(mesh->indices.size() / 3);
   const uint32_t* met = notBelow.data();
   const uint32_t* above = aboveAt.data();
   for (uint32_t t = 0; t < triangles; ++t) {
@@ -414,9 +417,43 @@ void CellClipper::State::startCell(const ConvexCell& cell, double tolerance) {
   }
 }
 
+// startCell for a cell of more planes than the masks hold: the first and last rank each id is not
+// below as 16-bit ranks leave out and settle the same triangles; every plane classifies the active
+// ones (no touch bits). Past 65534 planes nothing is left out.
+void CellClipper::State::startWideCell() {
+  const uint32_t planes = static_cast<uint32_t>(order.size());
+  const uint32_t n = idCount;
+  const uint32_t triangles = static_cast<uint32_t>(mesh->indices.size() / 3);
+  if (planes >= kNever) {
+    for (uint32_t t = 0; t < triangles; ++t) pushTriangle(t, true, kNone, kMayTouchAll);
+    return;
+  }
+  firstMet.assign(n, kNever);
+  lastMet.assign(n, 0);
+  uint16_t* met = firstMet.data();
+  uint16_t* last = lastMet.data();
+  for (uint32_t r = 0; r < planes; ++r) {
+    const int8_t* signs = planeSign.data() + size_t(order[r]) * n;
+    for (uint32_t p = 0; p < n; ++p) {
+      met[p] = met[p] == kNever && signs[p] >= 0 ? uint16_t(r) : met[p];
+      last[p] = signs[p] >= 0 ? uint16_t(r) : last[p];
+    }
+  }
+  for (uint32_t t = 0; t < triangles; ++t) {
+    const uint32_t a = triangleIds[3 * t], b = triangleIds[3 * t + 1], c = triangleIds[3 * t + 2];
+    const uint16_t first = std::min({met[a], met[b], met[c]});
+    if (first != kNever) {
+      const int8_t* signs = planeSign.data() + size_t(order[first]) * n;
+      if (signs[a] > 0 && signs[b] > 0 && signs[c] > 0) continue;
+    }
+    pushTriangle(t, first != kNever, std::max({last[a], last[b], last[c]}), kMayTouchAll);
+  }
+}
+
 void CellClipper::State::pushTriangle(uint32_t t, bool isActive, uint32_t last, uint32_t touch) {
   std::vector<Corner>& into = isActive ? corners : fixedCorners;
-  (isActive ? active : settled).push_back(Poly{static_cast<uint32_t>(into.size()), 3, t, triangleRun[t], last, touch});
+  (isActive ? active : settled)
+      .push_back(Poly{static_cast<uint32_t>(into.size()), 3, t, triangleRun[t], last, touch});
   for (int i = 0; i < 3; ++i) into.push_back(Corner{triangleIds[3 * t + i], mesh->indices[3 * t + i]});
 }
 
@@ -482,7 +519,8 @@ void CellClipper::State::keep(const Poly& poly, uint32_t rank) {
     active[activeKept++] = poly;  // never past the one being clipped
     return;
   }
-  settled.push_back(Poly{static_cast<uint32_t>(fixedCorners.size()), poly.count, poly.source, poly.run, poly.last, poly.touch});
+  settled.push_back(
+      Poly{static_cast<uint32_t>(fixedCorners.size()), poly.count, poly.source, poly.run, poly.last, poly.touch});
   fixedCorners.insert(fixedCorners.end(), corners.begin() + poly.first, corners.begin() + poly.first + poly.count);
 }
 

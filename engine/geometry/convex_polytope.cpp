@@ -171,7 +171,7 @@ class PolytopeEditor {
       if (!faceAlive_[f]) continue;
       const Reach reach = reachOf(faces_[f], s, tolerance);
       if (reach == Reach::Crossed) clipFace(f, s, tolerance);
-      if (reach == Reach::Above) touched_.push_back({f, uint32_t(pool_.size()), 0});  // no corner kept, no hole edge
+      if (reach == Reach::Above) touched_.push_back({f, uint32_t(pool_.size()), 0});  // nothing kept, no hole
     }
     if (!holeRing(s)) {
       // The section points for the angle ring: the corners of the new loops on the plane.
@@ -611,7 +611,8 @@ void mergeCoincident(size_t first, size_t firstMoved, double tolerance, ConvexPo
   uint32_t kept = 0;
   for (size_t i = first; i < out.vertices.size(); ++i) {
     size_t j = first;
-    while (j < i && !(to[j - first] == j - first && glm::length(out.vertices[i] - out.vertices[j]) <= tolerance)) ++j;
+    while (j < i && !(to[j - first] == j - first && glm::length(out.vertices[i] - out.vertices[j]) <= tolerance))
+      ++j;
     to[i - first] = uint32_t(j - first);  // itself when none before it coincides
   }
   for (size_t i = first; i < out.vertices.size(); ++i) {  // compacted: kept points renumbered in order
@@ -624,7 +625,8 @@ void mergeCoincident(size_t first, size_t firstMoved, double tolerance, ConvexPo
     to[i - first] = kept++;
   }
   if (kept == out.vertices.size() - first) return;
-  for (size_t m = firstMoved; m < s.moved.size(); ++m) s.moved[m].vertex = uint32_t(first) + to[s.moved[m].vertex - first];
+  for (size_t m = firstMoved; m < s.moved.size(); ++m)
+    s.moved[m].vertex = uint32_t(first) + to[s.moved[m].vertex - first];
   out.vertices.resize(first + kept);
   s.origin.resize(first + kept);
 }
@@ -655,8 +657,8 @@ bool splitVertex(const ConvexPolytope& p, uint32_t v, const uint32_t* faces, uin
     s.chords.emplace_back(apex, b);
   }
   // Normals on one circle (or nearly: within the tolerance) give points that coincide: all of them,
-  // the vertex stays whole there (each point is below all its moved planes); some of them, the
-  // clips decide.
+  // the vertex stays whole there (each point is below all its moved planes); some of them, those
+  // become one vertex (mergeCoincident).
   bool allAtFirst = true;
   for (size_t i = first + 1; i < out.vertices.size(); ++i)
     allAtFirst = allAtFirst && glm::length(out.vertices[i] - out.vertices[first]) <= tolerance;
@@ -700,8 +702,9 @@ bool moveVertices(const ConvexPolytope& p, double margin, double tolerance, Conv
 
 // The face loops of the shrunk polytope: each corner becomes its moved vertex, or for a split
 // vertex the split's triangles holding the face, from the one beside the edge that comes in to the
-// one beside the edge that goes out (the order around the face's own position in the turn).
-void writeLoops(const ConvexPolytope& p, double margin, ConvexPolytope& out, ShrinkScratch& s) {
+// one beside the edge that goes out (the order around the face's own position in the turn). False
+// when merged split points leave a face fewer than three corners.
+bool writeLoops(const ConvexPolytope& p, double margin, ConvexPolytope& out, ShrinkScratch& s) {
   out.corners.clear();
   out.faces.clear();
   // Each moved vertex is in the loops of its faces: a whole one in all those of its input vertex, a
@@ -737,14 +740,13 @@ void writeLoops(const ConvexPolytope& p, double margin, ConvexPolytope& out, Shr
       for (const auto& [key, vertex] : s.fan)
         if (out.corners.size() == face.first || out.corners.back() != vertex) out.corners.push_back(vertex);
     }
-    while (out.corners.size() > face.first + 1 && out.corners.back() == out.corners[face.first]) out.corners.pop_back();
+    while (out.corners.size() > face.first + 1 && out.corners.back() == out.corners[face.first])
+      out.corners.pop_back();
     face.count = uint32_t(out.corners.size()) - face.first;
-    if (face.count < 3) {  // all its corners merged into fewer than three: no face left (shrunkHolds decides)
-      out.corners.resize(face.first);
-      continue;
-    }
+    if (face.count < 3) return false;  // merged into fewer than three corners: the clips decide
     out.faces.push_back(face);
   }
+  return true;
 }
 
 // Whether the shrunk polytope is the inner parallel body: no edge shrank to nothing or turned over,
@@ -862,7 +864,7 @@ bool shrinkInPlace(const ConvexPolytope& p, double margin, double tolerance, Con
   for (int step = 0; step <= kMaxChanges; ++step) {
     facesAtVertices(*from, s);
     if (!moveVertices(*from, left, tolerance, out, s)) return false;
-    writeLoops(*from, left, out, s);
+    if (!writeLoops(*from, left, out, s)) return false;
     // An edge that turns over before `left` is the next change; else the result must hold.
     const double t = firstCollapse(*from, left, out, s);
     if (!(t < left))

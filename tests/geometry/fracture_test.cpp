@@ -157,6 +157,37 @@ TEST(Fracture, TheClipperCarvesTheCellsTheSplitsCarve) {
   }
 }
 
+// Cells of many planes: up to 32 the clipper ranks the planes in bit masks, past that in 16-bit
+// ranks; a polyhedral ball of 24 and of 40 tangent planes, crossing the sphere's surface, carved by
+// the clipper gives the part the splits carve (volumes within the float positions' 1e-7).
+TEST(Fracture, CellsOfManyPlanesAreCarvedByTheClipperAsByTheSplits) {
+  const MeshData sphere = primitives::uvSphere(1.f, 32, 16);
+  MeshContainer container;
+  ASSERT_EQ(container.setMesh(sphere).code, SplitStatus::Ok);
+  for (const uint32_t planes : {24u, 40u}) {
+    SCOPED_TRACE(planes);
+    ConvexCell ball;
+    const glm::dvec3 centre(0.6, 0.1, -0.05);
+    for (uint32_t k = 0; k < planes; ++k) {  // normals spread on the sphere (golden angle)
+      const double z = 1.0 - 2.0 * (k + 0.5) / planes, r = std::sqrt(1.0 - z * z), a = 2.399963229728653 * k;
+      const glm::dvec3 n(r * std::cos(a), r * std::sin(a), z);
+      ball.planes.push_back(Plane{n, glm::dot(n, centre) + 0.55});
+    }
+    const FractureResult clipped = fracture(container, std::span<const ConvexCell>(&ball, 1));
+    const FractureResult split =
+        fracture(container, std::span<const ConvexCell>(&ball, 1), SplitOptions{}, FractureMethod::Splits);
+    ASSERT_EQ(clipped.status, SplitStatus::Ok) << clipped.message;
+    ASSERT_EQ(split.status, SplitStatus::Ok) << split.message;
+    EXPECT_EQ(clipped.carvedBySplits, 0u);
+    ASSERT_EQ(clipped.pieces.size(), 1u);
+    ASSERT_EQ(split.pieces.size(), 1u);
+    EXPECT_GT(clipped.pieces[0].capTriangles, 0u);
+    EXPECT_LT(clipped.pieces[0].capTriangles, clipped.pieces[0].sourceTriangles.size()) << "no mesh surface kept";
+    EXPECT_NEAR(clipped.pieces[0].mass.volume, split.pieces[0].mass.volume, 1e-7 * split.pieces[0].mass.volume);
+    EXPECT_TRUE(testing::manifoldOnFloats(clipped.pieces[0].mesh));
+  }
+}
+
 // A cell wholly inside the solid: the part is the cell itself, all caps (two triangles per face of
 // a cube), with its exact volume; and a cell whose plane holds a face of the mesh is left to the
 // splits, which give the same part.
