@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 
 #include "cleave/geometry/cap_triangulator.h"
 
@@ -46,15 +47,6 @@ class PairTable {
     ++count_;
     return kNone;
   }
-  void put(uint64_t key, uint32_t value) {
-    if (2 * (count_ + 1) > keys_.size()) grow(2 * keys_.size());
-    size_t i = slot(key);
-    while (stamps_[i] == epoch_) i = (i + 1) & mask_;
-    keys_[i] = key;
-    values_[i] = value;
-    stamps_[i] = epoch_;
-    ++count_;
-  }
 
  private:
   size_t slot(uint64_t key) const { return size_t((key * 0x9e3779b97f4a7c15ull) >> 32) & mask_; }
@@ -69,7 +61,7 @@ class PairTable {
     epoch_ = 1;
     count_ = 0;
     for (size_t i = 0; i < keys.size(); ++i) {
-      if (stamps[i] == old && old != 0) put(keys[i], values[i]);
+      if (stamps[i] == old && old != 0) putIfAbsent(keys[i], values[i]);
     }
   }
   std::vector<uint64_t> keys_;
@@ -916,12 +908,12 @@ void CellClipper::State::reserveVertices(FracturePiece& piece, size_t vertices, 
 // The polygons fanned into triangles, run by run (the mesh's materials in order, then the cap's).
 void CellClipper::State::writePiece(FracturePiece& piece) {
   runCount.assign(runMaterials.size(), 0);
-  size_t cornerCount = 0, triangles = 0;
+  size_t cornerCount = 0;
   forEachPoly([&](const Poly& poly, const Corner*) {
     runCount[poly.run] += poly.count - 2;
     cornerCount += poly.count;
-    triangles += poly.count - 2;
   });
+  const size_t triangles = std::accumulate(runCount.begin(), runCount.end(), size_t(0));
   vertexOut.assign(vertexCount + extra.positions.size(), kNone);
   pointOut.assign(pos.size(), kNone);
   MeshData& out = piece.mesh;

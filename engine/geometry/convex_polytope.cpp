@@ -48,6 +48,18 @@ void addFace(ConvexPolytope& p, const std::vector<uint32_t>& loop) {
   p.faces.push_back(face);
 }
 
+// Appends corner `v` to the loop that starts at `first`, unless it repeats the corner before it.
+void pushCorner(std::vector<uint32_t>& corners, size_t first, uint32_t v) {
+  if (corners.size() == first || corners.back() != v) corners.push_back(v);
+}
+
+// Drops the last corners of the loop that starts at `first` while they repeat its first one; its
+// corner count.
+uint32_t closeLoop(std::vector<uint32_t>& corners, size_t first) {
+  while (corners.size() > first + 1 && corners.back() == corners[first]) corners.pop_back();
+  return uint32_t(corners.size() - first);
+}
+
 // Reusable memory of the clips of one shrink (and of a single clip).
 struct ClipScratch {
   std::vector<double> dist;
@@ -61,20 +73,27 @@ struct ClipScratch {
   std::vector<glm::dvec3> compacted;
 };
 
-// Drops vertices no face uses and renumbers the loops (in the order the loops first use them).
-void compact(ConvexPolytope& p, ClipScratch& s) {
+// `corners`, indices into `from`, renumbered to the vertices they use in the order they first use
+// them, those vertices written to `into` (which must not be `from`).
+void renumberByFirstUse(const std::vector<glm::dvec3>& from, std::vector<uint32_t>& corners,
+                        std::vector<glm::dvec3>& into, ClipScratch& s) {
   constexpr uint32_t kUnseen = std::numeric_limits<uint32_t>::max();
-  s.remap.assign(p.vertices.size(), kUnseen);
-  s.compacted.clear();
-  s.compacted.reserve(p.vertices.size());  // at most one allocation: the buffers change hands below
-  for (uint32_t& c : p.corners) {
+  s.remap.assign(from.size(), kUnseen);
+  into.clear();
+  into.reserve(from.size());  // at most one allocation
+  for (uint32_t& c : corners) {
     if (s.remap[c] == kUnseen) {
-      s.remap[c] = uint32_t(s.compacted.size());
-      s.compacted.push_back(p.vertices[c]);
+      s.remap[c] = uint32_t(into.size());
+      into.push_back(from[c]);
     }
     c = s.remap[c];
   }
-  std::swap(p.vertices, s.compacted);
+}
+
+// Drops vertices no face uses and renumbers the loops (in the order the loops first use them).
+void compact(ConvexPolytope& p, ClipScratch& s) {
+  renumberByFirstUse(p.vertices, p.corners, s.compacted, s);
+  std::swap(p.vertices, s.compacted);  // the buffers change hands: the scratch keeps the old one
 }
 
 // The scratch of this thread's clips: clipping allocates nothing once it has grown.
@@ -206,11 +225,9 @@ class PolytopeEditor {
     return true;
   }
 
-  // The polytope, its vertices numbered in the order the face loops first use them (as compact()
-  // numbers them), each array allocated once.
+  // The polytope, its vertices numbered in the order the face loops first use them, each array
+  // allocated once.
   void write(ConvexPolytope& out, ClipScratch& s) const {
-    constexpr uint32_t kUnseen = std::numeric_limits<uint32_t>::max();
-    out.vertices.clear();
     out.corners.clear();
     out.faces.clear();
     size_t faces = 0, corners = 0;
@@ -218,22 +235,15 @@ class PolytopeEditor {
       if (faceAlive_[f]) ++faces, corners += faces_[f].count;
     out.faces.reserve(faces);
     out.corners.reserve(corners);
-    out.vertices.reserve(live_.size());
-    s.remap.assign(vertices_.size(), kUnseen);
     for (uint32_t f = 0; f < faces_.size(); ++f) {
       if (!faceAlive_[f]) continue;
       ConvexPolytope::Face face = faces_[f];
       face.first = uint32_t(out.corners.size());
-      for (uint32_t i = 0; i < face.count; ++i) {
-        const uint32_t v = pool_[faces_[f].first + i];
-        if (s.remap[v] == kUnseen) {
-          s.remap[v] = uint32_t(out.vertices.size());
-          out.vertices.push_back(vertices_[v]);
-        }
-        out.corners.push_back(s.remap[v]);
-      }
+      out.corners.insert(out.corners.end(), pool_.begin() + faces_[f].first,
+                         pool_.begin() + faces_[f].first + faces_[f].count);
       out.faces.push_back(face);
     }
+    renumberByFirstUse(vertices_, out.corners, out.vertices, s);
     if (out.empty()) {
       out.vertices.clear();
       out.corners.clear();
@@ -737,12 +747,9 @@ bool writeLoops(const ConvexPolytope& p, double margin, ConvexPolytope& out, Shr
         if (moved[k].a == t || moved[k].b == t || moved[k].c == t)
           s.fan.emplace_back(std::max({away(moved[k].a), away(moved[k].b), away(moved[k].c)}), moved[k].vertex);
       std::sort(s.fan.begin(), s.fan.end(), std::greater<>());
-      for (const auto& [key, vertex] : s.fan)
-        if (out.corners.size() == face.first || out.corners.back() != vertex) out.corners.push_back(vertex);
+      for (const auto& [key, vertex] : s.fan) pushCorner(out.corners, face.first, vertex);
     }
-    while (out.corners.size() > face.first + 1 && out.corners.back() == out.corners[face.first])
-      out.corners.pop_back();
-    face.count = uint32_t(out.corners.size()) - face.first;
+    face.count = closeLoop(out.corners, face.first);
     if (face.count < 3) return false;  // merged into fewer than three corners: the clips decide
     out.faces.push_back(face);
   }
@@ -824,12 +831,9 @@ void collapseAt(const ConvexPolytope& p, double margin, double t, ConvexPolytope
     face.offset += margin - t;
     face.first = uint32_t(next.corners.size());
     for (uint32_t i = 0; i < f.count; ++i) {
-      const uint32_t v = find(out.corners[f.first + i]);
-      if (next.corners.size() == face.first || next.corners.back() != v) next.corners.push_back(v);
+      pushCorner(next.corners, face.first, find(out.corners[f.first + i]));
     }
-    while (next.corners.size() > face.first + 1 && next.corners.back() == next.corners[face.first])
-      next.corners.pop_back();
-    face.count = uint32_t(next.corners.size()) - face.first;
+    face.count = closeLoop(next.corners, face.first);
     if (face.count < 3) {
       next.corners.resize(face.first);
       continue;
