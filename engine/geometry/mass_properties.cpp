@@ -17,11 +17,8 @@
 #include <cmath>
 #include <vector>
 
-#if defined(__SSE2__) && !defined(CLEAVE_MASS_SCALAR)
-#include <emmintrin.h>
-#endif
-
 #include "cleave/geometry/convex_hull.h"
+#include "cleave/geometry/mass_kernel.h"
 
 namespace cleave::geometry {
 namespace {
@@ -91,98 +88,10 @@ struct Moments {
 Moments integrate(std::span<const glm::dvec3> p, std::span<const uint32_t> indices,
                   const glm::dvec3& ref, bool flip) {
   Moments m;
-  // Two interleaved sums (even and odd triangles) keep more additions in flight; the order is fixed,
-  // so the result is still the same for the same input.
-  struct Sums {
-    double sixV = 0.0, fx = 0.0, fy = 0.0, fz = 0.0;
-    // The second moment is symmetric: xx, yy, zz, xy, yz, zx.
-    double xx = 0.0, yy = 0.0, zz = 0.0, xy = 0.0, yz = 0.0, zx = 0.0;
-    void add(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, bool swapped) {
-      if (swapped) std::swap(b, c);
-      const double det = glm::dot(a, glm::cross(b, c));
-      const glm::dvec3 s = a + b + c;
-      sixV += det;
-      fx += det * s.x;
-      fy += det * s.y;
-      fz += det * s.z;
-      xx += det * (a.x * a.x + b.x * b.x + c.x * c.x + s.x * s.x);
-      yy += det * (a.y * a.y + b.y * b.y + c.y * c.y + s.y * s.y);
-      zz += det * (a.z * a.z + b.z * b.z + c.z * c.z + s.z * s.z);
-      xy += det * (a.x * a.y + b.x * b.y + c.x * c.y + s.x * s.y);
-      yz += det * (a.y * a.z + b.y * b.z + c.y * c.z + s.y * s.z);
-      zx += det * (a.z * a.x + b.z * b.x + c.z * c.x + s.z * s.x);
-    }
-  };
-  Sums even, odd;
-  const size_t count = indices.size() / 3 * 3;
-  size_t t = 0;
-#if defined(__SSE2__) && !defined(CLEAVE_MASS_SCALAR)
-  // The even and odd sums in the two lanes of SSE2 registers: the same operations in the same
-  // order as Sums::add (no fused multiply-add), so the result is bit for bit the scalar one
-  // (CLEAVE_MASS_SCALAR builds the scalar loop; tests/geometry/mass_dump compares the two).
-  {
-    using V = __m128d;
-    auto mul = [](V x, V y) { return _mm_mul_pd(x, y); };
-    auto add = [](V x, V y) { return _mm_add_pd(x, y); };
-    auto sub = [](V x, V y) { return _mm_sub_pd(x, y); };
-    V sixV = _mm_setzero_pd(), fx = sixV, fy = sixV, fz = sixV, xx = sixV, yy = sixV, zz = sixV, xy = sixV,
-      yz = sixV, zx = sixV;
-    const V rx = _mm_set1_pd(ref.x), ry = _mm_set1_pd(ref.y), rz = _mm_set1_pd(ref.z);
-    const int second = flip ? 2 : 1, third = flip ? 1 : 2;
-    for (; t + 5 < count; t += 6) {
-      const glm::dvec3 &a0 = p[indices[t]], &b0 = p[indices[t + second]], &c0 = p[indices[t + third]];
-      const glm::dvec3 &a1 = p[indices[t + 3]], &b1 = p[indices[t + 3 + second]], &c1 = p[indices[t + 3 + third]];
-      const V ax = sub(_mm_set_pd(a1.x, a0.x), rx), ay = sub(_mm_set_pd(a1.y, a0.y), ry),
-              az = sub(_mm_set_pd(a1.z, a0.z), rz);
-      const V bx = sub(_mm_set_pd(b1.x, b0.x), rx), by = sub(_mm_set_pd(b1.y, b0.y), ry),
-              bz = sub(_mm_set_pd(b1.z, b0.z), rz);
-      const V cx = sub(_mm_set_pd(c1.x, c0.x), rx), cy = sub(_mm_set_pd(c1.y, c0.y), ry),
-              cz = sub(_mm_set_pd(c1.z, c0.z), rz);
-      // det = dot(a, cross(b, c))
-      const V kx = sub(mul(by, cz), mul(cy, bz));
-      const V ky = sub(mul(bz, cx), mul(cz, bx));
-      const V kz = sub(mul(bx, cy), mul(cx, by));
-      const V det = add(add(mul(ax, kx), mul(ay, ky)), mul(az, kz));
-      const V sx = add(add(ax, bx), cx), sy = add(add(ay, by), cy), sz = add(add(az, bz), cz);
-      sixV = add(sixV, det);
-      fx = add(fx, mul(det, sx));
-      fy = add(fy, mul(det, sy));
-      fz = add(fz, mul(det, sz));
-      xx = add(xx, mul(det, add(add(add(mul(ax, ax), mul(bx, bx)), mul(cx, cx)), mul(sx, sx))));
-      yy = add(yy, mul(det, add(add(add(mul(ay, ay), mul(by, by)), mul(cy, cy)), mul(sy, sy))));
-      zz = add(zz, mul(det, add(add(add(mul(az, az), mul(bz, bz)), mul(cz, cz)), mul(sz, sz))));
-      xy = add(xy, mul(det, add(add(add(mul(ax, ay), mul(bx, by)), mul(cx, cy)), mul(sx, sy))));
-      yz = add(yz, mul(det, add(add(add(mul(ay, az), mul(by, bz)), mul(cy, cz)), mul(sy, sz))));
-      zx = add(zx, mul(det, add(add(add(mul(az, ax), mul(bz, bx)), mul(cz, cx)), mul(sz, sx))));
-    }
-    auto lanes = [](V v, double& lane0, double& lane1) {
-      lane0 = _mm_cvtsd_f64(v);
-      lane1 = _mm_cvtsd_f64(_mm_unpackhi_pd(v, v));
-    };
-    lanes(sixV, even.sixV, odd.sixV);
-    lanes(fx, even.fx, odd.fx);
-    lanes(fy, even.fy, odd.fy);
-    lanes(fz, even.fz, odd.fz);
-    lanes(xx, even.xx, odd.xx);
-    lanes(yy, even.yy, odd.yy);
-    lanes(zz, even.zz, odd.zz);
-    lanes(xy, even.xy, odd.xy);
-    lanes(yz, even.yz, odd.yz);
-    lanes(zx, even.zx, odd.zx);
-  }
-#else
-  for (; t + 5 < count; t += 6) {
-    even.add(p[indices[t]] - ref, p[indices[t + 1]] - ref, p[indices[t + 2]] - ref, flip);
-    odd.add(p[indices[t + 3]] - ref, p[indices[t + 4]] - ref, p[indices[t + 5]] - ref, flip);
-  }
-#endif
-  if (t + 2 < count) even.add(p[indices[t]] - ref, p[indices[t + 1]] - ref, p[indices[t + 2]] - ref, flip);
-  const double sixV = even.sixV + odd.sixV;
-  const glm::dvec3 first(even.fx + odd.fx, even.fy + odd.fy, even.fz + odd.fz);
-  const double xx = even.xx + odd.xx, yy = even.yy + odd.yy, zz = even.zz + odd.zz;
-  const double xy = even.xy + odd.xy, yz = even.yz + odd.yz, zx = even.zx + odd.zx;
-  m.volume = sixV / 6.0;
-  m.first = first / 24.0;
+  const detail::MomentSums sums = detail::sumMoments(p, indices, ref, flip);
+  const double xx = sums.xx, yy = sums.yy, zz = sums.zz, xy = sums.xy, yz = sums.yz, zx = sums.zx;
+  m.volume = sums.sixV / 6.0;
+  m.first = glm::dvec3(sums.fx, sums.fy, sums.fz) / 24.0;
   glm::dmat3 second(0.0);
   second[0][0] = xx;
   second[1][1] = yy;

@@ -2,11 +2,15 @@
 // Prints the mass properties of a set of generated meshes with every double in hex (%a), so that
 // two builds of the mass integration (the SSE2 lanes and the scalar loop, CLEAVE_MASS_SCALAR) can
 // be compared byte for byte: the claim that they agree bit for bit is tested, not assumed.
+// `mass_dump KERNEL` (sse2, avx2, avx512) uses that vector kernel; it exits with 77 when this CPU
+// cannot run it.
 #include <cstdio>
+#include <cstring>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "cleave/geometry/mass_kernel.h"
 #include "cleave/geometry/mass_properties.h"
 #include "cleave/geometry/primitives.h"
 
@@ -14,7 +18,15 @@ namespace prim = cleave::geometry::primitives;
 using cleave::geometry::MassProperties;
 using cleave::geometry::MeshData;
 
-int main() {
+int main(int argc, char** argv) {
+  using cleave::geometry::detail::MassKernel;
+  if (argc > 1) {
+    const MassKernel kernel = std::strcmp(argv[1], "avx512") == 0 ? MassKernel::Avx512
+                              : std::strcmp(argv[1], "avx2") == 0 ? MassKernel::Avx2
+                                                                  : MassKernel::Sse2;
+    if (!cleave::geometry::detail::massKernelRuns(kernel)) return 77;
+    cleave::geometry::detail::useMassKernel(kernel);
+  }
   std::vector<MeshData> meshes = {prim::uvSphere(0.7f, 48, 25), prim::torus(1.f, 0.3f, 40, 16),
                                   prim::box(glm::vec3(0.5f, 0.2f, 0.3f)), prim::combPrism(8),
                                   prim::tetrahedron(1.f), prim::hollowSphere(1.f, 0.6f, 24, 12)};
