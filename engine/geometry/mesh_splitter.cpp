@@ -214,7 +214,12 @@ class Splitter final : public IMeshSplitter {
   void cutTriangles();
   struct CutOutput;
   void cutRange(uint32_t begin, uint32_t end, CutOutput& out);
-  void countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2]) const;
+  void cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t run, uint32_t (&next)[2],
+                   CutOutput& out);
+  bool wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const;
+  void cutWholeAndCollect(bool unite);
+  void cutPending();
+  void countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2], bool sourceWinding) const;
   // How many chunks (threads) a pass over `count` items uses: threads_ for big passes, else 1.
   uint32_t chunkCount(size_t count) const {
     return threads_ > 1 && count >= kParallelTriangles ? std::min<uint32_t>(threads_, 8) : 1;
@@ -289,7 +294,9 @@ class Splitter final : public IMeshSplitter {
     ContactScratch contactScratch;
   };
   static uint32_t find(SideWork& w, uint32_t x);
+  static void uniteCorners(SideWork& w, uint32_t a, uint32_t b, uint32_t c);
   uint32_t labelSide(int side, SideWork& w, const SplitOptions& options);
+  void uniteSide(int side, SideWork& w, uint32_t weldedCount);
   void islandStats(int side, SideWork& w, uint32_t pieces, bool volumes, bool bounds) const;
   uint32_t mergeCavities(int side, SideWork& w, uint32_t pieces) const;
   uint32_t joinTouching(int side, SideWork& w, uint32_t pieces, const SplitOptions& options) const;
@@ -366,6 +373,13 @@ class Splitter final : public IMeshSplitter {
     uint32_t first[2] = {0, 0};  // where they start in sideTris_
   };
   CutOutput cutMain_;
+  struct Pending {  // cutWholeAndCollect: a crossing triangle and where its parts go
+    uint32_t triangle, run;
+    uint32_t first[2];
+  };
+  std::vector<Pending> pending_;
+  bool united_ = false;        // cutWholeAndCollect united the whole triangles' islands
+  bool dropped_[2] = {false, false};  // dropCollapsedTriangles removed triangles of that side
   std::vector<CutOutput> cutChunks_;  // chunks 1, 2, ... (cutChunks_[c - 1])
   std::vector<SideTriangle>* const sideTris_ = cutMain_.sideTris;
   std::vector<uint32_t>* const planeTris_ = cutMain_.planeTris;
@@ -462,7 +476,16 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   if (checked != SplitStatus::Ok) return checked;
   // 1, 2. Classification per position id, then the crossing edges.
   classify(onPlaneTolerance_);
-  collectCrossingEdges();
+  // On one thread steps 2 and 3 share a pass over the source (the crossing triangles are cut once
+  // their edges are known); on several, the crossing edges are counted first so that each chunk
+  // knows where its triangles go.
+  const bool onePass = chunkCount(mesh_->indices.size() / 3) == 1;
+  if (onePass) {
+    cutWholeAndCollect(options.separateIslands);
+  } else {
+    united_ = false;
+    collectCrossingEdges();
+  }
   std::sort(weldedEdges_.begin(), weldedEdges_.end());
   weldedEdges_.erase(std::unique(weldedEdges_.begin(), weldedEdges_.end()), weldedEdges_.end());
   std::sort(pairs_.begin(), pairs_.end());
@@ -471,7 +494,11 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   makeCutVertices();
   assignSlots(options);
   // 3. Cut the triangles.
-  cutTriangles();
+  if (onePass) {
+    cutPending();
+  } else {
+    cutTriangles();
+  }
   if (sideTris_[0].empty() || sideTris_[1].empty()) {
     return fail(result, SplitStatus::PlaneMissesMesh,
                 "the plane does not cross the mesh: every vertex lies on one side or within the tolerance of it");
@@ -673,6 +700,66 @@ SplitStatus Splitter::capAll(const SplitOptions& options, SplitResult& result) {
   return SplitStatus::Ok;
 }
 
+// The parts of crossing triangle t (corners g in cut-space winding, corner sides s, run slot `run`),
+// written to the side lists at next[0] (above) and next[1] (below), which advance; out's plane and
+// cut lists get their indices.
+void Splitter::cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t run, uint32_t (&next)[2],
+                           CutOutput& out) {
+  auto pushCut = [&](bool planar, int side, uint32_t a, uint32_t b, uint32_t c) {
+    const int index = side > 0 ? 0 : 1;
+    out.cutTris[index].push_back(next[index]);
+    if (planar) out.planeTris[index].push_back(next[index]);  // may have an on-plane edge
+    sideTris_[index][next[index]++] = {{a, b, c}, t | kReachedBit, run};
+  };
+  int zero = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (s[k] == 0) zero = k;
+  }
+  if (zero >= 0) {
+    // Through the on-plane vertex: two triangles, one per side.
+    const uint32_t o = g[zero], x = g[(zero + 1) % 3], y = g[(zero + 2) % 3];
+    const uint32_t c = pairVertex(x, y);
+    pushCut(true, s[(zero + 1) % 3], o, x, c);
+    pushCut(true, s[(zero + 2) % 3], o, c, y);
+    return;
+  }
+  int lone = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (s[k] != s[(k + 1) % 3] && s[k] != s[(k + 2) % 3]) lone = k;
+  }
+  const uint32_t l = g[lone], a = g[(lone + 1) % 3], b = g[(lone + 2) % 3];
+  const uint32_t ca = pairVertex(l, a), cb = pairVertex(l, b);
+  const int loneSide = s[lone], otherSide = -s[lone];
+  pushCut(true, loneSide, l, ca, cb);
+  const glm::dvec3 d1 = cutOf(ca) - cutOf(b), d2 = cutOf(a) - cutOf(cb);
+  if (glm::dot(d1, d1) <= glm::dot(d2, d2)) {
+    pushCut(false, otherSide, ca, a, b);
+    pushCut(true, otherSide, ca, b, cb);
+  } else {
+    pushCut(true, otherSide, ca, a, cb);
+    pushCut(false, otherSide, a, b, cb);
+  }
+}
+
+// Where a source triangle that is not cut goes: side index 0 (above) or 1 (below), and whether it
+// may have an edge on the plane (two or more on-plane corners). Corners g in cut-space winding.
+// False when the plane cuts it.
+bool Splitter::wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const {
+  const bool anyAbove = s[0] > 0 || s[1] > 0 || s[2] > 0;
+  const bool anyBelow = s[0] < 0 || s[1] < 0 || s[2] < 0;
+  if (anyAbove != anyBelow) {
+    index = anyAbove ? 0 : 1;
+    planar = (s[0] == 0) + (s[1] == 0) + (s[2] == 0) >= 2;
+    return true;
+  }
+  if (anyAbove) return false;
+  // A face in the plane: the solid lies behind it, on the side its normal points away from.
+  const glm::dvec3 p0 = cut_[reps_[ids_[g[0]]]], p1 = cut_[reps_[ids_[g[1]]]], p2 = cut_[reps_[ids_[g[2]]]];
+  index = glm::dot(glm::cross(p1 - p0, p2 - p0), normal_) > 0.0 ? 1 : 0;
+  planar = true;
+  return true;
+}
+
 // The triangles [begin, end) of the source, cut or kept, written to the side lists from
 // out.first[side] on (sized already: collectCrossingEdges counted them); out's plane and cut lists
 // get their indices.
@@ -681,27 +768,6 @@ void Splitter::cutRange(uint32_t begin, uint32_t end, CutOutput& out) {
   uint32_t run = 0;
   uint32_t runEnd = mesh.submeshes.empty() ? kNone : mesh.submeshes[0].firstIndex + mesh.submeshes[0].indexCount;
   uint32_t next[2] = {out.first[0], out.first[1]};
-  SideTriangle* side0 = sideTris_[0].data();
-  SideTriangle* side1 = sideTris_[1].data();
-  auto push = [&](int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
-    const int index = side > 0 ? 0 : 1;
-    (index == 0 ? side0 : side1)[next[index]++] = {{a, b, c}, source, run};
-  };
-  // A triangle with two or more on-plane corners may have an edge on the plane.
-  auto pushPlanar = [&](int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
-    out.planeTris[side > 0 ? 0 : 1].push_back(next[side > 0 ? 0 : 1]);
-    push(side, a, b, c, source);
-  };
-  // A part of a cut triangle: its corners may meet at one float position (dropCollapsedTriangles).
-  auto pushCut = [&](bool planar, int side, uint32_t a, uint32_t b, uint32_t c, uint32_t source) {
-    out.cutTris[side > 0 ? 0 : 1].push_back(next[side > 0 ? 0 : 1]);
-    source |= kReachedBit;
-    if (planar) {
-      pushPlanar(side, a, b, c, source);
-    } else {
-      push(side, a, b, c, source);
-    }
-  };
   for (uint32_t t = begin; t < end; ++t) {
     while (runEnd != kNone && 3 * t >= runEnd && run + 1 < mesh.submeshes.size()) {
       ++run;
@@ -710,54 +776,102 @@ void Splitter::cutRange(uint32_t begin, uint32_t end, CutOutput& out) {
     uint32_t g[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
     if (mirrored_) std::swap(g[1], g[2]);  // cut-space outward winding
     const int s[3] = {side_[ids_[g[0]]], side_[ids_[g[1]]], side_[ids_[g[2]]]};
-    const bool anyAbove = s[0] > 0 || s[1] > 0 || s[2] > 0;
-    const bool anyBelow = s[0] < 0 || s[1] < 0 || s[2] < 0;
-    const int zeros = (s[0] == 0) + (s[1] == 0) + (s[2] == 0);
-    if (anyAbove != anyBelow) {
-      if (zeros >= 2) {
-        pushPlanar(anyAbove ? 1 : -1, g[0], g[1], g[2], t | kReachedBit);
-      } else {
-        push(anyAbove ? 1 : -1, g[0], g[1], g[2], t);
-      }
+    int index = 0;
+    bool planar = false;
+    if (!wholeSide(g, s, index, planar)) {
+      cutCrossing(t, g, s, run, next, out);
       continue;
     }
-    if (!anyAbove && !anyBelow) {
-      // A face in the plane: the solid lies behind it, on the side its normal points away from.
-      const glm::dvec3 p0 = cut_[reps_[ids_[g[0]]]], p1 = cut_[reps_[ids_[g[1]]]], p2 = cut_[reps_[ids_[g[2]]]];
-      const double facing = glm::dot(glm::cross(p1 - p0, p2 - p0), normal_);
-      pushPlanar(facing > 0.0 ? -1 : 1, g[0], g[1], g[2], t | kReachedBit);
-      continue;
-    }
-    int zero = -1;
-    for (int k = 0; k < 3; ++k) {
-      if (s[k] == 0) zero = k;
-    }
-    if (zero >= 0) {
-      // Through the on-plane vertex: two triangles, one per side.
-      const uint32_t o = g[zero], x = g[(zero + 1) % 3], y = g[(zero + 2) % 3];
-      const uint32_t c = pairVertex(x, y);
-      pushCut(true, s[(zero + 1) % 3], o, x, c, t);
-      pushCut(true, s[(zero + 2) % 3], o, c, y, t);
-      continue;
-    }
-    int lone = 0;
-    for (int k = 0; k < 3; ++k) {
-      if (s[k] != s[(k + 1) % 3] && s[k] != s[(k + 2) % 3]) lone = k;
-    }
-    const uint32_t l = g[lone], a = g[(lone + 1) % 3], b = g[(lone + 2) % 3];
-    const uint32_t ca = pairVertex(l, a), cb = pairVertex(l, b);
-    const int loneSide = s[lone], otherSide = -s[lone];
-    pushCut(true, loneSide, l, ca, cb, t);
-    const glm::dvec3 d1 = cutOf(ca) - cutOf(b), d2 = cutOf(a) - cutOf(cb);
-    if (glm::dot(d1, d1) <= glm::dot(d2, d2)) {
-      pushCut(false, otherSide, ca, a, b, t);
-      pushCut(true, otherSide, ca, b, cb, t);
-    } else {
-      pushCut(true, otherSide, ca, a, cb, t);
-      pushCut(false, otherSide, a, b, cb, t);
-    }
+    if (planar) out.planeTris[index].push_back(next[index]);
+    sideTris_[index][next[index]++] = {{g[0], g[1], g[2]}, planar ? t | kReachedBit : t, run};
   }
   assert(next[0] == out.first[0] + out.count[0] && next[1] == out.first[1] + out.count[1]);
+}
+
+// Steps 2 and 3 in one pass over the source on one thread. A triangle the plane does not cut goes to
+// its side at once, and with `unite` its corners' islands are united on the way (SideWork::parent
+// over the source's position ids; labelSide adds the rest). A crossing triangle gives its crossing
+// edges and keeps its places in the side lists (as many as it will have parts), to be cut by
+// cutPending once the edges' new vertices are known: the lists come out as cutRange writes them.
+void Splitter::cutWholeAndCollect(bool unite) {
+  const MeshData& mesh = *mesh_;
+  const uint32_t triangleCount = static_cast<uint32_t>(mesh.indices.size() / 3);
+  weldedEdges_.clear();
+  pairs_.clear();
+  pending_.clear();
+  for (int side = 0; side < 2; ++side) {
+    sideTris_[side].clear();
+    planeTris_[side].clear();
+    cutTris_[side].clear();
+    if (unite) {
+      work_[side].parent.resize(idCount_);
+      std::iota(work_[side].parent.begin(), work_[side].parent.end(), 0u);
+    }
+  }
+  united_ = unite;
+  uint32_t run = 0;
+  uint32_t runEnd = mesh.submeshes.empty() ? kNone : mesh.submeshes[0].firstIndex + mesh.submeshes[0].indexCount;
+  for (uint32_t t = 0; t < triangleCount; ++t) {
+    while (runEnd != kNone && 3 * t >= runEnd && run + 1 < mesh.submeshes.size()) {
+      ++run;
+      runEnd = mesh.submeshes[run].firstIndex + mesh.submeshes[run].indexCount;
+    }
+    uint32_t g[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
+    if (mirrored_) std::swap(g[1], g[2]);  // cut-space outward winding
+    const uint32_t id[3] = {ids_[g[0]], ids_[g[1]], ids_[g[2]]};
+    const int s[3] = {side_[id[0]], side_[id[1]], side_[id[2]]};
+    int index = 0;
+    bool planar = false;
+    if (wholeSide(g, s, index, planar)) {
+      std::vector<SideTriangle>& tris = sideTris_[index];
+      if (planar) planeTris_[index].push_back(static_cast<uint32_t>(tris.size()));
+      tris.push_back({{g[0], g[1], g[2]}, planar ? t | kReachedBit : t, run});
+      if (unite) uniteCorners(work_[index], id[0], id[1], id[2]);
+      continue;
+    }
+    for (int e = 0; e < 3; ++e) {
+      const int f = e == 2 ? 0 : e + 1;
+      if (s[e] * s[f] < 0) {
+        weldedEdges_.push_back(pairKey(id[e], id[f]));
+        pairs_.push_back(pairKey(g[e], g[f]));
+      }
+    }
+    uint32_t count[2] = {0, 0};
+    countSideTriangles(g, s, count, false);
+    pending_.push_back({t, run, {static_cast<uint32_t>(sideTris_[0].size()), static_cast<uint32_t>(sideTris_[1].size())}});
+    sideTris_[0].resize(sideTris_[0].size() + count[0]);
+    sideTris_[1].resize(sideTris_[1].size() + count[1]);
+  }
+}
+
+// The crossing triangles cutWholeAndCollect kept places for, cut into them; the plane and cut lists
+// sorted back into side-list order.
+void Splitter::cutPending() {
+  const MeshData& mesh = *mesh_;
+  for (const Pending& p : pending_) {
+    uint32_t g[3] = {mesh.indices[3 * p.triangle], mesh.indices[3 * p.triangle + 1], mesh.indices[3 * p.triangle + 2]};
+    if (mirrored_) std::swap(g[1], g[2]);
+    const int s[3] = {side_[ids_[g[0]]], side_[ids_[g[1]]], side_[ids_[g[2]]]};
+    uint32_t next[2] = {p.first[0], p.first[1]};
+    cutCrossing(p.triangle, g, s, p.run, next, cutMain_);
+  }
+  if (pending_.empty()) return;
+  for (int side = 0; side < 2; ++side) {
+    std::sort(planeTris_[side].begin(), planeTris_[side].end());
+    std::sort(cutTris_[side].begin(), cutTris_[side].end());
+  }
+}
+
+// Unites the islands of position ids a, b and c of one side (only roots are linked, the lower id
+// becomes the parent, so a parent always has a lower id than its child).
+void Splitter::uniteCorners(SideWork& w, uint32_t a, uint32_t b, uint32_t c) {
+  a = find(w, a);
+  for (uint32_t other : {b, c}) {
+    other = find(w, other);
+    if (a == other) continue;
+    w.parent[std::max(a, other)] = std::min(a, other);
+    a = std::min(a, other);
+  }
 }
 
 // Step 1: the signed distance and side of every position id (in chunks on threads when big).
@@ -794,7 +908,7 @@ void Splitter::collectCrossingEdges() {
       const uint32_t g[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
       const uint32_t id[3] = {ids_[g[0]], ids_[g[1]], ids_[g[2]]};
       const int s[3] = {side_[id[0]], side_[id[1]], side_[id[2]]};
-      countSideTriangles(g, s, count);
+      countSideTriangles(g, s, count, true);
       for (int e = 0; e < 3; ++e) {
         const int f = e == 2 ? 0 : e + 1;
         if (s[e] * s[f] < 0) {
@@ -814,16 +928,19 @@ void Splitter::collectCrossingEdges() {
   }
 }
 
-// How many side triangles step 3 makes of the triangle with corners g and corner sides s, per side
-// ([0] above, [1] below): added to count. The same cases as cutRange.
-void Splitter::countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2]) const {
+// How many side triangles step 3 makes of the triangle with corners g (in the source's winding with
+// sourceWinding, else in cut space's) and corner sides s, per side ([0] above, [1] below): added to
+// count. The same cases as cutRange.
+void Splitter::countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2],
+                                  bool sourceWinding) const {
   const bool anyAbove = s[0] > 0 || s[1] > 0 || s[2] > 0;
   const bool anyBelow = s[0] < 0 || s[1] < 0 || s[2] < 0;
   if (anyAbove != anyBelow) {
     ++count[anyAbove ? 0 : 1];
   } else if (!anyAbove) {  // a face in the plane goes to the side its normal points away from
     const glm::dvec3 p0 = cut_[reps_[ids_[g[0]]]], p1 = cut_[reps_[ids_[g[1]]]], p2 = cut_[reps_[ids_[g[2]]]];
-    const double facing = glm::dot(glm::cross(p1 - p0, p2 - p0), normal_) * (mirrored_ ? -1.0 : 1.0);
+    const double facing =
+        glm::dot(glm::cross(p1 - p0, p2 - p0), normal_) * (mirrored_ && sourceWinding ? -1.0 : 1.0);
     ++count[facing > 0.0 ? 1 : 0];
   } else if (s[0] == 0 || s[1] == 0 || s[2] == 0) {
     ++count[0];  // through the on-plane vertex: one triangle per side
@@ -1185,6 +1302,7 @@ void Splitter::dropCollapsedTriangles() {
     };
     for (uint32_t index : cutTris_[side]) check(tris[index]);
     for (size_t index = capStart_[side]; index < tris.size(); ++index) check(tris[index]);
+    dropped_[side] = dropped;
     if (dropped) {
       tris.erase(std::remove_if(tris.begin(), tris.end(), [](const SideTriangle& t) { return t.slot == kNone; }),
                  tris.end());
@@ -1708,6 +1826,29 @@ void Splitter::pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const {
   }
 }
 
+// The union-find of one side's islands over welded ids: every triangle's corners united, or, after
+// cutWholeAndCollect united the whole source triangles', only the parts of cut triangles and the
+// caps (all triangles the plane reached when some were dropped and the places moved).
+void Splitter::uniteSide(int side, SideWork& w, uint32_t weldedCount) {
+  const std::vector<SideTriangle>& tris = sideTris_[side];
+  const uint32_t first = united_ ? idCount_ : 0;
+  w.parent.resize(weldedCount);
+  std::iota(w.parent.begin() + first, w.parent.end(), first);
+  auto unite = [&](const SideTriangle& tri) {
+    uniteCorners(w, weldedRef(tri.v[0]), weldedRef(tri.v[1]), weldedRef(tri.v[2]));
+  };
+  if (!united_) {
+    for (const SideTriangle& tri : tris) unite(tri);
+  } else if (dropped_[side]) {
+    for (const SideTriangle& tri : tris) {
+      if (tri.source & kReachedBit) unite(tri);
+    }
+  } else {
+    for (uint32_t index : cutTris_[side]) unite(tris[index]);
+    for (size_t index = capStart_[side]; index < tris.size(); ++index) unite(tris[index]);
+  }
+}
+
 // Islands of one side: union-find over welded ids (only roots are linked, a parent always has a
 // lower id than its child), then cavities into what encloses them and, with IslandMode::Touching,
 // touching parts joined. Fills w.pieceOf (per side triangle), w.pieceMap and this side's entries of
@@ -1721,18 +1862,7 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options)
     std::fill(w.pieceOf.begin(), w.pieceOf.end(), 0u);
     pieces = tris.empty() ? 0 : 1;
   } else {
-    w.parent.resize(weldedCount);
-    std::iota(w.parent.begin(), w.parent.end(), 0u);
-    for (const SideTriangle& tri : tris) {
-      // `a` stays the root of the triangle's set as it grows.
-      uint32_t a = find(w, weldedRef(tri.v[0]));
-      for (int c = 1; c < 3; ++c) {
-        const uint32_t b = find(w, weldedRef(tri.v[c]));
-        if (a == b) continue;
-        w.parent[std::max(a, b)] = std::min(a, b);
-        a = std::min(a, b);
-      }
-    }
+    uniteSide(side, w, weldedCount);
     // One ascending pass points every id at its root.
     for (uint32_t x = 0; x < weldedCount; ++x) w.parent[x] = w.parent[w.parent[x]];
     w.label.assign(weldedCount, kNone);
