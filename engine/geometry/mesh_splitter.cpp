@@ -279,7 +279,8 @@ class Splitter final : public IMeshSplitter {
   // Scratch of one side's islands and pieces: each side has its own, so the two can be written at
   // once (SplitOptions::threads).
   struct SideWork {
-    std::vector<uint32_t> parent, label, pieceOf, pieceMap, order, bucket, vertexRefs;
+    std::vector<uint32_t> parent, label, pieceOf, pieceMap, order, bucket, vertexRefs, pieceSize;
+    bool identity = false;  // orderSide: the output order is the side list's
     std::vector<uint64_t> stampRemap;  // per vertex reference: stamp << 32 | index in the piece
     std::vector<uint64_t> weldRemap;   // per welded id: stamp << 32 | position id in the piece
     uint32_t stampValue = 0;
@@ -1890,19 +1891,25 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options)
 
 // Output order of one side's triangles: by piece, then output run slot, then as generated (source
 // order, then caps). A stable counting sort on (piece, slot); the plain sort only for an extreme
-// bucket count.
+// bucket count; no order at all (w.identity) when the triangles are in that order already (one
+// piece of one run, caps last). w.pieceSize gets each piece's triangle count.
 void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
   const std::vector<SideTriangle>& tris = sideTris_[side];
-  w.order.resize(tris.size());
   const size_t slots = size_t(std::max(slotCount_, capSlot_)) + 1;
   const size_t buckets = size_t(pieces) * slots;
-  bool sorted = true;  // already in (piece, slot) order: one piece of one run, caps last
-  for (size_t k = 1; k < tris.size() && sorted; ++k) {
-    sorted = size_t(w.pieceOf[k - 1]) * slots + tris[k - 1].slot <= size_t(w.pieceOf[k]) * slots + tris[k].slot;
+  w.pieceSize.assign(pieces, 0u);
+  bool sorted = true;
+  size_t previous = 0;
+  for (size_t k = 0; k < tris.size(); ++k) {
+    const size_t key = size_t(w.pieceOf[k]) * slots + tris[k].slot;
+    sorted = sorted && previous <= key;
+    previous = key;
+    ++w.pieceSize[w.pieceOf[k]];
   }
-  if (sorted) {
-    std::iota(w.order.begin(), w.order.end(), 0u);
-  } else if (buckets <= 4 * tris.size() + 4096) {
+  w.identity = sorted;
+  if (sorted) return;
+  w.order.resize(tris.size());
+  if (buckets <= 4 * tris.size() + 4096) {
     w.bucket.assign(buckets + 1, 0u);
     for (size_t k = 0; k < tris.size(); ++k) ++w.bucket[size_t(w.pieceOf[k]) * slots + tris[k].slot + 1];
     for (size_t b = 0; b < buckets; ++b) w.bucket[b + 1] += w.bucket[b];
@@ -1920,46 +1927,50 @@ void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
   }
 }
 
-// The triangles w.order[k, end) of piece p: indices through a vertex remap (stamped per piece),
-// provenance, submesh runs. Returns the end.
+// The pieceSize[p] triangles of piece p from output position k on: indices through a vertex remap
+// (stamped per piece), provenance, submesh runs (a run ends where the slot changes). Returns the end.
 size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, const SplitOptions& options,
                                 SplitPiece& out) {
   const std::vector<SideTriangle>& tris = sideTris_[side];
   MeshData& m = out.mesh;
-  const MeshData& mesh = *mesh_;
-  size_t end = k;
-  while (end < w.order.size() && w.pieceOf[w.order[end]] == p) ++end;
+  const size_t end = k + w.pieceSize[p];
   m.indices.resize(3 * (end - k));
-  uint32_t* index = m.indices.data();
+  out.sourceTriangles.resize(end - k);
+  uint32_t* const indices = m.indices.data();
+  uint32_t* index = indices;
+  uint32_t* provenance = out.sourceTriangles.data();
+  const uint32_t* order = w.identity ? nullptr : w.order.data();
   const uint64_t stamp = uint64_t(w.stampValue) << 32;
   const int second = mirrored_ ? 2 : 1, third = mirrored_ ? 1 : 2;
-  // One run of triangles of the same slot at a time.
-  while (k < end) {
-    const uint32_t slot = tris[w.order[k]].slot;
+  uint32_t slot = kNone, runFirst = 0, reached = 0;
+  auto closeRun = [&] {
     uint32_t material = options.capMaterialId;
-    if (slot < slotCount_) material = mesh.submeshes.empty() ? 0u : mesh.submeshes[slot].materialId;
-    const uint32_t first = static_cast<uint32_t>(index - m.indices.data());
-    size_t runEnd = k;
-    while (runEnd < end && tris[w.order[runEnd]].slot == slot) ++runEnd;
-    for (; k < runEnd; ++k) {
-      const SideTriangle& tri = tris[w.order[k]];
-      out.reached = out.reached || (tri.source & kReachedBit) != 0;
-      out.sourceTriangles.push_back((tri.source & kCapBit) ? kFromCap | (tri.source & kSourceMask)
-                                                           : tri.source & kSourceMask);
-      const uint32_t corner[3] = {tri.v[0], tri.v[second], tri.v[third]};
-      for (uint32_t ref : corner) {
-        uint64_t& entry = w.stampRemap[ref];
-        if ((entry & ~uint64_t(0xffffffffu)) != stamp) {
-          entry = stamp | w.vertexRefs.size();
-          w.vertexRefs.push_back(ref);
-        }
-        *index++ = static_cast<uint32_t>(entry);
-      }
-    }
-    const uint32_t count = static_cast<uint32_t>(index - m.indices.data()) - first;
-    m.submeshes.push_back({first, count, material});
+    if (slot < slotCount_) material = mesh_->submeshes.empty() ? 0u : mesh_->submeshes[slot].materialId;
+    const uint32_t count = static_cast<uint32_t>(index - indices) - runFirst;
+    m.submeshes.push_back({runFirst, count, material});
     if (slot == capSlot_) out.capTriangles += count / 3;
+  };
+  for (; k < end; ++k) {
+    const SideTriangle& tri = tris[order ? order[k] : k];
+    if (tri.slot != slot) {
+      if (slot != kNone) closeRun();
+      slot = tri.slot;
+      runFirst = static_cast<uint32_t>(index - indices);
+    }
+    reached |= tri.source;
+    *provenance++ = (tri.source & kCapBit) ? kFromCap | (tri.source & kSourceMask) : tri.source & kSourceMask;
+    const uint32_t corner[3] = {tri.v[0], tri.v[second], tri.v[third]};
+    for (uint32_t ref : corner) {
+      uint64_t& entry = w.stampRemap[ref];
+      if ((entry & ~uint64_t(0xffffffffu)) != stamp) {
+        entry = stamp | w.vertexRefs.size();
+        w.vertexRefs.push_back(ref);
+      }
+      *index++ = static_cast<uint32_t>(entry);
+    }
   }
+  if (slot != kNone) closeRun();
+  out.reached = (reached & kReachedBit) != 0;
   return end;
 }
 
