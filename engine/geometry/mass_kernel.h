@@ -14,6 +14,8 @@
 
 #include <glm/glm.hpp>
 
+#include "cleave/geometry/mass_properties.h"
+
 namespace cleave::geometry::detail {
 
 enum class MassKernel : uint8_t {
@@ -39,5 +41,11 @@ struct MomentSums {
 };
 MomentSums sumMoments(std::span<const glm::dvec3> p, std::span<const uint32_t> indices, const glm::dvec3& ref,
                       bool flip);
+
+// integrateClosedSurface(positions, indices, flipWinding, true) without its index check, for a
+// surface the caller has just written: a whole number of triangles, every index in range and every
+// position referenced (a splitter's piece).
+MassProperties integrateWrittenSurface(std::span<const glm::dvec3> positions, std::span<const uint32_t> indices,
+                                       bool flipWinding);
 
 }  // namespace cleave::geometry::detail

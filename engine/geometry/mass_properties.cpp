@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cleave/geometry/convex_hull.h"
+#include "cleave/geometry/index_range.h"
 #include "cleave/geometry/mass_kernel.h"
 
 namespace cleave::geometry {
@@ -269,13 +270,21 @@ MassProperties integrateClosedSurface(std::span<const glm::dvec3> positions,
                                       std::span<const uint32_t> indices, bool flipWinding,
                                       bool everyPointUsed) {
   if (indices.empty() || indices.size() % 3 != 0) return {};
-  uint32_t highest = 0;
-  for (uint32_t index : indices) highest = std::max(highest, index);
-  if (highest >= positions.size()) return {};
+  if (positions.size() >= UINT32_MAX || detail::anyAtOrAbove(indices, static_cast<uint32_t>(positions.size())))
+    return {};
   MassProperties out = fromSurface(positions, indices, flipWinding, everyPointUsed);
   out.closed = true;
   return out;
 }
+
+namespace detail {
+MassProperties integrateWrittenSurface(std::span<const glm::dvec3> positions, std::span<const uint32_t> indices,
+                                       bool flipWinding) {
+  MassProperties out = fromSurface(positions, indices, flipWinding, true);
+  out.closed = true;
+  return out;
+}
+}  // namespace detail
 
 MassProperties combineMassProperties(const MassProperties& a, const MassProperties& b) {
   MassProperties out;

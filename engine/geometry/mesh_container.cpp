@@ -14,6 +14,7 @@
 #include <cstring>
 #include <numeric>
 
+#include "cleave/geometry/index_range.h"
 #include "cleave/geometry/mesh_splitter.h"
 
 namespace cleave::geometry {
@@ -108,11 +109,9 @@ MeshStatus MeshContainer::validate(const MeshData& mesh) {
     return reject("index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
   }
   if (n >= kNone) return reject("too many vertices");
-  // The common case in one pass each that the compiler can vectorise (a maximum; exponent bits all
-  // set mark an infinity or a NaN), the culprit searched only when there is one.
-  uint32_t highest = 0;
-  for (uint32_t i : mesh.indices) highest = std::max(highest, i);
-  if (highest >= n) {
+  // The common case in one pass each that the compiler can vectorise (index_range.h; exponent bits
+  // all set mark an infinity or a NaN), the culprit searched only when there is one.
+  if (detail::anyAtOrAbove(mesh.indices, static_cast<uint32_t>(n))) {
     for (size_t k = 0; k < mesh.indices.size(); ++k) {
       if (mesh.indices[k] >= n) {
         return reject("index " + std::to_string(mesh.indices[k]) + " at position " + std::to_string(k) +
@@ -197,11 +196,7 @@ MeshStatus MeshContainer::consistent(const MeshData& mesh, const MeshWeld& weld)
   const size_t n = mesh.positions.size();
   const size_t ids = weld.representatives.size();
   bool ok = weld.positionIds.size() == n && ids > 0 && ids <= n;
-  uint32_t highest = 0;
-  if (ok) {
-    for (uint32_t id : weld.positionIds) highest = std::max(highest, id);
-    ok = highest < ids;
-  }
+  if (ok) ok = !detail::anyAtOrAbove(weld.positionIds, static_cast<uint32_t>(ids));
   for (size_t k = 0; ok && k < ids; ++k) {
     const uint32_t r = weld.representatives[k];
     ok = r < n && weld.positionIds[r] == k && (k == 0 || r > weld.representatives[k - 1]);

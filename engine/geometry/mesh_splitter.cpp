@@ -51,6 +51,7 @@
 
 #include "cleave/geometry/cap_triangulator.h"
 #include "cleave/geometry/island_contacts.h"
+#include "cleave/geometry/mass_kernel.h"
 
 namespace cleave::geometry {
 
@@ -2007,7 +2008,7 @@ void Splitter::beginPiece(SideWork& w, int side, SplitPiece& out) {
 void Splitter::pieceMass(SideWork& w, SplitPiece& out) const {
   const MeshData& m = out.mesh;
   if (piecesClosed_) {
-    out.mass = integrateClosedSurface(w.pieceCut, m.indices, mirrored_, true);
+    out.mass = detail::integrateWrittenSurface(w.pieceCut, m.indices, mirrored_);
   } else {
     std::span<const uint32_t> indices = m.indices;
     if (mirrored_) {
