@@ -7,14 +7,17 @@
 
 #include <atomic>
 
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(CLEAVE_MASS_SCALAR)
+#define CLEAVE_MASS_VECTOR 1
+#include <immintrin.h>
+#endif
+
 namespace cleave::geometry::detail {
 namespace {
 
 constexpr int kLanes = 8;
 
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(CLEAVE_MASS_SCALAR)
-#define CLEAVE_MASS_VECTOR 1
-#include <immintrin.h>
+#ifdef CLEAVE_MASS_VECTOR
 typedef double Lane8 __attribute__((vector_size(8 * sizeof(double))));
 #endif
 
@@ -54,8 +57,9 @@ template <class L>
   addTetrahedron<double>(lane, a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z);
 }
 
-// Lane 0 + lane 1 + ... + lane 7 of every sum.
-MomentSums total(const Sums<double> (&lanes)[kLanes]) {
+// Lane 0 + lane 1 + ... + lane 7 of every sum. Inlined, so that the AVX kernels clear the upper
+// register state only after it (a call into SSE code with that state dirty runs slowed).
+[[gnu::always_inline]] inline MomentSums total(const Sums<double> (&lanes)[kLanes]) {
   MomentSums out;
   for (const Sums<double>& l : lanes) {
     out.sixV += l.sixV;

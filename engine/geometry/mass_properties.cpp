@@ -270,7 +270,7 @@ MassProperties integrateClosedSurface(std::span<const glm::dvec3> positions,
                                       std::span<const uint32_t> indices, bool flipWinding,
                                       bool everyPointUsed) {
   if (indices.empty() || indices.size() % 3 != 0) return {};
-  if (positions.size() >= UINT32_MAX || detail::anyAtOrAbove(indices, static_cast<uint32_t>(positions.size())))
+  if (positions.size() <= UINT32_MAX && detail::anyAtOrAbove(indices, static_cast<uint32_t>(positions.size())))
     return {};
   MassProperties out = fromSurface(positions, indices, flipWinding, everyPointUsed);
   out.closed = true;

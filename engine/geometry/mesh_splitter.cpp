@@ -792,7 +792,7 @@ void Splitter::cutRange(uint32_t begin, uint32_t end, CutOutput& out) {
 
 // Steps 2 and 3 in one pass over the source on one thread. A triangle the plane does not cut goes to
 // its side at once, and with `unite` its corners' islands are united on the way (SideWork::parent
-// over the source's position ids; labelSide adds the rest). A crossing triangle gives its crossing
+// over the source's position ids; uniteSide adds the rest). A crossing triangle gives its crossing
 // edges and keeps its places in the side lists (as many as it will have parts), to be cut by
 // cutPending once the edges' new vertices are known: the lists come out as cutRange writes them.
 void Splitter::cutWholeAndCollect(bool unite) {
@@ -850,6 +850,7 @@ void Splitter::cutWholeAndCollect(bool unite) {
 // sorted back into side-list order.
 void Splitter::cutPending() {
   const MeshData& mesh = *mesh_;
+  const size_t planeWhole[2] = {planeTris_[0].size(), planeTris_[1].size()};
   for (const Pending& p : pending_) {
     uint32_t g[3] = {mesh.indices[3 * p.triangle], mesh.indices[3 * p.triangle + 1], mesh.indices[3 * p.triangle + 2]};
     if (mirrored_) std::swap(g[1], g[2]);
@@ -858,9 +859,11 @@ void Splitter::cutPending() {
     cutCrossing(p.triangle, g, s, p.run, next, cutMain_);
   }
   if (pending_.empty()) return;
+  // cutTris_ is ascending already (only cutPending writes it); planeTris_ is the whole triangles'
+  // ascending run followed by the cut parts' one.
   for (int side = 0; side < 2; ++side) {
-    std::sort(planeTris_[side].begin(), planeTris_[side].end());
-    std::sort(cutTris_[side].begin(), cutTris_[side].end());
+    std::vector<uint32_t>& plane = planeTris_[side];
+    std::inplace_merge(plane.begin(), plane.begin() + static_cast<std::ptrdiff_t>(planeWhole[side]), plane.end());
   }
 }
 
@@ -932,7 +935,7 @@ void Splitter::collectCrossingEdges() {
 
 // How many side triangles step 3 makes of the triangle with corners g (in the source's winding with
 // sourceWinding, else in cut space's) and corner sides s, per side ([0] above, [1] below): added to
-// count. The same cases as cutRange.
+// count. The same cases as wholeSide and cutCrossing.
 void Splitter::countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2],
                                   bool sourceWinding) const {
   const bool anyAbove = s[0] > 0 || s[1] > 0 || s[2] > 0;

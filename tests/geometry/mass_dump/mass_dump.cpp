@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Prints the mass properties of a set of generated meshes with every double in hex (%a), so that
-// two builds of the mass integration (the SSE2 lanes and the scalar loop, CLEAVE_MASS_SCALAR) can
-// be compared byte for byte: the claim that they agree bit for bit is tested, not assumed.
+// two builds of the mass integration (the vector kernels and the scalar loop, CLEAVE_MASS_SCALAR)
+// can be compared byte for byte: the claim that they agree bit for bit is tested, not assumed.
 // `mass_dump KERNEL` (sse2, avx2, avx512) uses that vector kernel; it exits with 77 when this CPU
-// cannot run it.
+// cannot run it and with 2 on an unknown name.
 #include <cstdio>
 #include <cstring>
 #include <vector>
@@ -21,6 +21,12 @@ using cleave::geometry::MeshData;
 int main(int argc, char** argv) {
   using cleave::geometry::detail::MassKernel;
   if (argc > 1) {
+    const bool known = std::strcmp(argv[1], "avx512") == 0 || std::strcmp(argv[1], "avx2") == 0 ||
+                       std::strcmp(argv[1], "sse2") == 0;
+    if (!known) {
+      std::fprintf(stderr, "mass_dump: unknown kernel '%s' (sse2, avx2, avx512)\n", argv[1]);
+      return 2;
+    }
     const MassKernel kernel = std::strcmp(argv[1], "avx512") == 0 ? MassKernel::Avx512
                               : std::strcmp(argv[1], "avx2") == 0 ? MassKernel::Avx2
                                                                   : MassKernel::Sse2;
