@@ -220,7 +220,7 @@ class Splitter final : public IMeshSplitter {
   bool wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const;
   void cutWholeAndCollect(bool unite);
   void cutPending();
-  void countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2], bool sourceWinding) const;
+  void countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2]) const;
   // How many chunks (threads) a pass over `count` items uses: threads_ for big passes, else 1.
   uint32_t chunkCount(size_t count) const {
     return threads_ > 1 && count >= kParallelTriangles ? std::min<uint32_t>(threads_, 8) : 1;
@@ -839,7 +839,7 @@ void Splitter::cutWholeAndCollect(bool unite) {
       }
     }
     uint32_t count[2] = {0, 0};
-    countSideTriangles(g, s, count, false);
+    countSideTriangles(g, s, count);
     pending_.push_back({t, run, {static_cast<uint32_t>(sideTris_[0].size()), static_cast<uint32_t>(sideTris_[1].size())}});
     sideTris_[0].resize(sideTris_[0].size() + count[0]);
     sideTris_[1].resize(sideTris_[1].size() + count[1]);
@@ -910,10 +910,11 @@ void Splitter::collectCrossingEdges() {
     const uint32_t* indices = mesh_->indices.data();
     uint32_t count[2] = {0, 0};
     for (uint32_t t = begin; t < end; ++t) {
-      const uint32_t g[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+      uint32_t g[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+      if (mirrored_) std::swap(g[1], g[2]);  // cut-space winding, as cutRange sees it
       const uint32_t id[3] = {ids_[g[0]], ids_[g[1]], ids_[g[2]]};
       const int s[3] = {side_[id[0]], side_[id[1]], side_[id[2]]};
-      countSideTriangles(g, s, count, true);
+      countSideTriangles(g, s, count);
       for (int e = 0; e < 3; ++e) {
         const int f = e == 2 ? 0 : e + 1;
         if (s[e] * s[f] < 0) {
@@ -933,20 +934,14 @@ void Splitter::collectCrossingEdges() {
   }
 }
 
-// How many side triangles step 3 makes of the triangle with corners g (in the source's winding with
-// sourceWinding, else in cut space's) and corner sides s, per side ([0] above, [1] below): added to
-// count. The same cases as wholeSide and cutCrossing.
-void Splitter::countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2],
-                                  bool sourceWinding) const {
-  const bool anyAbove = s[0] > 0 || s[1] > 0 || s[2] > 0;
-  const bool anyBelow = s[0] < 0 || s[1] < 0 || s[2] < 0;
-  if (anyAbove != anyBelow) {
-    ++count[anyAbove ? 0 : 1];
-  } else if (!anyAbove) {  // a face in the plane goes to the side its normal points away from
-    const glm::dvec3 p0 = cut_[reps_[ids_[g[0]]]], p1 = cut_[reps_[ids_[g[1]]]], p2 = cut_[reps_[ids_[g[2]]]];
-    const double facing =
-        glm::dot(glm::cross(p1 - p0, p2 - p0), normal_) * (mirrored_ && sourceWinding ? -1.0 : 1.0);
-    ++count[facing > 0.0 ? 1 : 0];
+// How many side triangles step 3 makes of the triangle with corners g (cut-space winding) and
+// corner sides s, per side ([0] above, [1] below): added to count. The cases of wholeSide and
+// cutCrossing.
+void Splitter::countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2]) const {
+  int index = 0;
+  bool planar = false;
+  if (wholeSide(g, s, index, planar)) {
+    ++count[index];
   } else if (s[0] == 0 || s[1] == 0 || s[2] == 0) {
     ++count[0];  // through the on-plane vertex: one triangle per side
     ++count[1];
