@@ -45,9 +45,13 @@
 #include <cassert>
 #include <bit>
 #include <cmath>
+#include <compare>
+#include <iterator>
+#include <memory>
 #include <numeric>
 #include <system_error>
 #include <thread>
+#include <type_traits>
 
 #include "cleave/geometry/cap_triangulator.h"
 #include "cleave/geometry/island_contacts.h"
@@ -166,6 +170,61 @@ glm::vec3 normalizedOr(const glm::dvec3& v, const glm::vec3& fallback) {
   return len > 0.0 && std::isfinite(len) ? glm::vec3(v / len) : fallback;
 }
 
+// Grow-only scratch whose elements are not initialised: for arrays written in full before they are
+// read. Keeps its storage, so a warmed-up split allocates nothing.
+template <typename T>
+class RawBuffer {
+ public:
+  T* reserve(size_t n) {
+    if (n > capacity_) {
+      capacity_ = std::max(n, 2 * capacity_);
+      data_ = std::make_unique_for_overwrite<T[]>(capacity_);
+    }
+    return data_.get();
+  }
+  const T* data() const { return data_.get(); }
+
+ private:
+  std::unique_ptr<T[]> data_;
+  size_t capacity_ = 0;
+};
+
+// The values f(0), f(1), ... as a random-access iterator, so that a vector is assigned them in one
+// pass (resize-then-write would first fill it with zeros).
+template <typename F>
+class MappedIterator {
+ public:
+  using iterator_category = std::random_access_iterator_tag;
+  using value_type = std::invoke_result_t<const F&, size_t>;
+  using difference_type = std::ptrdiff_t;
+  using pointer = void;
+  using reference = value_type;
+  MappedIterator(const F* f, size_t i) : f_(f), i_(i) {}
+  value_type operator*() const { return (*f_)(i_); }
+  value_type operator[](difference_type d) const { return (*f_)(i_ + static_cast<size_t>(d)); }
+  MappedIterator& operator++() { ++i_; return *this; }
+  MappedIterator operator++(int) { MappedIterator old = *this; ++i_; return old; }
+  MappedIterator& operator--() { --i_; return *this; }
+  MappedIterator operator--(int) { MappedIterator old = *this; --i_; return old; }
+  MappedIterator& operator+=(difference_type d) { i_ += static_cast<size_t>(d); return *this; }
+  MappedIterator& operator-=(difference_type d) { i_ -= static_cast<size_t>(d); return *this; }
+  MappedIterator operator+(difference_type d) const { return {f_, i_ + static_cast<size_t>(d)}; }
+  MappedIterator operator-(difference_type d) const { return {f_, i_ - static_cast<size_t>(d)}; }
+  difference_type operator-(const MappedIterator& o) const { return static_cast<difference_type>(i_ - o.i_); }
+  bool operator==(const MappedIterator& o) const { return i_ == o.i_; }
+  auto operator<=>(const MappedIterator& o) const { return i_ <=> o.i_; }
+
+ private:
+  const F* f_;
+  size_t i_;
+};
+
+// out = {f(0), ..., f(count - 1)}, written once (the capacity is kept when it suffices).
+template <typename T, typename F>
+void assignMapped(std::vector<T>& out, size_t count, const F& f) {
+  out.assign(MappedIterator<F>(&f, 0), MappedIterator<F>(&f, count));
+}
+
 struct SideTriangle {
   uint32_t v[3];    // vertex references (see Splitter::kinds), cut-space outward winding
   uint32_t source;  // source triangle | kReachedBit when the plane reached it; a cap: kReachedBit | kCapBit | loop
@@ -280,7 +339,9 @@ class Splitter final : public IMeshSplitter {
   // Scratch of one side's islands and pieces: each side has its own, so the two can be written at
   // once (SplitOptions::threads).
   struct SideWork {
-    std::vector<uint32_t> parent, label, pieceOf, pieceMap, order, bucket, vertexRefs, pieceSize;
+    std::vector<uint32_t> parent, label, pieceOf, pieceMap, order, bucket, pieceSize;
+    RawBuffer<uint32_t> vertexRefs;  // the piece being written: its vertices' references, in order
+    size_t vertexCount = 0;          // how many of vertexRefs
     bool identity = false;  // orderSide: the output order is the side list's
     std::vector<uint64_t> stampRemap;  // per vertex reference: stamp << 32 | index in the piece
     std::vector<uint64_t> weldRemap;   // per welded id: stamp << 32 | position id in the piece
@@ -1777,14 +1838,15 @@ uint32_t Splitter::find(SideWork& w, uint32_t x) {
 // their cut-space positions (pieceCut) for the mass properties.
 void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
   const MeshData& mesh = *mesh_;
-  const size_t count = w.vertexRefs.size();
+  const size_t count = w.vertexCount;
+  const uint32_t* refs = w.vertexRefs.data();
+  const uint32_t sourceCount = sourceCount_;
   auto gather = [&](auto& out, const auto& source, const auto& extra) {
     if (source.empty()) return;
-    out.resize(count);
-    for (size_t i = 0; i < count; ++i) {
-      const uint32_t ref = w.vertexRefs[i];
-      out[i] = ref < sourceCount_ ? source[ref] : extra[ref - sourceCount_];
-    }
+    assignMapped(out, count, [&](size_t i) {
+      const uint32_t ref = refs[i];
+      return ref < sourceCount ? source[ref] : extra[ref - sourceCount];
+    });
   };
   gather(m.positions, mesh.positions, extra_.positions);
   gather(m.normals, mesh.normals, extra_.normals);
@@ -1794,18 +1856,18 @@ void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
   gather(m.colors, mesh.colors, extra_.colors);
   gather(m.joints, mesh.joints, extra_.joints);
   gather(m.weights, mesh.weights, extra_.weights);
-  w.pieceCut.resize(count);
-  for (size_t i = 0; i < count; ++i) {
-    const uint32_t ref = w.vertexRefs[i];
-    w.pieceCut[i] = ref < sourceCount_ ? cut_[ref] : cutOfAny(ref);
-  }
+  assignMapped(w.pieceCut, count, [&](size_t i) {
+    const uint32_t ref = refs[i];
+    return ref < sourceCount ? cut_[ref] : cutOfAny(ref);
+  });
 }
 
 // The weld of the piece being written: its vertices' welded ids (merged cut points taken to the point
 // they were merged into) numbered in order of first vertex. A capped piece of a closed mesh is closed
 // on these ids: its side triangles and its cap meet along the section's welded ids.
 void Splitter::pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const {
-  const size_t count = w.vertexRefs.size();
+  const size_t count = w.vertexCount;
+  const uint32_t* refs = w.vertexRefs.data();
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
   if (w.weldRemap.size() < weldedCount) w.weldRemap.resize(weldedCount, 0);
   const uint64_t stamp = uint64_t(w.stampValue) << 32;  // the piece's stamp, fresh for this piece
@@ -1814,7 +1876,7 @@ void Splitter::pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const {
   weld.closed = closed;
   weld.inverted = closed && container_->inverted();  // pieces keep the winding of the mesh
   for (size_t i = 0; i < count; ++i) {
-    const uint32_t ref = w.vertexRefs[i];
+    const uint32_t ref = refs[i];
     uint32_t welded = ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_];
     welded = aliasRoot(welded);
     uint64_t& entry = w.weldRemap[welded];
@@ -1897,6 +1959,13 @@ void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
   const size_t slots = size_t(std::max(slotCount_, capSlot_)) + 1;
   const size_t buckets = size_t(pieces) * slots;
   w.pieceSize.assign(pieces, 0u);
+  // One piece, and the slots ascend along the side list (source runs in order, then the caps in a
+  // slot of their own or in the last run's): in order already, no pass needed.
+  if (pieces == 1 && capSlot_ + 1 >= slotCount_) {
+    w.pieceSize[0] = static_cast<uint32_t>(tris.size());
+    w.identity = true;
+    return;
+  }
   bool sorted = true;
   size_t previous = 0;
   for (size_t k = 0; k < tris.size(); ++k) {
@@ -1940,6 +2009,9 @@ size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, con
   uint32_t* provenance = out.sourceTriangles.data();
   const uint32_t* order = w.identity ? nullptr : w.order.data();
   const uint64_t stamp = uint64_t(w.stampValue) << 32;
+  uint64_t* const remap = w.stampRemap.data();
+  uint32_t* const refs = w.vertexRefs.reserve(3 * (end - k));
+  uint32_t vertices = 0;
   const int second = mirrored_ ? 2 : 1, third = mirrored_ ? 1 : 2;
   uint32_t slot = kNone, runFirst = 0, reached = 0;
   auto closeRun = [&] {
@@ -1959,15 +2031,19 @@ size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, con
     reached |= tri.source;
     *provenance++ = (tri.source & kCapBit) ? kFromCap | (tri.source & kSourceMask) : tri.source & kSourceMask;
     const uint32_t corner[3] = {tri.v[0], tri.v[second], tri.v[third]};
+    // Without a branch (whether a corner is new to the piece does not follow a pattern): the
+    // reference is always written past the piece's vertices and only counted when it is new.
     for (uint32_t ref : corner) {
-      uint64_t& entry = w.stampRemap[ref];
-      if ((entry & ~uint64_t(0xffffffffu)) != stamp) {
-        entry = stamp | w.vertexRefs.size();
-        w.vertexRefs.push_back(ref);
-      }
-      *index++ = static_cast<uint32_t>(entry);
+      const uint64_t entry = remap[ref];
+      const bool fresh = (entry & ~uint64_t(0xffffffffu)) != stamp;
+      const uint32_t local = fresh ? vertices : static_cast<uint32_t>(entry);
+      remap[ref] = stamp | local;
+      refs[vertices] = ref;
+      vertices += fresh ? 1u : 0u;
+      *index++ = local;
     }
   }
+  w.vertexCount = vertices;
   if (slot != kNone) closeRun();
   out.reached = (reached & kReachedBit) != 0;
   return end;
@@ -1999,7 +2075,7 @@ void Splitter::beginPiece(SideWork& w, int side, SplitPiece& out) {
     std::fill(w.weldRemap.begin(), w.weldRemap.end(), uint64_t(0));
     w.stampValue = 1;
   }
-  w.vertexRefs.clear();
+  w.vertexCount = 0;
 }
 
 // Mass properties of the piece just written, on its cut-space positions; a closed piece's winding.
