@@ -93,6 +93,7 @@ void MeshContainer::clear() {
   boundsMin_ = glm::dvec3(INFINITY);
   boundsMax_ = glm::dvec3(-INFINITY);
   closed_ = false;
+  connected_ = false;
   inverted_ = false;
   cutIsSource_ = false;
 }
@@ -221,6 +222,7 @@ MeshStatus MeshContainer::take(const MeshWeld* weld) {
     representatives_.assign(weld->representatives.begin(), weld->representatives.end());
     positionIdCount_ = static_cast<uint32_t>(representatives_.size());
     closed_ = weld->closed;
+    connected_ = weld->connected;
     updateBounds();
   } else {
     this->weld();  // also sets boundsDiagonal_
@@ -238,6 +240,7 @@ void MeshContainer::copyWeld(MeshWeld& out) const {
   out.representatives.assign(representatives_.begin(), representatives_.end());
   out.closed = closed_;
   out.inverted = inverted_;
+  out.connected = connected_;
 }
 
 void MeshContainer::weld() {
@@ -253,6 +256,8 @@ void MeshContainer::weld() {
   if (!weldHashed(tolerance, lo, hi)) weldSorted(tolerance, lo);
   positionIdCount_ = static_cast<uint32_t>(representatives_.size());
   computeClosed();
+  connected_ = false;
+  if (closed_) computeConnected();
 }
 
 // The fast weld: a hashed grid of cells a few vertex spacings wide (at least four tolerances), each
@@ -507,6 +512,40 @@ void MeshContainer::computeClosed() {
     }
     closed_ = closed_ && 2 * forward == size;
   }
+}
+
+// One part or several: a union-find over the position ids of every triangle's corners (degenerate
+// triangles too: the splitter's islands join them the same way), the lower id always the parent,
+// then the roots among the ids a triangle uses are counted (up to two).
+void MeshContainer::computeConnected() {
+  std::vector<uint32_t>& parent = weldScratch().cellNext;  // reused: the union-find
+  std::vector<uint32_t>& used = weldScratch().edgeStart;   // reused: per id, used by a triangle
+  const uint32_t ids = positionIdCount_;
+  parent.resize(ids);
+  std::iota(parent.begin(), parent.end(), 0u);
+  used.assign(ids, 0u);
+  auto find = [&](uint32_t x) {
+    while (parent[x] != x) {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  };
+  const std::vector<uint32_t>& indices = source_->indices;
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    const uint32_t c[3] = {positionIds_[indices[t]], positionIds_[indices[t + 1]], positionIds_[indices[t + 2]]};
+    used[c[0]] = used[c[1]] = used[c[2]] = 1;
+    uint32_t root = find(c[0]);
+    for (int k = 1; k < 3; ++k) {
+      const uint32_t other = find(c[k]);
+      if (other == root) continue;
+      parent[std::max(root, other)] = std::min(root, other);
+      root = std::min(root, other);
+    }
+  }
+  uint32_t parts = 0;
+  for (uint32_t id = 0; id < ids && parts < 2; ++id) parts += used[id] && parent[id] == id ? 1u : 0u;
+  connected_ = parts == 1;
 }
 
 void MeshContainer::updateBounds() {

@@ -78,6 +78,11 @@ class MeshContainer {
   // True when, on position ids, every edge is used by exactly two triangles in opposite directions
   // (triangles with a repeated id ignored): the pieces of a capped split are then closed too.
   bool closed() const { return closed_; }
+  // True when the mesh is known to be one part: every triangle reaches every other through triangles
+  // that share a position id. Worked out by setMesh for a closed mesh (false for an open one: not
+  // known), taken from a given weld (MeshWeld::connected, the caller's promise like `closed`). The
+  // splitter then needs no island search where the topology settles it (see mesh_splitter.cpp).
+  bool connected() const { return connected_; }
 
   // Builds a new mesh from a subset of triangles (indices into the source triangle list), keeping
   // every attribute and the submesh runs; unused vertices are dropped through an index remap.
@@ -104,6 +109,7 @@ class MeshContainer {
   bool weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi);
   void weldSorted(double tolerance, const glm::dvec3& lo);
   void computeClosed();
+  void computeConnected();
   void updateBounds();
   // The weld and closedness scratch arrays are per thread (see mesh_container.cpp), not per
   // container: a container made for every cut then reuses warm memory.
@@ -112,6 +118,7 @@ class MeshContainer {
   std::vector<glm::dmat4x3> poseAffine_;  // per joint: model x joint matrix (3 x 4); last: model
   std::vector<uint32_t> representatives_;
   bool closed_ = false;
+  bool connected_ = false;
   bool cutIsSource_ = false;  // the cut positions equal the source positions (identity transform)
 };
 

@@ -42,6 +42,7 @@
 #include "cleave/geometry/mesh_splitter.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <bit>
 #include <cmath>
@@ -225,6 +226,8 @@ void assignMapped(std::vector<T>& out, size_t count, const F& f) {
   out.assign(MappedIterator<F>(&f, 0), MappedIterator<F>(&f, count));
 }
 
+std::atomic<uint64_t> gIslandSearchesSkipped{0};  // detail::islandSearchesSkipped
+
 struct SideTriangle {
   uint32_t v[3];    // vertex references (see Splitter::kinds), cut-space outward winding
   uint32_t source;  // source triangle | kReachedBit when the plane reached it; a cap: kReachedBit | kCapBit | loop
@@ -340,6 +343,7 @@ class Splitter final : public IMeshSplitter {
   // once (SplitOptions::threads).
   struct SideWork {
     std::vector<uint32_t> parent, label, pieceOf, pieceMap, order, bucket, pieceSize;
+    std::vector<uint32_t> partsOf;  // per piece: the islands it is made of (0: not known)
     RawBuffer<uint32_t> vertexRefs;  // the piece being written: its vertices' references, in order
     size_t vertexCount = 0;          // how many of vertexRefs
     bool identity = false;  // orderSide: the output order is the side list's
@@ -359,6 +363,8 @@ class Splitter final : public IMeshSplitter {
   static uint32_t find(SideWork& w, uint32_t x);
   static void uniteCorners(SideWork& w, uint32_t a, uint32_t b, uint32_t c);
   uint32_t labelSide(int side, SideWork& w, const SplitOptions& options);
+  bool everyCutOnALoop();
+  bool sectionSettlesIslands();
   void uniteSide(int side, SideWork& w, uint32_t weldedCount);
   void islandStats(int side, SideWork& w, uint32_t pieces, bool volumes, bool bounds) const;
   uint32_t mergeCavities(int side, SideWork& w, uint32_t pieces) const;
@@ -442,6 +448,13 @@ class Splitter final : public IMeshSplitter {
   };
   std::vector<Pending> pending_;
   bool united_ = false;        // cutWholeAndCollect united the whole triangles' islands
+  // One island per side without a search (see sectionSettlesIslands): islandCandidate_ after the
+  // classification (a closed mesh of one part, no position on the plane), cutsOnLoops_ after the
+  // loops are traced, oneIslandEach_ once the caps are made.
+  bool islandCandidate_ = false, cutsOnLoops_ = false, oneIslandEach_ = false;
+  bool sidesAgree_ = false;           // traceSection: both sides have the same on-plane boundary
+  std::vector<uint8_t> cutOnLoop_;    // per welded cut edge: its point is on a loop
+  std::vector<uint32_t> loopOfPoint_, loopParent_;  // sectionSettlesIslands: loops joined by caps
   bool dropped_[2] = {false, false};  // dropCollapsedTriangles removed triangles of that side
   std::vector<CutOutput> cutChunks_;  // chunks 1, 2, ... (cutChunks_[c - 1])
   std::vector<SideTriangle>* const sideTris_ = cutMain_.sideTris;
@@ -539,12 +552,16 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   if (checked != SplitStatus::Ok) return checked;
   // 1, 2. Classification per position id, then the crossing edges.
   classify(onPlaneTolerance_);
+  // A closed mesh known to be one part with no position on the plane: its section may settle the
+  // islands (sectionSettlesIslands), so the whole triangles are not united on the way.
+  islandCandidate_ = options.separateIslands && container.closed() && container.connected() &&
+                     std::find(side_.begin(), side_.end(), int8_t(0)) == side_.end();
   // On one thread steps 2 and 3 share a pass over the source (the crossing triangles are cut once
   // their edges are known); on several, the crossing edges are counted first so that each chunk
   // knows where its triangles go.
   const bool onePass = chunkCount(mesh_->indices.size() / 3) == 1;
   if (onePass) {
-    cutWholeAndCollect(options.separateIslands);
+    cutWholeAndCollect(options.separateIslands && !islandCandidate_);
   } else {
     united_ = false;
     collectCrossingEdges();
@@ -726,6 +743,7 @@ SplitStatus Splitter::traceSection(const SplitOptions& options, SplitResult& res
                 "self-intersecting where it is cut");
   }
   result.sidesDisagree = !sidesAgree;
+  sidesAgree_ = sidesAgree;
   chooseBasis();
   bridge_ = options.cap && options.openSections == OpenSectionMode::Bridge;
   bridgeGap_ = std::max(options.bridgeGap, 0.0) * diagonal_;
@@ -1157,6 +1175,7 @@ void Splitter::buildLoops() {
   }
   capTolerance_ = std::max(4.0 * 0x1.0p-24 * largest, 1e-12 * container_->boundsDiagonal());
   mergeTolerance_ = std::max(capTolerance_, onPlaneTolerance_);
+  cutsOnLoops_ = islandCandidate_ && everyCutOnALoop();  // before the merge renames loop points
   mergeNearPoints();
   points_.resize(loopIds_.size());
   for (size_t k = 0; k < loopIds_.size(); ++k) points_[k] = project(sectionCut(loopIds_[k]));
@@ -1911,6 +1930,62 @@ void Splitter::uniteSide(int side, SideWork& w, uint32_t weldedCount) {
   }
 }
 
+// Whether every cut point (welded crossing edge) is a point of some traced loop, on the loops as
+// traced (before near points are merged).
+bool Splitter::everyCutOnALoop() {
+  const size_t cuts = weldedEdges_.size();
+  cutOnLoop_.assign(cuts, 0);
+  size_t marked = 0;
+  for (uint32_t id : loopIds_) {
+    if (id < idCount_ || cutOnLoop_[id - idCount_]) continue;
+    cutOnLoop_[id - idCount_] = 1;
+    ++marked;
+  }
+  return marked == cuts;
+}
+
+// True when the section proves that each side is one island, so that no union-find is needed.
+// The mesh is closed and one part (islands are triangles joined through shared welded ids), and no
+// position id is on the plane. Then:
+//  - the triangles of both sides together are still one part: the parts of a cut triangle share its
+//    cut points, and two triangles that shared an id still share it through the parts holding it;
+//  - an id used on both sides is a cut point (an above triangle has no corner below, nor a below
+//    one a corner above, and no source position is on the plane), so every island of a side, which
+//    must meet the rest through some id, holds a cut point;
+//  - every cut point lies on a loop (everyCutOnALoop), and each loop is one island of each side:
+//    its consecutive points are joined by a boundary edge, which is an edge of a triangle of both
+//    sides when the two boundaries agree;
+//  - the loops are one island when there is one loop, or when the cap triangles join them all (one
+//    border and its holes).
+// Nothing may have been dropped as collapsed (a dropped triangle may have joined two parts), and the
+// section has no open or bridged chain. The islands found this way are what the union-find finds.
+bool Splitter::sectionSettlesIslands() {
+  if (!islandCandidate_ || !cutsOnLoops_ || dropped_[0] || dropped_[1] || !sidesAgree_) return false;
+  if (openChains_ != 0 || bridgedChains_ != 0 || !chains_.empty() || loops_.empty()) return false;
+  if (loops_.size() == 1) return true;
+  // Loops joined through the cap triangles (points into loopIds_, loop after loop).
+  loopOfPoint_.resize(loopIds_.size());
+  for (uint32_t l = 0; l < loops_.size(); ++l) {
+    std::fill(loopOfPoint_.begin() + loops_[l].begin, loopOfPoint_.begin() + loops_[l].end, l);
+  }
+  loopParent_.resize(loops_.size());
+  std::iota(loopParent_.begin(), loopParent_.end(), 0u);
+  auto root = [&](uint32_t l) {
+    while (loopParent_[l] != l) l = loopParent_[l] = loopParent_[loopParent_[l]];
+    return l;
+  };
+  uint32_t groups = static_cast<uint32_t>(loops_.size());
+  for (size_t k = 0; k + 2 < capTriangles_.size(); k += 3) {
+    for (int c = 1; c < 3; ++c) {
+      const uint32_t a = root(loopOfPoint_[capTriangles_[k]]), b = root(loopOfPoint_[capTriangles_[k + c]]);
+      if (a == b) continue;
+      loopParent_[std::max(a, b)] = std::min(a, b);
+      --groups;
+    }
+  }
+  return groups == 1;
+}
+
 // Islands of one side: union-find over welded ids (only roots are linked, a parent always has a
 // lower id than its child), then cavities into what encloses them and, with IslandMode::Touching,
 // touching parts joined. Fills w.pieceOf (per side triangle), w.pieceMap and this side's entries of
@@ -1920,7 +1995,8 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options)
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
   w.pieceOf.resize(tris.size());
   uint32_t pieces = 0;
-  if (!options.separateIslands) {
+  const bool search = options.separateIslands && !oneIslandEach_;
+  if (!search) {
     std::fill(w.pieceOf.begin(), w.pieceOf.end(), 0u);
     pieces = tris.empty() ? 0 : 1;
   } else {
@@ -1934,6 +2010,7 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options)
       w.pieceOf[k] = w.label[root];
     }
   }
+  const uint32_t islands = pieces;
   w.pieceMap.resize(pieces);
   std::iota(w.pieceMap.begin(), w.pieceMap.end(), 0u);
   const bool cavities = options.cap && options.separateIslands && pieces > 1;
@@ -1944,8 +2021,13 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options)
   // Cap loops per piece: a loop's cap belongs to the island of its first vertex.
   for (size_t l = 0; l < loops_.size(); ++l) {
     if (!loops_[l].capped) continue;
-    loopPiece_[2 * l + side] =
-        options.separateIslands ? w.pieceMap[w.label[find(w, loopIds_[loops_[l].begin])]] : 0;
+    loopPiece_[2 * l + side] = search ? w.pieceMap[w.label[find(w, loopIds_[loops_[l].begin])]] : 0;
+  }
+  // The islands of each piece, for its weld: one where the section settled them, counted after a
+  // search, not known without one.
+  w.partsOf.assign(pieces, oneIslandEach_ ? 1u : 0u);
+  if (search) {
+    for (uint32_t i = 0; i < islands; ++i) ++w.partsOf[w.pieceMap[i]];
   }
   return pieces;
 }
@@ -2113,10 +2195,11 @@ void Splitter::writeSide(int side, SideWork& w, uint32_t pieces, uint32_t firstP
     gatherVertices(w, out.mesh);
     if (weldKnown) {
       pieceWeld(w, out.weld, piecesClosed_);
+      out.weld.connected = w.partsOf[p] == 1;
     } else {
       out.weld.positionIds.clear();
       out.weld.representatives.clear();
-      out.weld.closed = out.weld.inverted = false;
+      out.weld.closed = out.weld.inverted = out.weld.connected = false;
     }
     for (size_t l = 0; l < loops_.size(); ++l) {
       if (loops_[l].capped && loopPiece_[2 * l + side] == p) ++out.capLoops;
@@ -2147,6 +2230,8 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
   }
   const bool parallel = threads_ > 1 && wanted[0] && wanted[1] &&
                         sideTris_[0].size() + sideTris_[1].size() >= kParallelTriangles;
+  oneIslandEach_ = sectionSettlesIslands();
+  if (oneIslandEach_) gIslandSearchesSkipped.fetch_add(1, std::memory_order_relaxed);
   uint32_t pieces[2] = {0, 0};
   bothSides(parallel, [&](int side) {
     if (wanted[side]) pieces[side] = labelSide(side, work_[side], options);
@@ -2176,5 +2261,7 @@ SplitResult splitMesh(const MeshData& mesh, const glm::mat4& model, const Plane&
   return result;
 }
 std::unique_ptr<IMeshSplitter> makeConvexSplitter() { return std::make_unique<Splitter>(true); }
+
+uint64_t detail::islandSearchesSkipped() { return gIslandSearchesSkipped.load(std::memory_order_relaxed); }
 
 }  // namespace cleave::geometry

@@ -94,6 +94,7 @@ struct MeshWeld {
   std::vector<uint32_t> representatives;  // per position id: its first vertex (ascending)
   bool closed = false;                    // see MeshContainer::closed
   bool inverted = false;                  // closed and wound inwards: see MeshContainer::inverted
+  bool connected = false;                 // known to be one part: see MeshContainer::connected
 };
 
 // The cap plane's basis for a unit normal: u and v unit, (u, v, normal) right-handed, chosen from the

@@ -161,6 +161,45 @@ TEST(MeshContainer, ScaledMeshWeldsWithAScaledTolerance) {
   EXPECT_EQ(c.positionIdCount(), 8u);
 }
 
+// connected(): one part on position ids, worked out for a closed mesh, carried by its weld.
+TEST(MeshContainer, KnowsWhetherAClosedMeshIsOnePart) {
+  MeshContainer c;
+  ASSERT_TRUE(c.setMesh(seamCube()).ok());
+  EXPECT_TRUE(c.connected());
+  MeshWeld weld;
+  c.copyWeld(weld);
+  EXPECT_TRUE(weld.connected);
+  MeshContainer taken;
+  ASSERT_TRUE(taken.setMesh(seamCube(), weld).ok());
+  EXPECT_TRUE(taken.connected());
+  weld.connected = false;  // a weld that does not know: nor does the container
+  ASSERT_TRUE(taken.setMesh(seamCube(), weld).ok());
+  EXPECT_FALSE(taken.connected());
+  ASSERT_TRUE(c.setMesh(primitives::twoDisjointSpheres(0.5f, 0.3f, 12, 6)).ok());
+  EXPECT_TRUE(c.closed());
+  EXPECT_FALSE(c.connected());
+  // A lone degenerate triangle away from the cube is a part of its own (the splitter's islands
+  // count it), though the closedness check ignores it.
+  MeshData cube = seamCube();
+  const uint32_t first = static_cast<uint32_t>(cube.positions.size());
+  cube.positions.insert(cube.positions.end(), {glm::vec3(5, 5, 5), glm::vec3(5, 5, 5), glm::vec3(6, 5, 5)});
+  cube.indices.insert(cube.indices.end(), {first, first + 1, first + 2});
+  if (!cube.normals.empty()) cube.normals.resize(cube.positions.size(), glm::vec3(0, 0, 1));
+  if (!cube.uv0.empty()) cube.uv0.resize(cube.positions.size());
+  if (!cube.tangents.empty()) cube.tangents.resize(cube.positions.size());
+  ASSERT_TRUE(c.setMesh(cube).ok()) << c.setMesh(cube).message;
+  EXPECT_TRUE(c.closed());
+  EXPECT_FALSE(c.connected());
+  // An open mesh: not worked out.
+  MeshData open = seamCube();
+  open.indices.resize(open.indices.size() - 3);
+  ASSERT_TRUE(c.setMesh(open).ok());
+  EXPECT_FALSE(c.closed());
+  EXPECT_FALSE(c.connected());
+  c.release();
+  EXPECT_FALSE(c.connected());
+}
+
 TEST(MeshContainer, OpenMeshIsNotClosed) {
   MeshData m = seamCube();
   m.indices.resize(m.indices.size() - 3);

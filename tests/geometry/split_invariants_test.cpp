@@ -561,6 +561,112 @@ Plane planeOf(glm::dvec3 normal, double offset) {
   return p;
 }
 
+// ---- Islands settled by the section: the same pieces as the island search. ----
+
+std::vector<std::string> samePieces(const SplitResult& a, const SplitResult& b) {
+  std::vector<std::string> problems;
+  if (a.status != b.status) problems.push_back("status differs");
+  if (a.pieces.size() != b.pieces.size()) problems.push_back("piece count differs");
+  for (size_t k = 0; problems.empty() && k < a.pieces.size(); ++k) {
+    const SplitPiece& p = a.pieces[k];
+    const SplitPiece& q = b.pieces[k];
+    const std::string at = "piece " + std::to_string(k) + ": ";
+    if (p.mesh.positions != q.mesh.positions || p.mesh.normals != q.mesh.normals || p.mesh.uv0 != q.mesh.uv0 ||
+        p.mesh.indices != q.mesh.indices || p.mesh.joints != q.mesh.joints || p.mesh.weights != q.mesh.weights) {
+      problems.push_back(at + "mesh differs");
+    }
+    if (p.sourceTriangles != q.sourceTriangles || p.side != q.side || p.capLoops != q.capLoops ||
+        p.capTriangles != q.capTriangles || p.reached != q.reached) {
+      problems.push_back(at + "provenance, side or caps differ");
+    }
+    if (p.weld.positionIds != q.weld.positionIds || p.weld.representatives != q.weld.representatives ||
+        p.weld.closed != q.weld.closed || p.weld.inverted != q.weld.inverted || p.weld.connected != q.weld.connected) {
+      problems.push_back(at + "weld differs");
+    }
+    if (p.mass.volume != q.mass.volume || p.mass.centerOfMass != q.mass.centerOfMass ||
+        p.mass.inertia != q.mass.inertia) {
+      problems.push_back(at + "mass differs");
+    }
+  }
+  return problems;
+}
+
+// A closed mesh known to be one part, cut where no vertex is on the plane, needs no island search
+// when its section settles the islands (one loop, or loops one cap joins). Every generated mesh is
+// cut with its weld as worked out and with the same weld not known to be one part (always the
+// search): random planes, axis planes and planes through vertices, the pieces compared byte for byte.
+TEST(SplitIslands, SettledByTheSectionTheyAreWhatTheSearchFinds) {
+  auto splitter = makeConcaveSplitter();
+  const uint64_t skippedBefore = detail::islandSearchesSkipped();
+  size_t compared = 0;
+  for (const std::string& name : kAllCases) {
+    InvariantCase c = makeCase(name);
+    MeshContainer welded;
+    std::string why;
+    ASSERT_TRUE(prepare(welded, c, why)) << name << ": " << why;
+    MeshWeld weld;
+    welded.copyWeld(weld);
+    const bool onePart = name != "hollowSphere" && name != "nestedShells3" && name != "twoDisjointSpheres";
+    EXPECT_EQ(weld.connected, onePart) << name;
+    MeshWeld unknown = weld;
+    unknown.connected = false;
+    MeshContainer known, searched;
+    c.weld = &weld;
+    ASSERT_TRUE(prepare(known, c, why)) << name << ": " << why;
+    c.weld = &unknown;
+    ASSERT_TRUE(prepare(searched, c, why)) << name << ": " << why;
+    glm::dvec3 lo, hi;
+    testing::bounds(known.cutPositions(), lo, hi);
+    std::vector<Plane> planes = testing::randomPlanes(c.seed + 100, 40, lo, hi);
+    for (int a = 0; a < 3; ++a) planes.push_back(planeOf(glm::dvec3(a == 0, a == 1, a == 2), 0.5 * (lo[a] + hi[a])));
+    testing::SeededRandom rng(c.seed + 200);
+    const std::span<const glm::dvec3> cut = known.cutPositions();
+    for (size_t k = 0; k < 10; ++k) {  // through a vertex
+      const glm::dvec3 normal = rng.unitVector();
+      planes.push_back(planeOf(normal, glm::dot(normal, cut[(k * 7919) % cut.size()])));
+    }
+    SplitResult a, b;
+    for (size_t k = 0; k < planes.size(); ++k) {
+      splitter->split(known, planes[k], SplitOptions{}, a);
+      splitter->split(searched, planes[k], SplitOptions{}, b);
+      const std::vector<std::string> problems = samePieces(a, b);
+      EXPECT_TRUE(problems.empty()) << name << " plane #" << k << " (" << describePlane(planes[k])
+                                    << "): " << problems.front();
+      ++compared;
+    }
+  }
+  const uint64_t skipped = detail::islandSearchesSkipped() - skippedBefore;
+  std::cout << "[ checked  ] islands settled by the section: " << skipped << " of " << compared
+            << " split pairs without a search, the same pieces as the search\n";
+  EXPECT_GT(skipped, compared / 4);  // the shortcut is taken often enough to be tested
+  EXPECT_LT(skipped, compared);      // and refused where it must be (several caps, vertex on the plane)
+}
+
+// A piece's weld says it is one part only when it is: the sphere the plane misses goes with the
+// half on its side (two parts), the other half is one.
+TEST(SplitIslands, PieceWeldsKnowWhetherTheyAreOnePart) {
+  InvariantCase c = makeCase("twoDisjointSpheres");
+  MeshContainer container;
+  std::string why;
+  ASSERT_TRUE(prepare(container, c, why)) << why;
+  EXPECT_FALSE(container.connected());
+  SplitResult result;
+  ASSERT_EQ(makeConcaveSplitter()->split(container, planeOf({1, 0, 0}, 0.5), SplitOptions{}, result),
+            SplitStatus::Ok);
+  ASSERT_EQ(result.pieces.size(), 2u);
+  int joined = 0;
+  for (const SplitPiece& piece : result.pieces) {
+    bool twoParts = false;  // holds the sphere at negative x, which the plane misses
+    for (const glm::vec3& p : piece.mesh.positions) twoParts = twoParts || p.x < 0.f;
+    joined += twoParts ? 1 : 0;
+    EXPECT_EQ(piece.weld.connected, !twoParts);
+    MeshContainer again;
+    ASSERT_TRUE(again.setMesh(piece.mesh).ok());
+    EXPECT_EQ(again.connected(), !twoParts);  // the weld from nothing agrees
+  }
+  EXPECT_EQ(joined, 1);
+}
+
 // ---- Special planes with known island counts (both splitters where the input is convex). ----
 
 void runSpecial(const std::string& caseName, const Plane& plane, const Expected& expected) {
