@@ -363,7 +363,7 @@ class Splitter final : public IMeshSplitter {
   static uint32_t find(SideWork& w, uint32_t x);
   static void uniteCorners(SideWork& w, uint32_t a, uint32_t b, uint32_t c);
   uint32_t labelSide(int side, SideWork& w, const SplitOptions& options);
-  bool everyCutOnALoop();
+  bool everyJoinOnALoop();
   bool sectionSettlesIslands();
   void uniteSide(int side, SideWork& w, uint32_t weldedCount);
   void islandStats(int side, SideWork& w, uint32_t pieces, bool volumes, bool bounds) const;
@@ -449,11 +449,13 @@ class Splitter final : public IMeshSplitter {
   std::vector<Pending> pending_;
   bool united_ = false;        // cutWholeAndCollect united the whole triangles' islands
   // One island per side without a search (see sectionSettlesIslands): islandCandidate_ after the
-  // classification (a closed mesh of one part, no position on the plane), cutsOnLoops_ after the
+  // classification (a closed mesh of one part), cutsOnLoops_ after the
   // loops are traced, oneIslandEach_ once the caps are made.
   bool islandCandidate_ = false, cutsOnLoops_ = false, oneIslandEach_ = false;
   bool sidesAgree_ = false;           // traceSection: both sides have the same on-plane boundary
   std::vector<uint8_t> cutOnLoop_;    // per welded cut edge: its point is on a loop
+  std::vector<uint32_t> onPlaneIds_;  // islandCandidate_: the position ids on the plane, ascending
+  std::vector<uint32_t> loopSourceIds_;  // everyJoinOnALoop: the position ids on loops, sorted
   std::vector<uint32_t> loopOfPoint_, loopParent_;  // sectionSettlesIslands: loops joined by caps
   bool dropped_[2] = {false, false};  // dropCollapsedTriangles removed triangles of that side
   std::vector<CutOutput> cutChunks_;  // chunks 1, 2, ... (cutChunks_[c - 1])
@@ -552,10 +554,16 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   if (checked != SplitStatus::Ok) return checked;
   // 1, 2. Classification per position id, then the crossing edges.
   classify(onPlaneTolerance_);
-  // A closed mesh known to be one part with no position on the plane: its section may settle the
-  // islands (sectionSettlesIslands), so the whole triangles are not united on the way.
-  islandCandidate_ = options.separateIslands && container.closed() && container.connected() &&
-                     std::find(side_.begin(), side_.end(), int8_t(0)) == side_.end();
+  // A closed mesh known to be one part: its section may settle the islands (sectionSettlesIslands),
+  // so the whole triangles are not united on the way. The ids on the plane are kept for the check.
+  islandCandidate_ = options.separateIslands && container.closed() && container.connected();
+  onPlaneIds_.clear();
+  if (islandCandidate_) {
+    for (auto at = std::find(side_.begin(), side_.end(), int8_t(0)); at != side_.end();
+         at = std::find(at + 1, side_.end(), int8_t(0))) {
+      onPlaneIds_.push_back(static_cast<uint32_t>(at - side_.begin()));
+    }
+  }
   // On one thread steps 2 and 3 share a pass over the source (the crossing triangles are cut once
   // their edges are known); on several, the crossing edges are counted first so that each chunk
   // knows where its triangles go.
@@ -1175,7 +1183,7 @@ void Splitter::buildLoops() {
   }
   capTolerance_ = std::max(4.0 * 0x1.0p-24 * largest, 1e-12 * container_->boundsDiagonal());
   mergeTolerance_ = std::max(capTolerance_, onPlaneTolerance_);
-  cutsOnLoops_ = islandCandidate_ && everyCutOnALoop();  // before the merge renames loop points
+  cutsOnLoops_ = islandCandidate_ && everyJoinOnALoop();  // before the merge renames loop points
   mergeNearPoints();
   points_.resize(loopIds_.size());
   for (size_t k = 0; k < loopIds_.size(); ++k) points_[k] = project(sectionCut(loopIds_[k]));
@@ -1930,29 +1938,39 @@ void Splitter::uniteSide(int side, SideWork& w, uint32_t weldedCount) {
   }
 }
 
-// Whether every cut point (welded crossing edge) is a point of some traced loop, on the loops as
-// traced (before near points are merged).
-bool Splitter::everyCutOnALoop() {
+// Whether every point where the two sides can meet, each cut point (welded crossing edge) and each
+// position id on the plane, is a point of some traced loop, on the loops as traced (before near
+// points are merged).
+bool Splitter::everyJoinOnALoop() {
   const size_t cuts = weldedEdges_.size();
   cutOnLoop_.assign(cuts, 0);
+  loopSourceIds_.clear();
   size_t marked = 0;
   for (uint32_t id : loopIds_) {
-    if (id < idCount_ || cutOnLoop_[id - idCount_]) continue;
-    cutOnLoop_[id - idCount_] = 1;
-    ++marked;
+    if (id < idCount_) {
+      loopSourceIds_.push_back(id);
+    } else if (!cutOnLoop_[id - idCount_]) {
+      cutOnLoop_[id - idCount_] = 1;
+      ++marked;
+    }
   }
-  return marked == cuts;
+  if (marked != cuts) return false;
+  std::sort(loopSourceIds_.begin(), loopSourceIds_.end());
+  for (uint32_t id : onPlaneIds_) {
+    if (!std::binary_search(loopSourceIds_.begin(), loopSourceIds_.end(), id)) return false;
+  }
+  return true;
 }
 
 // True when the section proves that each side is one island, so that no union-find is needed.
-// The mesh is closed and one part (islands are triangles joined through shared welded ids), and no
-// position id is on the plane. Then:
+// The mesh is closed and one part (islands are triangles joined through shared welded ids). Then:
 //  - the triangles of both sides together are still one part: the parts of a cut triangle share its
-//    cut points, and two triangles that shared an id still share it through the parts holding it;
-//  - an id used on both sides is a cut point (an above triangle has no corner below, nor a below
-//    one a corner above, and no source position is on the plane), so every island of a side, which
-//    must meet the rest through some id, holds a cut point;
-//  - every cut point lies on a loop (everyCutOnALoop), and each loop is one island of each side:
+//    cut points (and its corner on the plane), and two triangles that shared an id still share it
+//    through the parts holding it;
+//  - an id used on both sides is a cut point or a position id on the plane (an above triangle has
+//    no corner below, nor a below one a corner above), so every island of a side, which must meet
+//    the rest through some id, holds one of those;
+//  - each of those lies on a loop (everyJoinOnALoop), and each loop is one island of each side:
 //    its consecutive points are joined by a boundary edge, which is an edge of a triangle of both
 //    sides when the two boundaries agree;
 //  - the loops are one island when there is one loop, or when the cap triangles join them all (one

@@ -591,8 +591,8 @@ std::vector<std::string> samePieces(const SplitResult& a, const SplitResult& b) 
   return problems;
 }
 
-// A closed mesh known to be one part, cut where no vertex is on the plane, needs no island search
-// when its section settles the islands (one loop, or loops one cap joins). Every generated mesh is
+// A closed mesh known to be one part needs no island search when its section settles the islands
+// (every cut point and on-plane vertex on a loop; one loop, or loops one cap joins). Every mesh is
 // cut with its weld as worked out and with the same weld not known to be one part (always the
 // search): random planes, axis planes and planes through vertices, the pieces compared byte for byte.
 TEST(SplitIslands, SettledByTheSectionTheyAreWhatTheSearchFinds) {
@@ -639,7 +639,66 @@ TEST(SplitIslands, SettledByTheSectionTheyAreWhatTheSearchFinds) {
   std::cout << "[ checked  ] islands settled by the section: " << skipped << " of " << compared
             << " split pairs without a search, the same pieces as the search\n";
   EXPECT_GT(skipped, compared / 4);  // the shortcut is taken often enough to be tested
-  EXPECT_LT(skipped, compared);      // and refused where it must be (several caps, vertex on the plane)
+  EXPECT_LT(skipped, compared);      // and refused where it must be (several caps, several parts)
+}
+
+// Outward-wound tetrahedron a, b, c, d appended to m (positions and indices only).
+void appendTetrahedron(MeshData& m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
+  const uint32_t first = static_cast<uint32_t>(m.positions.size());
+  m.positions.insert(m.positions.end(), {a, b, c, d});
+  const glm::vec3 centre = 0.25f * (a + b + c + d);
+  const uint32_t faces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  for (const auto& f : faces) {
+    const glm::vec3 p = m.positions[first + f[0]], q = m.positions[first + f[1]], r = m.positions[first + f[2]];
+    const bool outward = glm::dot(glm::cross(q - p, r - p), p - centre) > 0.f;
+    m.indices.insert(m.indices.end(), {first + f[0], first + (outward ? f[1] : f[2]), first + (outward ? f[2] : f[1])});
+  }
+}
+
+// One part whose two sides also meet at a vertex on the plane that no loop passes: a cube cut
+// through its middle (one loop) and, joined to it at a lower corner, a tetrahedron below the plane
+// touching at one vertex the tip of another above it. Above, the cube's half and the upper
+// tetrahedron are two islands (made one piece by Touching, or two with IslandMode::Connected): the
+// section alone must not settle them.
+TEST(SplitIslands, AVertexOnThePlaneOffTheLoopsTakesTheSearch) {
+  MeshData m = prim::box(glm::vec3(1.f));
+  m.normals.clear();
+  m.tangents.clear();
+  m.uv0.clear();
+  m.submeshes.clear();
+  const glm::vec3 touch(3.f, 3.f, 0.f);
+  appendTetrahedron(m, glm::vec3(1.f, 1.f, -1.f), touch, glm::vec3(3.f, 1.5f, -0.6f), glm::vec3(1.5f, 3.f, -0.6f));
+  appendTetrahedron(m, touch, glm::vec3(4.f, 3.f, 1.f), glm::vec3(3.f, 4.f, 1.f), glm::vec3(4.f, 4.f, 0.3f));
+  MeshContainer welded;
+  ASSERT_TRUE(welded.setMesh(m).ok());
+  ASSERT_TRUE(welded.closed());
+  ASSERT_TRUE(welded.connected());
+  MeshWeld weld, unknown;
+  welded.copyWeld(weld);
+  unknown = weld;
+  unknown.connected = false;
+  MeshContainer known, searched;
+  ASSERT_TRUE(known.setMesh(m, weld).ok());
+  ASSERT_TRUE(searched.setMesh(m, unknown).ok());
+  auto splitter = makeConcaveSplitter();
+  for (IslandMode mode : {IslandMode::Touching, IslandMode::Connected}) {
+    SplitOptions options;
+    options.islands = mode;
+    SplitResult a, b;
+    ASSERT_EQ(splitter->split(known, planeOf({0, 0, 1}, 0.0), options, a), SplitStatus::Ok);
+    ASSERT_EQ(splitter->split(searched, planeOf({0, 0, 1}, 0.0), options, b), SplitStatus::Ok);
+    const std::vector<std::string> problems = samePieces(a, b);
+    EXPECT_TRUE(problems.empty()) << problems.front();
+    size_t above = 0;
+    bool aboveOnePart = true;
+    for (const SplitPiece& piece : a.pieces) {
+      if (piece.side < 0) continue;
+      ++above;
+      aboveOnePart = aboveOnePart && piece.weld.connected;
+    }
+    EXPECT_EQ(above, mode == IslandMode::Touching ? 1u : 2u);
+    EXPECT_EQ(aboveOnePart, mode == IslandMode::Connected);
+  }
 }
 
 // A piece's weld says it is one part only when it is: the sphere the plane misses goes with the
