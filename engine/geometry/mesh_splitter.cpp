@@ -190,8 +190,9 @@ class RawBuffer {
   size_t capacity_ = 0;
 };
 
-// The values f(0), f(1), ... as a random-access iterator, so that a vector is assigned them in one
-// pass (resize-then-write would first fill it with zeros).
+// The values f(0), f(1), ... as an iterator with random-access moves (its reference is a value, as
+// for a proxy), so that a vector is assigned them in one pass (resize-then-write would first fill
+// it with zeros).
 template <typename F>
 class MappedIterator {
  public:
@@ -211,6 +212,7 @@ class MappedIterator {
   MappedIterator& operator-=(difference_type d) { i_ -= static_cast<size_t>(d); return *this; }
   MappedIterator operator+(difference_type d) const { return {f_, i_ + static_cast<size_t>(d)}; }
   MappedIterator operator-(difference_type d) const { return {f_, i_ - static_cast<size_t>(d)}; }
+  friend MappedIterator operator+(difference_type d, const MappedIterator& it) { return it + d; }
   difference_type operator-(const MappedIterator& o) const { return static_cast<difference_type>(i_ - o.i_); }
   bool operator==(const MappedIterator& o) const { return i_ == o.i_; }
   auto operator<=>(const MappedIterator& o) const { return i_ <=> o.i_; }

@@ -572,9 +572,17 @@ std::vector<std::string> samePieces(const SplitResult& a, const SplitResult& b) 
     const SplitPiece& q = b.pieces[k];
     const std::string at = "piece " + std::to_string(k) + ": ";
     if (p.mesh.positions != q.mesh.positions || p.mesh.normals != q.mesh.normals || p.mesh.uv0 != q.mesh.uv0 ||
-        p.mesh.indices != q.mesh.indices || p.mesh.joints != q.mesh.joints || p.mesh.weights != q.mesh.weights) {
+        p.mesh.indices != q.mesh.indices || p.mesh.joints != q.mesh.joints || p.mesh.weights != q.mesh.weights ||
+        p.mesh.tangents != q.mesh.tangents || p.mesh.uv1 != q.mesh.uv1 || p.mesh.colors != q.mesh.colors) {
       problems.push_back(at + "mesh differs");
     }
+    bool sameRuns = p.mesh.submeshes.size() == q.mesh.submeshes.size();
+    for (size_t r = 0; sameRuns && r < p.mesh.submeshes.size(); ++r) {
+      const SubMesh& x = p.mesh.submeshes[r];
+      const SubMesh& y = q.mesh.submeshes[r];
+      sameRuns = x.firstIndex == y.firstIndex && x.indexCount == y.indexCount && x.materialId == y.materialId;
+    }
+    if (!sameRuns) problems.push_back(at + "submesh runs differ");
     if (p.sourceTriangles != q.sourceTriangles || p.side != q.side || p.capLoops != q.capLoops ||
         p.capTriangles != q.capTriangles || p.reached != q.reached) {
       problems.push_back(at + "provenance, side or caps differ");
@@ -625,10 +633,16 @@ TEST(SplitIslands, SettledByTheSectionTheyAreWhatTheSearchFinds) {
       const glm::dvec3 normal = rng.unitVector();
       planes.push_back(planeOf(normal, glm::dot(normal, cut[(k * 7919) % cut.size()])));
     }
+    // Default options, then without caps, one side kept, strict islands (a plane in four each).
+    std::vector<SplitOptions> variants(4);
+    variants[1].cap = false;
+    variants[2].keepSide = 1;
+    variants[3].islands = IslandMode::Connected;
     SplitResult a, b;
     for (size_t k = 0; k < planes.size(); ++k) {
-      splitter->split(known, planes[k], SplitOptions{}, a);
-      splitter->split(searched, planes[k], SplitOptions{}, b);
+      const SplitOptions& options = variants[k % 4 == 0 ? 1 + (k / 4) % 3 : 0];
+      splitter->split(known, planes[k], options, a);
+      splitter->split(searched, planes[k], options, b);
       const std::vector<std::string> problems = samePieces(a, b);
       EXPECT_TRUE(problems.empty()) << name << " plane #" << k << " (" << describePlane(planes[k])
                                     << "): " << problems.front();
