@@ -36,6 +36,8 @@ struct WeldScratch {
   std::vector<uint32_t> sortOrder;    // sorted weld: vertices by (cell, index)
   std::vector<uint32_t> edgeStart;    // closedness: edges filed per position id (offsets)
   std::vector<uint32_t> edgeTargets;  // closedness: edges filed per position id
+  std::vector<uint32_t> tally;        // closedness: per position id, entries of one list
+  std::vector<uint32_t> parent;       // connectivity: union-find over position ids
 };
 
 WeldScratch& weldScratch() {
@@ -52,28 +54,130 @@ bool sizedLike(const std::vector<T>& attribute, size_t n) {
 
 MeshStatus invalid(std::string text) { return MeshStatus::failure(SplitStatus::InvalidInput, std::move(text)); }
 
-// True for a closed mesh wound inwards: its signed volume (summed about the centre of its bounds,
-// which keeps the terms small) is negative beyond the rounding of the sum. Files come this way
-// (CGAL's beam.off, tetrahedron.off, ellipe0.003.off); cut as they are, their sections run
-// clockwise, every loop looks like a hole, and no cap can be made.
-bool woundInwards(std::span<const glm::vec3> positions, std::span<const uint32_t> indices) {
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (const glm::vec3& p : positions) {
-    lo = glm::min(lo, glm::dvec3(p));
-    hi = glm::max(hi, glm::dvec3(p));
+// True for a closed mesh wound inwards: its signed volume (summed about `centre`, the centre of its
+// bounds, which keeps the terms small) is negative beyond the rounding of the sum. Files come this
+// way (CGAL's beam.off, tetrahedron.off, ellipe0.003.off); cut as they are, their sections run
+// clockwise, every loop looks like a hole, and no cap can be made. Four running sums (triangle t into
+// sum t % 4) keep the additions from waiting on each other; the order is fixed, so is the answer.
+bool woundInwards(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                  const glm::dvec3& centre) {
+  auto term = [&](size_t t) {
+    const glm::dvec3 a = glm::dvec3(positions[indices[3 * t]]) - centre;
+    const glm::dvec3 b = glm::dvec3(positions[indices[3 * t + 1]]) - centre;
+    const glm::dvec3 c = glm::dvec3(positions[indices[3 * t + 2]]) - centre;
+    return glm::dot(a, glm::cross(b, c));
+  };
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, m0 = 0.0, m1 = 0.0, m2 = 0.0, m3 = 0.0;
+  const size_t triangles = indices.size() / 3;
+  size_t t = 0;
+  for (; t + 4 <= triangles; t += 4) {
+    const double d0 = term(t), d1 = term(t + 1), d2 = term(t + 2), d3 = term(t + 3);
+    s0 += d0, s1 += d1, s2 += d2, s3 += d3;
+    m0 += std::abs(d0), m1 += std::abs(d1), m2 += std::abs(d2), m3 += std::abs(d3);
   }
-  const glm::dvec3 centre = 0.5 * (lo + hi);
-  double sum = 0.0, magnitude = 0.0;
-  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-    const glm::dvec3 a = glm::dvec3(positions[indices[t]]) - centre;
-    const glm::dvec3 b = glm::dvec3(positions[indices[t + 1]]) - centre;
-    const glm::dvec3 c = glm::dvec3(positions[indices[t + 2]]) - centre;
-    const double term = glm::dot(a, glm::cross(b, c));
-    sum += term;
-    magnitude += std::abs(term);
+  for (; t < triangles; ++t) {
+    const double d = term(t);
+    s0 += d;
+    m0 += std::abs(d);
   }
-  return sum < -1e-9 * magnitude;
+  return (s0 + s1) + (s2 + s3) < -1e-9 * ((m0 + m1) + (m2 + m3));
 }
+
+uint64_t cellKey(int64_t x, int64_t y, int64_t z) {
+  return (uint64_t(x) << (2 * kCellBits)) | (uint64_t(y) << kCellBits) | uint64_t(z);
+}
+
+// The hashed weld's cell width: twice the median edge length of up to 512 triangles spread over
+// the index list, so that a cell holds a few vertices of any surface whatever its bounds look like
+// (a cell count set by the bounds alone crowds a flat or thin mesh into few cells). At least four
+// tolerances (a vertex then meets at most one neighbouring cell per axis), and wide enough for the
+// cell indices to fit their bits. Without a usable edge (every sampled triangle a point): about
+// sqrt(n) / 4 cells along the largest side, as for a surface.
+double weldCellSize(std::span<const glm::vec3> positions, std::span<const uint32_t> indices, double largest,
+                    double tolerance) {
+  constexpr size_t kSample = 512;
+  const size_t triangles = indices.size() / 3;
+  const size_t stride = std::max<size_t>(1, triangles / kSample);
+  double lengths[3 * kSample];
+  size_t count = 0;
+  for (size_t t = 0; t < triangles && count + 3 <= 3 * kSample; t += stride) {
+    const glm::dvec3 a(positions[indices[3 * t]]), b(positions[indices[3 * t + 1]]), c(positions[indices[3 * t + 2]]);
+    for (const double length : {glm::length(b - a), glm::length(c - b), glm::length(a - c)}) {
+      if (length > 0.0) lengths[count++] = length;
+    }
+  }
+  double cell = 0.0;
+  if (count > 0) {
+    std::nth_element(lengths, lengths + count / 2, lengths + count);
+    cell = 2.0 * lengths[count / 2];
+  } else {
+    cell = largest / std::max(1.0, std::ceil(0.25 * std::sqrt(double(positions.size()))));
+  }
+  cell = std::max({cell, 4.0 * tolerance, largest / double(kCellMask - 4)});
+  return cell > 0.0 && std::isfinite(cell) ? cell : 1.0;  // 1: every vertex at one point
+}
+
+// The hashed weld's table: open addressing from a cell key to the cell's first and last vertex, one
+// 16-byte slot each ([2 s] the key, [2 s + 1] first | last << 32), doubled when three quarters full.
+class CellTable {
+ public:
+  CellTable(std::vector<uint64_t>& slots, size_t expected) : slots_(slots) {
+    size_t capacity = 16;
+    shift_ = 60;
+    while (capacity < expected) {
+      capacity *= 2;
+      --shift_;
+    }
+    slots_.assign(2 * capacity, kEmpty);
+    mask_ = capacity - 1;
+  }
+  // The slot holding `key`, or the empty slot where it would go. Fibonacci hashing: the top bits of
+  // the product, which every bit of the key reaches (the low bits of a product never see the key's
+  // high bits, where the x cell index is).
+  size_t find(uint64_t key) const {
+    size_t slot = static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+    while (slots_[2 * slot + 1] != kEmpty && slots_[2 * slot] != key) slot = (slot + 1) & mask_;
+    return slot;
+  }
+  // The first vertex of the cell in `slot`; kNone for an empty slot.
+  uint32_t first(size_t slot) const {
+    const uint64_t record = slots_[2 * slot + 1];
+    return record == kEmpty ? kNone : static_cast<uint32_t>(record);
+  }
+  // Makes v the last vertex of the cell `key`, whose slot find() just gave. Returns the vertex that
+  // was last before it, or kNone for a new cell (slots may move then: find() again after).
+  uint32_t append(size_t slot, uint64_t key, uint32_t v) {
+    uint64_t& record = slots_[2 * slot + 1];
+    if (record != kEmpty) {
+      const uint32_t last = static_cast<uint32_t>(record >> 32);
+      record = (record & 0xffffffffull) | (uint64_t(v) << 32);
+      return last;
+    }
+    slots_[2 * slot] = key;
+    record = uint64_t(v) | (uint64_t(v) << 32);
+    if (4 * ++occupied_ > 3 * (mask_ + 1)) grow();
+    return kNone;
+  }
+
+ private:
+  static constexpr uint64_t kEmpty = ~uint64_t(0);
+  void grow() {
+    std::vector<uint64_t> old(slots_.begin(), slots_.end());
+    slots_.assign(2 * old.size(), kEmpty);
+    mask_ = 2 * mask_ + 1;
+    --shift_;
+    for (size_t s = 0; s < old.size(); s += 2) {
+      if (old[s + 1] == kEmpty) continue;
+      const size_t slot = find(old[s]);
+      slots_[2 * slot] = old[s];
+      slots_[2 * slot + 1] = old[s + 1];
+    }
+  }
+  std::vector<uint64_t>& slots_;
+  uint64_t mask_ = 0;
+  int shift_ = 60;  // 64 - log2(capacity)
+  size_t occupied_ = 0;
+};
 
 }  // namespace
 
@@ -215,21 +319,28 @@ MeshStatus MeshContainer::take(const MeshWeld* weld) {
   model_ = glm::dmat4(1.0);
   jointMatrices_.clear();
   const size_t n = mesh.positions.size();
-  cutPositions_.resize(n);
-  for (size_t i = 0; i < n; ++i) cutPositions_[i] = glm::dvec3(mesh.positions[i]);
+  // The cut space is the source space until a transform is set (setTransform updates the bounds).
+  cutPositions_.assign(mesh.positions.begin(), mesh.positions.end());  // no zero fill first
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::dvec3& p : cutPositions_) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  boundsMin_ = lo;
+  boundsMax_ = hi;
+  boundsDiagonal_ = n == 0 ? 0.0 : glm::length(hi - lo);
   if (weld) {
     positionIds_.assign(weld->positionIds.begin(), weld->positionIds.end());
     representatives_.assign(weld->representatives.begin(), weld->representatives.end());
     positionIdCount_ = static_cast<uint32_t>(representatives_.size());
     closed_ = weld->closed;
     connected_ = weld->connected;
-    updateBounds();
   } else {
-    this->weld();  // also sets boundsDiagonal_
+    this->weld();
   }
   // A closed mesh wound inwards is cut as if mirrored: the splitter's loops and caps then follow
   // its own winding, its pieces keep that winding and their volumes come out positive.
-  inverted_ = closed_ && (weld ? weld->inverted : woundInwards(mesh.positions, mesh.indices));
+  inverted_ = closed_ && (weld ? weld->inverted : woundInwards(mesh.positions, mesh.indices, 0.5 * (lo + hi)));
   mirrored_ = inverted_;
   cutIsSource_ = true;
   return {};
@@ -243,69 +354,42 @@ void MeshContainer::copyWeld(MeshWeld& out) const {
   out.connected = connected_;
 }
 
+// Position ids by the weld tolerance, then closedness and connectivity. Needs the source-space
+// bounds (take() sets them).
 void MeshContainer::weld() {
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (const glm::vec3& p : source_->positions) {
-    lo = glm::min(lo, glm::dvec3(p));
-    hi = glm::max(hi, glm::dvec3(p));
-  }
-  boundsDiagonal_ = source_->positions.empty() ? 0.0 : glm::length(hi - lo);
-  boundsMin_ = lo;  // source space: the cut space until a transform is set (setTransform updates it)
-  boundsMax_ = hi;
   const double tolerance = kWeldRelative * boundsDiagonal_;
-  if (!weldHashed(tolerance, lo, hi)) weldSorted(tolerance, lo);
+  if (!weldHashed(tolerance, boundsMin_, boundsMax_)) weldSorted(tolerance, boundsMin_);
   positionIdCount_ = static_cast<uint32_t>(representatives_.size());
-  computeClosed();
-  connected_ = false;
-  if (closed_) computeConnected();
+  computeClosed();  // also sets connected_
 }
 
-// The fast weld: a hashed grid of cells a few vertex spacings wide (at least four tolerances), each
+// The fast weld: a hashed grid of cells about twice the median edge length wide (weldCellSize), each
 // cell's vertices chained in ascending index order. A vertex is compared with the earlier vertices
 // of its own cell and, along an axis where it lies within the tolerance of a cell face, of the
-// neighbouring cell too; the first one within the tolerance (ascending order) is the lowest.
-// Cells of a few vertices each keep consecutive vertices (meshes list their vertices with spatial
-// coherence) in the same cells, so the table stays in cache; a slot is one 16-byte record (key,
-// first and last vertex). Returns false, leaving the ids unset, when the vertices crowd into few
-// cells (more comparisons than a fixed budget): the sorted weld below has no such worst case.
+// neighbouring cell too; the first one within the tolerance (ascending order) is the lowest, so the
+// ids do not depend on the cell size. Cells sized by the edges hold a few vertices each on any surface
+// (a flat comb or a sphere's crowded poles as much as a ball), and consecutive vertices (meshes list
+// them with spatial coherence) share cells, so the table stays in cache. Returns false, leaving the
+// ids unset, when the vertices crowd into few cells anyway (more comparisons than a fixed budget):
+// the sorted weld below has no such worst case.
 bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi) {
-  std::vector<uint64_t>& cellKeys_ = weldScratch().cellKeys;
-  std::vector<uint32_t>& cellNext_ = weldScratch().cellNext;
-  const size_t n = source_->positions.size();
+  std::vector<uint32_t>& cellNext = weldScratch().cellNext;
+  const std::span<const glm::vec3> positions = source_->positions;
+  const size_t n = positions.size();
   const glm::dvec3 extent = hi - lo;
   const double largest = std::max(extent.x, std::max(extent.y, extent.z));
-  // About sqrt(n) / 4 cells along the largest side: a surface of n vertices puts a few in each cell.
-  double cell = largest / std::max(1.0, std::ceil(0.25 * std::sqrt(double(n))));
-  cell = std::max(cell, 4.0 * tolerance);
-  if (!(cell > 0.0) || !std::isfinite(cell)) cell = 1.0;  // every vertex at one point
-  if (largest / cell > double(kCellMask - 2)) return false;
+  const double cell = weldCellSize(positions, source_->indices, largest, tolerance);
   const double inverseCell = 1.0 / cell;
-  // Surface meshes fill about one cell per five vertices; a table of n / 2 slots or more keeps the
-  // load low, and a crowded one (over 3/4 full) hands over to the sorted weld.
-  size_t capacity = 16;
-  while (capacity < n / 2) capacity *= 2;
-  const uint64_t mask = capacity - 1;
-  constexpr uint64_t kEmpty = ~uint64_t(0);
-  cellKeys_.assign(2 * capacity, kEmpty);  // per slot: [2 s] cell key, [2 s + 1] first | last << 32
-  cellNext_.resize(n);
+  CellTable table(weldScratch().cellKeys, n / 2);
+  cellNext.resize(n);
   positionIds_.resize(n);
   representatives_.clear();
   representatives_.reserve(n);
-  size_t occupied = 0;
-  auto slotOf = [&](uint64_t key) {
-    const uint64_t h = key * 0x9E3779B97F4A7C15ull;
-    size_t slot = static_cast<size_t>(h >> 24) & mask;
-    while (cellKeys_[2 * slot + 1] != kEmpty && cellKeys_[2 * slot] != key) slot = (slot + 1) & mask;
-    return slot;
-  };
-  auto keyOf = [](int64_t x, int64_t y, int64_t z) {
-    return (uint64_t(x) << (2 * kCellBits)) | (uint64_t(y) << kCellBits) | uint64_t(z);
-  };
   const double tolerance2 = tolerance * tolerance;
   const double reach = tolerance * 1.001;  // generous: the distance test below decides
   uint64_t budget = 64 * uint64_t(n) + 4096;
   for (uint32_t v = 0; v < n; ++v) {
-    const glm::dvec3 p(source_->positions[v]);
+    const glm::dvec3 p(positions[v]);
     int64_t c[3];
     int lowSide[3], highSide[3];
     bool near = false;
@@ -317,15 +401,12 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
       highSide[a] = cell - inCell <= reach ? 1 : 0;
       near = near || lowSide[a] != 0 || highSide[a] != 0;
     }
-    const uint64_t own = keyOf(c[0], c[1], c[2]);
-    const size_t ownSlot = slotOf(own);
     uint32_t best = kNone;
-    auto scan = [&](size_t slot) {
-      const uint64_t record = cellKeys_[2 * slot + 1];
-      if (record == kEmpty) return true;
-      for (uint32_t w = static_cast<uint32_t>(record); w != kNone && w < best; w = cellNext_[w]) {
+    // The lowest earlier vertex of one cell within the tolerance (into best); false when over budget.
+    auto scan = [&](uint32_t first) {
+      for (uint32_t w = first; w != kNone && w < best; w = cellNext[w]) {
         if (budget-- == 0) return false;
-        const glm::dvec3 d = glm::dvec3(source_->positions[w]) - p;
+        const glm::dvec3 d = glm::dvec3(positions[w]) - p;
         if (glm::dot(d, d) <= tolerance2) {
           best = w;
           break;
@@ -333,14 +414,14 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
       }
       return true;
     };
-    if (!scan(ownSlot)) return false;
-    if (near) {
-      for (int dx = lowSide[0]; dx <= highSide[0]; ++dx) {
-        for (int dy = lowSide[1]; dy <= highSide[1]; ++dy) {
-          for (int dz = lowSide[2]; dz <= highSide[2]; ++dz) {
-            if (dx == 0 && dy == 0 && dz == 0) continue;
-            if (!scan(slotOf(keyOf(c[0] + dx, c[1] + dy, c[2] + dz)))) return false;
-          }
+    const uint64_t own = cellKey(c[0], c[1], c[2]);
+    const size_t ownSlot = table.find(own);
+    if (!scan(table.first(ownSlot))) return false;
+    for (int dx = lowSide[0]; near && dx <= highSide[0]; ++dx) {
+      for (int dy = lowSide[1]; dy <= highSide[1]; ++dy) {
+        for (int dz = lowSide[2]; dz <= highSide[2]; ++dz) {
+          if (dx == 0 && dy == 0 && dz == 0) continue;
+          if (!scan(table.first(table.find(cellKey(c[0] + dx, c[1] + dy, c[2] + dz))))) return false;
         }
       }
     }
@@ -350,16 +431,9 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
       positionIds_[v] = static_cast<uint32_t>(representatives_.size());
       representatives_.push_back(v);
     }
-    cellNext_[v] = kNone;
-    uint64_t& record = cellKeys_[2 * ownSlot + 1];
-    if (record == kEmpty) {
-      cellKeys_[2 * ownSlot] = own;
-      record = uint64_t(v) | (uint64_t(v) << 32);
-      if (4 * ++occupied > 3 * capacity) return false;  // keep probes short; the sorted weld takes over
-    } else {
-      cellNext_[record >> 32] = v;
-      record = (record & 0xffffffffull) | (uint64_t(v) << 32);
-    }
+    cellNext[v] = kNone;
+    const uint32_t previous = table.append(ownSlot, own, v);
+    if (previous != kNone) cellNext[previous] = v;
   }
   return true;
 }
@@ -382,13 +456,10 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
     if (fraction) *fraction = f - c;
     return static_cast<int64_t>(c);
   };
-  auto key = [](int64_t x, int64_t y, int64_t z) {
-    return (uint64_t(x) << (2 * kCellBits)) | (uint64_t(y) << kCellBits) | uint64_t(z);
-  };
   weldScratch_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const glm::vec3& p = source_->positions[i];
-    weldScratch_[i] = key(cellOf(p, 0, nullptr), cellOf(p, 1, nullptr), cellOf(p, 2, nullptr));
+    weldScratch_[i] = cellKey(cellOf(p, 0, nullptr), cellOf(p, 1, nullptr), cellOf(p, 2, nullptr));
   }
   weldOrder_.resize(n);
   std::iota(weldOrder_.begin(), weldOrder_.end(), 0u);
@@ -417,7 +488,7 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
         valid = valid && q[a] >= 0 && uint64_t(q[a]) <= kCellMask;
       }
       if (!valid || (combo != 0 && !(cell > 0.0))) continue;
-      const uint64_t k = key(q[0], q[1], q[2]);
+      const uint64_t k = cellKey(q[0], q[1], q[2]);
       auto first = std::lower_bound(weldOrder_.begin(), weldOrder_.end(), k,
                                     [&](uint32_t i, uint64_t value) { return weldScratch_[i] < value; });
       for (auto it = first; it != weldOrder_.end() && weldScratch_[*it] == k && *it < v; ++it) {
@@ -440,78 +511,114 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
 
 // Closedness on position ids: every directed edge of a non-degenerate triangle used once, and its
 // reverse used once. Each edge is filed (counting sort) under the lower of its two ids, as the
-// higher id and a direction bit; the surface is closed when every list, sorted, is made of pairs
-// (2 h, 2 h + 1) with distinct h: each undirected edge once in each direction. Every check reads
-// one short list in order; an id has few edges.
+// higher id and a direction bit (fileEdges); the surface is closed when every list holds each
+// higher id exactly once in each direction (pairedLists). The connectivity of a closed mesh comes
+// from the same lists, unless degenerate triangles (which the lists leave out) join ids too.
 void MeshContainer::computeClosed() {
-  std::vector<uint32_t>& edgeStart_ = weldScratch().edgeStart;
-  std::vector<uint32_t>& edgeTargets_ = weldScratch().edgeTargets;
-  std::vector<uint32_t>& cellNext_ = weldScratch().cellNext;
+  bool degenerate = false;
+  const size_t edges = fileEdges(degenerate);
+  closed_ = edges > 0 && edges % 2 == 0 && positionIdCount_ < 0x80000000u;
+  connected_ = false;
+  if (!closed_) return;
+  uint32_t parts = 0;
+  closed_ = pairedLists(degenerate ? nullptr : &parts);
+  if (closed_ && degenerate) computeConnected();
+  else connected_ = closed_ && parts == 1;
+}
+
+// The counting sort of computeClosed: per position id a, in weldScratch().edgeTargets from
+// edgeStart[a] to edgeStart[a + 1], the edges whose lower id is a, each as 2 b (a to b) or 2 b + 1
+// (b to a). Returns the number of edges filed; `degenerate` tells whether some triangle was left
+// out for a repeated id.
+size_t MeshContainer::fileEdges(bool& degenerate) {
+  std::vector<uint32_t>& edgeStart = weldScratch().edgeStart;
+  std::vector<uint32_t>& edgeTargets = weldScratch().edgeTargets;
+  std::vector<uint32_t>& cursor = weldScratch().cellNext;  // reused: fill cursor per id
   const uint32_t ids = positionIdCount_;
-  edgeStart_.assign(size_t(ids) + 1, 0u);
-  const size_t indexCount = source_->indices.size();
+  edgeStart.assign(size_t(ids) + 1, 0u);
+  const uint32_t* index = source_->indices.data();
+  const size_t indexCount = source_->indices.size() / 3 * 3;
   auto corners = [&](size_t t, uint32_t (&out)[3]) {
-    out[0] = positionIds_[source_->indices[t]];
-    out[1] = positionIds_[source_->indices[t + 1]];
-    out[2] = positionIds_[source_->indices[t + 2]];
+    out[0] = positionIds_[index[t]];
+    out[1] = positionIds_[index[t + 1]];
+    out[2] = positionIds_[index[t + 2]];
     return out[0] != out[1] && out[1] != out[2] && out[2] != out[0];
   };
   size_t edges = 0;
-  for (size_t t = 0; t + 2 < indexCount; t += 3) {
+  for (size_t t = 0; t < indexCount; t += 3) {
     uint32_t c[3];
-    if (!corners(t, c)) continue;
-    for (int e = 0; e < 3; ++e) ++edgeStart_[std::min(c[e], c[(e + 1) % 3]) + 1];
+    if (!corners(t, c)) {
+      degenerate = true;
+      continue;
+    }
+    for (int e = 0; e < 3; ++e) ++edgeStart[std::min(c[e], c[e == 2 ? 0 : e + 1]) + 1];
     edges += 3;
   }
-  closed_ = edges > 0 && edges % 2 == 0 && ids < 0x80000000u;
-  if (!closed_) return;
-  for (uint32_t id = 0; id < ids; ++id) edgeStart_[id + 1] += edgeStart_[id];
-  edgeTargets_.resize(edges);
-  cellNext_.assign(edgeStart_.begin(), edgeStart_.end() - 1);  // reused: fill cursor per id
-  for (size_t t = 0; t + 2 < indexCount; t += 3) {
+  for (uint32_t id = 0; id < ids; ++id) edgeStart[id + 1] += edgeStart[id];
+  edgeTargets.resize(edges);
+  cursor.assign(edgeStart.begin(), edgeStart.end() - 1);
+  for (size_t t = 0; t < indexCount; t += 3) {
     uint32_t c[3];
     if (!corners(t, c)) continue;
     for (int e = 0; e < 3; ++e) {
-      const uint32_t a = c[e], b = c[(e + 1) % 3];
-      edgeTargets_[cellNext_[std::min(a, b)]++] = a < b ? 2 * b : 2 * a + 1;
+      const uint32_t a = c[e], b = c[e == 2 ? 0 : e + 1];
+      edgeTargets[cursor[std::min(a, b)]++] = a < b ? 2 * b : 2 * a + 1;
     }
   }
-  for (uint32_t a = 0; a < ids && closed_; ++a) {
-    uint32_t* first = edgeTargets_.data() + edgeStart_[a];
-    uint32_t* last = edgeTargets_.data() + edgeStart_[a + 1];
-    const size_t size = static_cast<size_t>(last - first);
-    if (size % 2 != 0) {
-      closed_ = false;
-      break;
-    }
-    if (size > 16) {
+  return edges;
+}
+
+// Whether every list of fileEdges holds each higher id once in each direction: per list, a tally
+// per higher id (one for a forward entry, 1 << 16 for a reverse one) must read exactly 0x10001 at
+// every entry (then it is cleared); no branch depends on the entries until the list's verdict. A list of 65536 entries
+// or more (whose tally could carry) is sorted and read in pairs instead. With `parts`, the parts of
+// the id graph the lists make (a union-find over the forward entries; ids in no list are in none).
+bool MeshContainer::pairedLists(uint32_t* parts) {
+  const std::vector<uint32_t>& edgeStart = weldScratch().edgeStart;
+  std::vector<uint32_t>& edgeTargets = weldScratch().edgeTargets;
+  std::vector<uint32_t>& tally = weldScratch().tally;
+  std::vector<uint32_t>& parent = weldScratch().parent;
+  const uint32_t ids = positionIdCount_;
+  tally.assign(ids, 0u);
+  if (parts) parent.assign(ids, kNone);
+  auto find = [&](uint32_t x) {
+    if (parent[x] == kNone) return parent[x] = x;
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (uint32_t a = 0; a < ids; ++a) {
+    uint32_t* first = edgeTargets.data() + edgeStart[a];
+    uint32_t* last = edgeTargets.data() + edgeStart[a + 1];
+    if (first == last) continue;
+    if (last - first >= 0x10000) {
       std::sort(first, last);
       for (uint32_t* i = first; i < last; i += 2) {
-        if ((i[0] & 1u) != 0 || i[1] != i[0] + 1 || (i + 2 < last && (i[2] >> 1) == (i[0] >> 1))) {
-          closed_ = false;
-          break;
+        if (last - i < 2 || (i[0] & 1u) != 0 || i[1] != i[0] + 1 || (i + 2 < last && (i[2] >> 1) == (i[0] >> 1))) {
+          return false;
         }
       }
-      continue;
+    } else {
+      for (const uint32_t* i = first; i < last; ++i) tally[*i >> 1] += (*i & 1u) ? 0x10000u : 1u;
+      uint32_t wrong = 0;
+      for (const uint32_t* i = first; i < last; ++i) wrong |= tally[*i >> 1] ^ 0x10001u;
+      for (const uint32_t* i = first; i < last; ++i) tally[*i >> 1] = 0;
+      if (wrong != 0) return false;
     }
-    // A short list: every forward entry 2 h once, its reverse 2 h + 1 once, as many forward entries
-    // as reverse ones (then each reverse entry is the partner of exactly one forward entry).
-    size_t forward = 0;
+    if (!parts) continue;
+    uint32_t root = find(a);
     for (const uint32_t* i = first; i < last; ++i) {
       if ((*i & 1u) != 0) continue;
-      ++forward;
-      uint32_t same = 0, partner = 0;
-      for (const uint32_t* j = first; j < last; ++j) {
-        same += *j == *i;
-        partner += *j == *i + 1;
-      }
-      if (same != 1 || partner != 1) {
-        closed_ = false;
-        break;
-      }
+      const uint32_t other = find(*i >> 1);
+      if (other == root) continue;
+      parent[std::max(root, other)] = std::min(root, other);
+      root = std::min(root, other);
     }
-    closed_ = closed_ && 2 * forward == size;
   }
+  if (parts) {
+    *parts = 0;
+    for (uint32_t id = 0; id < ids && *parts < 2; ++id) *parts += parent[id] == id ? 1u : 0u;
+  }
+  return true;
 }
 
 // One part or several: a union-find over the position ids of every triangle's corners (degenerate

@@ -109,6 +109,8 @@ class MeshContainer {
   bool weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi);
   void weldSorted(double tolerance, const glm::dvec3& lo);
   void computeClosed();
+  size_t fileEdges(bool& degenerate);
+  bool pairedLists(uint32_t* parts);
   void computeConnected();
   void updateBounds();
   // The weld and closedness scratch arrays are per thread (see mesh_container.cpp), not per
