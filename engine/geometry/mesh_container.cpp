@@ -131,11 +131,13 @@ class CellTable {
     slots_.assign(2 * capacity, kEmpty);
     mask_ = capacity - 1;
   }
+  // Asks the memory for the home slot of `key` ahead of its find().
+  void prefetch(uint64_t key) const { __builtin_prefetch(&slots_[2 * home(key)]); }
   // The slot holding `key`, or the empty slot where it would go. Fibonacci hashing: the top bits of
   // the product, which every bit of the key reaches (the low bits of a product never see the key's
   // high bits, where the x cell index is).
   size_t find(uint64_t key) const {
-    size_t slot = static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+    size_t slot = home(key);
     while (slots_[2 * slot + 1] != kEmpty && slots_[2 * slot] != key) slot = (slot + 1) & mask_;
     return slot;
   }
@@ -161,6 +163,7 @@ class CellTable {
 
  private:
   static constexpr uint64_t kEmpty = ~uint64_t(0);
+  size_t home(uint64_t key) const { return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_); }
   void grow() {
     std::vector<uint64_t> old(slots_.begin(), slots_.end());
     slots_.assign(2 * old.size(), kEmpty);
@@ -388,7 +391,18 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
   const double tolerance2 = tolerance * tolerance;
   const double reach = tolerance * 1.001;  // generous: the distance test below decides
   uint64_t budget = 64 * uint64_t(n) + 4096;
+  // The home slot of the cell a few dozen vertices ahead is asked for early when the table outgrows
+  // the caches (over 2 MB): a new cell's slot is a miss to memory there (1M-triangle sphere: about a
+  // tenth of the set-up saved), while a smaller table gains nothing from it.
+  constexpr uint32_t kAhead = 32;
+  const bool ahead = n >= (uint32_t(1) << 18);
+  auto cellOf = [&](uint32_t v) {
+    const glm::dvec3 q(positions[v]);
+    return cellKey(static_cast<int64_t>((q.x - lo.x) * inverseCell), static_cast<int64_t>((q.y - lo.y) * inverseCell),
+                   static_cast<int64_t>((q.z - lo.z) * inverseCell));
+  };
   for (uint32_t v = 0; v < n; ++v) {
+    if (ahead && v + kAhead < n) table.prefetch(cellOf(v + kAhead));
     const glm::dvec3 p(positions[v]);
     int64_t c[3];
     int lowSide[3], highSide[3];

@@ -281,7 +281,8 @@ class Splitter final : public IMeshSplitter {
   void cutRange(uint32_t begin, uint32_t end, CutOutput& out);
   void cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t run, uint32_t (&next)[2],
                    CutOutput& out);
-  bool wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const;
+  [[gnu::always_inline]] bool wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const;
+  [[gnu::noinline]] int inPlaneSide(const uint32_t (&g)[3]) const;
   void cutWholeAndCollect(bool unite);
   void cutPending();
   void countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2]) const;
@@ -835,7 +836,8 @@ void Splitter::cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3]
 // Where a source triangle that is not cut goes: side index 0 (above) or 1 (below), and whether it
 // may have an edge on the plane (two or more on-plane corners). Corners g in cut-space winding.
 // False when the plane cuts it.
-bool Splitter::wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const {
+// (Inlined into every pass over the triangles; the rare face in the plane is a call.)
+inline bool Splitter::wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const {
   const bool anyAbove = s[0] > 0 || s[1] > 0 || s[2] > 0;
   const bool anyBelow = s[0] < 0 || s[1] < 0 || s[2] < 0;
   if (anyAbove != anyBelow) {
@@ -844,11 +846,15 @@ bool Splitter::wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, 
     return true;
   }
   if (anyAbove) return false;
-  // A face in the plane: the solid lies behind it, on the side its normal points away from.
-  const glm::dvec3 p0 = cut_[reps_[ids_[g[0]]]], p1 = cut_[reps_[ids_[g[1]]]], p2 = cut_[reps_[ids_[g[2]]]];
-  index = glm::dot(glm::cross(p1 - p0, p2 - p0), normal_) > 0.0 ? 1 : 0;
+  index = inPlaneSide(g);
   planar = true;
   return true;
+}
+
+// The side of a face in the plane: the solid lies behind it, on the side its normal points away from.
+int Splitter::inPlaneSide(const uint32_t (&g)[3]) const {
+  const glm::dvec3 p0 = cut_[reps_[ids_[g[0]]]], p1 = cut_[reps_[ids_[g[1]]]], p2 = cut_[reps_[ids_[g[2]]]];
+  return glm::dot(glm::cross(p1 - p0, p2 - p0), normal_) > 0.0 ? 1 : 0;
 }
 
 // The triangles [begin, end) of the source, cut or kept, written to the side lists from
