@@ -337,7 +337,9 @@ class Splitter final : public IMeshSplitter {
   bool flatCapTriangle(size_t t) const;
   bool flipCapTriangle(uint32_t t);
   uint32_t weldedOfAny(uint32_t ref) const;
-  glm::dvec3 cutOfAny(uint32_t ref) const;
+  // The cut-space position of any vertex reference: source vertices inline, the rest by a call.
+  glm::dvec3 cutOfAny(uint32_t ref) const { return ref < sourceCount_ ? cut_[ref] : cutOfAdded(ref); }
+  glm::dvec3 cutOfAdded(uint32_t ref) const;
   uint32_t weldedRef(uint32_t ref) const {  // writePieces: the welded id of a vertex reference
     return ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_];
   }
@@ -1709,7 +1711,7 @@ uint32_t Splitter::weldedOfAny(uint32_t ref) const {
   return loopIds_[k < loopVertices ? k : k - loopVertices];
 }
 
-glm::dvec3 Splitter::cutOfAny(uint32_t ref) const {
+glm::dvec3 Splitter::cutOfAdded(uint32_t ref) const {
   return ref < capBase_ ? cutOf(ref) : sectionCut(weldedOfAny(ref));
 }
 
@@ -1893,7 +1895,7 @@ void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
   gather(m.weights, mesh.weights, extra_.weights);
   assignMapped(w.pieceCut, count, [&](size_t i) {
     const uint32_t ref = refs[i];
-    return ref < sourceCount ? cut_[ref] : cutOfAny(ref);
+    return ref < sourceCount ? cut_[ref] : cutOfAdded(ref);
   });
 }
 
