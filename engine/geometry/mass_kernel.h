@@ -44,8 +44,8 @@ MomentSums sumMoments(std::span<const glm::dvec3> p, std::span<const uint32_t> i
 
 // integrateClosedSurface(positions, indices, flipWinding, true) without its index check, for a
 // surface the caller has just written: a whole number of triangles, every index in range and every
-// position referenced (a splitter's piece).
+// position referenced (a splitter's piece), whose bounds [lo, hi] the caller worked out on the way.
 MassProperties integrateWrittenSurface(std::span<const glm::dvec3> positions, std::span<const uint32_t> indices,
-                                       bool flipWinding);
+                                       bool flipWinding, const glm::dvec3& lo, const glm::dvec3& hi);
 
 }  // namespace cleave::geometry::detail

@@ -110,24 +110,11 @@ glm::dvec3 vertexCentroid(std::span<const glm::dvec3> p, std::span<const uint32_
   return sum / double(indices.size());
 }
 
-// Properties of the surface (p, indices), which the caller knows to be closed.
-// With `everyPointUsed`, the caller knows every point is a corner of some triangle, and the bounds
-// are taken over the points (a sixth of the reads, in order).
-MassProperties fromSurface(std::span<const glm::dvec3> p, std::span<const uint32_t> indices,
-                           bool flip, bool everyPointUsed = false) {
+// Properties of the surface (p, indices), which the caller knows to be closed, whose referenced
+// points lie within [lo, hi] (their bounds: the centre is the reference point of the sums).
+MassProperties fromSurfaceWithin(std::span<const glm::dvec3> p, std::span<const uint32_t> indices, bool flip,
+                                 const glm::dvec3& lo, const glm::dvec3& hi) {
   MassProperties out;
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  if (everyPointUsed) {
-    for (const glm::dvec3& q : p) {
-      lo = glm::min(lo, q);
-      hi = glm::max(hi, q);
-    }
-  } else {
-    for (uint32_t index : indices) {
-      lo = glm::min(lo, p[index]);
-      hi = glm::max(hi, p[index]);
-    }
-  }
   const glm::dvec3 ref = 0.5 * (lo + hi);
   Moments m = integrate(p, indices, ref, flip);
   out.volume = m.volume;
@@ -153,6 +140,25 @@ MassProperties fromSurface(std::span<const glm::dvec3> p, std::span<const uint32
   out.centerOfMass = ref + c;
   out.inertia = inertia;
   return out;
+}
+
+// The same, the bounds taken first. With `everyPointUsed`, the caller knows every point is a corner
+// of some triangle, and the bounds are taken over the points (a sixth of the reads, in order).
+MassProperties fromSurface(std::span<const glm::dvec3> p, std::span<const uint32_t> indices,
+                           bool flip, bool everyPointUsed = false) {
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  if (everyPointUsed) {
+    for (const glm::dvec3& q : p) {
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+  } else {
+    for (uint32_t index : indices) {
+      lo = glm::min(lo, p[index]);
+      hi = glm::max(hi, p[index]);
+    }
+  }
+  return fromSurfaceWithin(p, indices, flip, lo, hi);
 }
 
 // The convex hull of the referenced points stands in for an open surface.
@@ -279,8 +285,8 @@ MassProperties integrateClosedSurface(std::span<const glm::dvec3> positions,
 
 namespace detail {
 MassProperties integrateWrittenSurface(std::span<const glm::dvec3> positions, std::span<const uint32_t> indices,
-                                       bool flipWinding) {
-  MassProperties out = fromSurface(positions, indices, flipWinding, true);
+                                       bool flipWinding, const glm::dvec3& lo, const glm::dvec3& hi) {
+  MassProperties out = fromSurfaceWithin(positions, indices, flipWinding, lo, hi);
   out.closed = true;
   return out;
 }

@@ -356,6 +356,7 @@ class Splitter final : public IMeshSplitter {
     std::vector<uint64_t> weldRemap;   // per welded id: stamp << 32 | position id in the piece
     uint32_t stampValue = 0;
     std::vector<glm::dvec3> pieceCut;  // cut-space positions of the piece being written
+    glm::dvec3 pieceLo{INFINITY}, pieceHi{-INFINITY};  // and their bounds
     std::vector<uint32_t> flipped;
     std::vector<double> volume;
     std::vector<uint32_t> firstTriangle, groupNumber;
@@ -1872,7 +1873,7 @@ uint32_t Splitter::find(SideWork& w, uint32_t x) {
 }
 
 // The vertices of a piece, one attribute array at a time, from the source arrays or extra_; and
-// their cut-space positions (pieceCut) for the mass properties.
+// their cut-space positions (pieceCut) and its bounds for the mass properties.
 void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
   const MeshData& mesh = *mesh_;
   const size_t count = w.vertexCount;
@@ -1893,10 +1894,16 @@ void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
   gather(m.colors, mesh.colors, extra_.colors);
   gather(m.joints, mesh.joints, extra_.joints);
   gather(m.weights, mesh.weights, extra_.weights);
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);  // the bounds on the way, for the mass properties
   assignMapped(w.pieceCut, count, [&](size_t i) {
     const uint32_t ref = refs[i];
-    return ref < sourceCount ? cut_[ref] : cutOfAdded(ref);
+    const glm::dvec3 q = ref < sourceCount ? cut_[ref] : cutOfAdded(ref);
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+    return q;
   });
+  w.pieceLo = lo;
+  w.pieceHi = hi;
 }
 
 // The weld of the piece being written: its vertices' welded ids (merged cut points taken to the point
@@ -2192,7 +2199,7 @@ void Splitter::beginPiece(SideWork& w, int side, SplitPiece& out) {
 void Splitter::pieceMass(SideWork& w, SplitPiece& out) const {
   const MeshData& m = out.mesh;
   if (piecesClosed_) {
-    out.mass = detail::integrateWrittenSurface(w.pieceCut, m.indices, mirrored_);
+    out.mass = detail::integrateWrittenSurface(w.pieceCut, m.indices, mirrored_, w.pieceLo, w.pieceHi);
   } else {
     std::span<const uint32_t> indices = m.indices;
     if (mirrored_) {
