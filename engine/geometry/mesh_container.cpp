@@ -321,17 +321,9 @@ MeshStatus MeshContainer::take(const MeshWeld* weld) {
   const MeshData& mesh = *source_;
   model_ = glm::dmat4(1.0);
   jointMatrices_.clear();
-  const size_t n = mesh.positions.size();
   // The cut space is the source space until a transform is set (setTransform updates the bounds).
   cutPositions_.assign(mesh.positions.begin(), mesh.positions.end());  // no zero fill first
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
-  for (const glm::dvec3& p : cutPositions_) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  boundsMin_ = lo;
-  boundsMax_ = hi;
-  boundsDiagonal_ = n == 0 ? 0.0 : glm::length(hi - lo);
+  updateBounds();
   if (weld) {
     positionIds_.assign(weld->positionIds.begin(), weld->positionIds.end());
     representatives_.assign(weld->representatives.begin(), weld->representatives.end());
@@ -343,7 +335,8 @@ MeshStatus MeshContainer::take(const MeshWeld* weld) {
   }
   // A closed mesh wound inwards is cut as if mirrored: the splitter's loops and caps then follow
   // its own winding, its pieces keep that winding and their volumes come out positive.
-  inverted_ = closed_ && (weld ? weld->inverted : woundInwards(mesh.positions, mesh.indices, 0.5 * (lo + hi)));
+  const glm::dvec3 centre = 0.5 * (boundsMin_ + boundsMax_);
+  inverted_ = closed_ && (weld ? weld->inverted : woundInwards(mesh.positions, mesh.indices, centre));
   mirrored_ = inverted_;
   cutIsSource_ = true;
   return {};

@@ -1896,8 +1896,7 @@ void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
   gather(m.weights, mesh.weights, extra_.weights);
   glm::dvec3 lo(INFINITY), hi(-INFINITY);  // the bounds on the way, for the mass properties
   assignMapped(w.pieceCut, count, [&](size_t i) {
-    const uint32_t ref = refs[i];
-    const glm::dvec3 q = ref < sourceCount ? cut_[ref] : cutOfAdded(ref);
+    const glm::dvec3 q = cutOfAny(refs[i]);
     lo = glm::min(lo, q);
     hi = glm::max(hi, q);
     return q;
