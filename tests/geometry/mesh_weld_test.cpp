@@ -258,7 +258,6 @@ TEST(MeshWeld, ClosednessAndPartsMatchTheReferenceOnDefects) {
   doubledBothWays.indices.insert(doubledBothWays.indices.end(), {sphere.indices[30], sphere.indices[32], sphere.indices[31]});
   expectLikeReference(doubledBothWays, "doubled both ways");
   MeshData cubes = primitives::merge(primitives::box(glm::vec3(0.5f)), primitives::box(glm::vec3(0.5f)));
-  primitives::transform(cubes, glm::mat4(1.f));
   for (size_t v = cubes.positions.size() / 2; v < cubes.positions.size(); ++v) cubes.positions[v] += glm::vec3(1, 1, 0);
   expectLikeReference(cubes, "cubes sharing an edge");
   MeshData spheres = primitives::twoDisjointSpheres(0.5f, 0.3f, 12, 6);
