@@ -236,6 +236,30 @@ struct SideTriangle {
   uint32_t slot;    // output run slot
 };
 
+// std::allocator whose resize() leaves new elements of a trivial type unwritten: the side lists
+// grow by places that are filled before they are read (a crossing triangle's parts, the chunks'
+// triangles laid end to end), so zeroing them first would be a wasted pass over memory.
+template <typename T>
+struct UnfilledAllocator : std::allocator<T> {
+  static_assert(std::is_trivially_default_constructible_v<T>);
+  template <typename U>
+  struct rebind {
+    using other = UnfilledAllocator<U>;
+  };
+  UnfilledAllocator() = default;
+  template <typename U>
+  UnfilledAllocator(const UnfilledAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* at) noexcept {
+    ::new (static_cast<void*>(at)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* at, Args&&... args) {
+    ::new (static_cast<void*>(at)) U(std::forward<Args>(args)...);
+  }
+};
+using SideList = std::vector<SideTriangle, UnfilledAllocator<SideTriangle>>;
+
 struct LoopInfo {
   uint32_t begin = 0, end = 0;  // into loopIds_ / points_
   double twiceArea = 0.0;
@@ -275,17 +299,17 @@ class Splitter final : public IMeshSplitter {
   void chooseBasis();
   SplitStatus capAll(const SplitOptions& options, SplitResult& result);
   void classify(double tolerance);
-  void collectCrossingEdges();
-  void cutTriangles();
   struct CutOutput;
-  void cutRange(uint32_t begin, uint32_t end, CutOutput& out);
   void cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t run, uint32_t (&next)[2],
                    CutOutput& out);
   [[gnu::always_inline]] bool wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const;
   [[gnu::noinline]] int inPlaneSide(const uint32_t (&g)[3]) const;
-  void cutWholeAndCollect(bool unite);
+  void cutWholeAndCollect(const SplitOptions& options);
+  void collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput& out);
+  void cutVertices(const SplitOptions& options);
+  void joinChunks(uint32_t chunks, const SplitOptions& options);
+  void copyChunkTriangles(uint32_t chunks, size_t begin, size_t end);
   void cutPending();
-  void countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2]) const;
   // How many chunks (threads) a pass over `count` items uses: threads_ for big passes, else 1.
   uint32_t chunkCount(size_t count) const {
     return threads_ > 1 && count >= kParallelTriangles ? std::min<uint32_t>(threads_, 8) : 1;
@@ -438,21 +462,20 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint32_t> pairEdge_;     // per pair: welded edge
   MeshData extra_;                     // attributes of new and cap vertices
   uint32_t capBase_ = 0;               // first cap vertex reference
-  // Step 3's output per chunk of source triangles; chunk 0's lists are the split's (below).
-  struct CutOutput {
-    std::vector<SideTriangle> sideTris[2];  // [0] above, [1] below
-    std::vector<uint32_t> planeTris[2];     // per side: the triangles that may have an on-plane edge
-    std::vector<uint32_t> cutTris[2];       // per side: the triangles made by cutting one (not whole ones)
-    std::vector<uint64_t> crossing, crossingPairs;  // chunks 1, 2, ...: step 2's crossing edges
-    uint32_t count[2] = {0, 0};  // side triangles the chunk gives (step 2 counts them)
-    uint32_t first[2] = {0, 0};  // where they start in sideTris_
-  };
-  CutOutput cutMain_;
   struct Pending {  // cutWholeAndCollect: a crossing triangle and where its parts go
     uint32_t triangle, run;
     uint32_t first[2];
   };
-  std::vector<Pending> pending_;
+  // Steps 2 and 3's output per chunk of source triangles; chunk 0's lists are the split's (below).
+  struct CutOutput {
+    SideList sideTris[2];                // [0] above, [1] below
+    std::vector<uint32_t> planeTris[2];  // per side: the triangles that may have an on-plane edge
+    std::vector<uint32_t> cutTris[2];    // per side: the triangles made by cutting one (not whole ones)
+    std::vector<uint64_t> crossing, crossingPairs;  // step 2's crossing edges (by id, by vertex)
+    std::vector<Pending> pending;                   // the crossing triangles, in source order
+    size_t first[2] = {0, 0};                       // chunks 1, 2, ...: where they start in sideTris_
+  };
+  CutOutput cutMain_;
   bool united_ = false;        // cutWholeAndCollect united the whole triangles' islands
   // One island per side without a search (see sectionSettlesIslands): islandCandidate_ after the
   // classification (a closed mesh of one part), cutsOnLoops_ after the
@@ -465,9 +488,10 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint32_t> loopOfPoint_, loopParent_;  // sectionSettlesIslands: loops joined by caps
   bool dropped_[2] = {false, false};  // dropCollapsedTriangles removed triangles of that side
   std::vector<CutOutput> cutChunks_;  // chunks 1, 2, ... (cutChunks_[c - 1])
-  std::vector<SideTriangle>* const sideTris_ = cutMain_.sideTris;
+  SideList* const sideTris_ = cutMain_.sideTris;
   std::vector<uint32_t>* const planeTris_ = cutMain_.planeTris;
   std::vector<uint32_t>* const cutTris_ = cutMain_.cutTris;
+  std::vector<Pending>& pending_ = cutMain_.pending;
   size_t capStart_[2] = {0, 0};            // per side: the first cap triangle
   std::vector<uint64_t> boundary_[2];
   std::vector<uint64_t> segments_;     // section segments, sorted, counter-clockwise seen from +normal
@@ -570,29 +594,11 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
       onPlaneIds_.push_back(static_cast<uint32_t>(at - side_.begin()));
     }
   }
-  // On one thread steps 2 and 3 share a pass over the source (the crossing triangles are cut once
-  // their edges are known); on several, the crossing edges are counted first so that each chunk
-  // knows where its triangles go.
-  const bool onePass = chunkCount(mesh_->indices.size() / 3) == 1;
-  if (onePass) {
-    cutWholeAndCollect(options.separateIslands && !islandCandidate_);
-  } else {
-    united_ = false;
-    collectCrossingEdges();
-  }
-  std::sort(weldedEdges_.begin(), weldedEdges_.end());
-  weldedEdges_.erase(std::unique(weldedEdges_.begin(), weldedEdges_.end()), weldedEdges_.end());
-  std::sort(pairs_.begin(), pairs_.end());
-  pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
-  cutEdges();
-  makeCutVertices();
-  assignSlots(options);
-  // 3. Cut the triangles.
-  if (onePass) {
-    cutPending();
-  } else {
-    cutTriangles();
-  }
+  // Steps 2 and 3 share a pass over the source: the crossing triangles are cut once their edges are
+  // known (made by cutVertices, during the chunks' join on threads).
+  cutWholeAndCollect(options);
+  // 3. Cut the crossing triangles.
+  cutPending();
   if (sideTris_[0].empty() || sideTris_[1].empty()) {
     return fail(result, SplitStatus::PlaneMissesMesh,
                 "the plane does not cross the mesh: every vertex lies on one side or within the tolerance of it");
@@ -860,58 +866,63 @@ int Splitter::inPlaneSide(const uint32_t (&g)[3]) const {
   return glm::dot(glm::cross(p1 - p0, p2 - p0), normal_) > 0.0 ? 1 : 0;
 }
 
-// The triangles [begin, end) of the source, cut or kept, written to the side lists from
-// out.first[side] on (sized already: collectCrossingEdges counted them); out's plane and cut lists
-// get their indices.
-void Splitter::cutRange(uint32_t begin, uint32_t end, CutOutput& out) {
-  const MeshData& mesh = *mesh_;
-  uint32_t run = 0;
-  uint32_t runEnd = mesh.submeshes.empty() ? kNone : mesh.submeshes[0].firstIndex + mesh.submeshes[0].indexCount;
-  uint32_t next[2] = {out.first[0], out.first[1]};
-  for (uint32_t t = begin; t < end; ++t) {
-    while (runEnd != kNone && 3 * t >= runEnd && run + 1 < mesh.submeshes.size()) {
-      ++run;
-      runEnd = mesh.submeshes[run].firstIndex + mesh.submeshes[run].indexCount;
-    }
-    uint32_t g[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
-    if (mirrored_) std::swap(g[1], g[2]);  // cut-space outward winding
-    const int s[3] = {side_[ids_[g[0]]], side_[ids_[g[1]]], side_[ids_[g[2]]]};
-    int index = 0;
-    bool planar = false;
-    if (!wholeSide(g, s, index, planar)) {
-      cutCrossing(t, g, s, run, next, out);
-      continue;
-    }
-    if (planar) out.planeTris[index].push_back(next[index]);
-    sideTris_[index][next[index]++] = {{g[0], g[1], g[2]}, planar ? t | kReachedBit : t, run};
-  }
-  assert(next[0] == out.first[0] + out.count[0] && next[1] == out.first[1] + out.count[1]);
-}
-
-// Steps 2 and 3 in one pass over the source on one thread. A triangle the plane does not cut goes to
-// its side at once, and with `unite` its corners' islands are united on the way (SideWork::parent
-// over the source's position ids; uniteSide adds the rest). A crossing triangle gives its crossing
-// edges and keeps its places in the side lists (as many as it will have parts), to be cut by
-// cutPending once the edges' new vertices are known: the lists come out as cutRange writes them.
-void Splitter::cutWholeAndCollect(bool unite) {
-  const MeshData& mesh = *mesh_;
-  const uint32_t triangleCount = static_cast<uint32_t>(mesh.indices.size() / 3);
-  weldedEdges_.clear();
-  pairs_.clear();
-  pending_.clear();
-  for (int side = 0; side < 2; ++side) {
-    sideTris_[side].clear();
-    planeTris_[side].clear();
-    cutTris_[side].clear();
-    if (unite) {
-      work_[side].parent.resize(idCount_);
-      std::iota(work_[side].parent.begin(), work_[side].parent.end(), 0u);
-    }
+// Steps 2 and 3 in one pass over the source, in chunks on threads when big (SplitOptions::threads).
+// A triangle the plane does not cut goes to its side at once, and with `unite` (one chunk only) its
+// corners' islands are united on the way (SideWork::parent over the source's position ids;
+// uniteSide adds the rest). A crossing triangle gives its crossing edges and keeps its places in the
+// side lists (as many as it will have parts), to be cut by cutPending once cutVertices has made the
+// edges' new vertices. The chunks' lists are then laid end to end: the same lists as one chunk gives.
+// A closed mesh of one part is not united (islandCandidate_: its section may settle the islands).
+void Splitter::cutWholeAndCollect(const SplitOptions& options) {
+  const uint32_t triangleCount = static_cast<uint32_t>(mesh_->indices.size() / 3);
+  const uint32_t chunks = chunkCount(triangleCount);
+  const bool unite = options.separateIslands && !islandCandidate_ && chunks == 1;
+  if (cutChunks_.size() < chunks - 1) cutChunks_.resize(chunks - 1);
+  for (int side = 0; side < 2 && unite; ++side) {
+    work_[side].parent.resize(idCount_);
+    std::iota(work_[side].parent.begin(), work_[side].parent.end(), 0u);
   }
   united_ = unite;
+  inChunks(chunks, triangleCount, [&](uint32_t chunk, uint32_t begin, uint32_t end) {
+    collectRange(begin, end, unite, chunk == 0 ? cutMain_ : cutChunks_[chunk - 1]);
+  });
+  if (chunks > 1) {
+    joinChunks(chunks, options);
+  } else {
+    cutVertices(options);
+  }
+}
+
+// The crossing edges sorted and made unique, their cut points, the new vertices and the output run
+// slots. Reads no side list.
+void Splitter::cutVertices(const SplitOptions& options) {
+  std::sort(weldedEdges_.begin(), weldedEdges_.end());
+  weldedEdges_.erase(std::unique(weldedEdges_.begin(), weldedEdges_.end()), weldedEdges_.end());
+  std::sort(pairs_.begin(), pairs_.end());
+  pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
+  cutEdges();
+  makeCutVertices();
+  assignSlots(options);
+}
+
+// cutWholeAndCollect over the source triangles [begin, end), into out's lists (cleared first; its
+// indices count from the start of its own lists).
+void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput& out) {
+  const MeshData& mesh = *mesh_;
+  const bool main = &out == &cutMain_;
+  std::vector<uint64_t>& welded = main ? weldedEdges_ : out.crossing;
+  std::vector<uint64_t>& pairs = main ? pairs_ : out.crossingPairs;
+  welded.clear();
+  pairs.clear();
+  out.pending.clear();
+  for (int side = 0; side < 2; ++side) {
+    out.sideTris[side].clear();
+    out.planeTris[side].clear();
+    out.cutTris[side].clear();
+  }
   uint32_t run = 0;
   uint32_t runEnd = mesh.submeshes.empty() ? kNone : mesh.submeshes[0].firstIndex + mesh.submeshes[0].indexCount;
-  for (uint32_t t = 0; t < triangleCount; ++t) {
+  for (uint32_t t = begin; t < end; ++t) {
     while (runEnd != kNone && 3 * t >= runEnd && run + 1 < mesh.submeshes.size()) {
       ++run;
       runEnd = mesh.submeshes[run].firstIndex + mesh.submeshes[run].indexCount;
@@ -923,8 +934,8 @@ void Splitter::cutWholeAndCollect(bool unite) {
     int index = 0;
     bool planar = false;
     if (wholeSide(g, s, index, planar)) {
-      std::vector<SideTriangle>& tris = sideTris_[index];
-      if (planar) planeTris_[index].push_back(static_cast<uint32_t>(tris.size()));
+      SideList& tris = out.sideTris[index];
+      if (planar) out.planeTris[index].push_back(static_cast<uint32_t>(tris.size()));
       tris.push_back({{g[0], g[1], g[2]}, planar ? t | kReachedBit : t, run});
       if (unite) uniteCorners(work_[index], id[0], id[1], id[2]);
       continue;
@@ -932,15 +943,69 @@ void Splitter::cutWholeAndCollect(bool unite) {
     for (int e = 0; e < 3; ++e) {
       const int f = e == 2 ? 0 : e + 1;
       if (s[e] * s[f] < 0) {
-        weldedEdges_.push_back(pairKey(id[e], id[f]));
-        pairs_.push_back(pairKey(g[e], g[f]));
+        welded.push_back(pairKey(id[e], id[f]));
+        pairs.push_back(pairKey(g[e], g[f]));
       }
     }
-    uint32_t count[2] = {0, 0};
-    countSideTriangles(g, s, count);
-    pending_.push_back({t, run, {static_cast<uint32_t>(sideTris_[0].size()), static_cast<uint32_t>(sideTris_[1].size())}});
-    sideTris_[0].resize(sideTris_[0].size() + count[0]);
-    sideTris_[1].resize(sideTris_[1].size() + count[1]);
+    // Its parts per side: through an on-plane vertex one each; else the lone corner's triangle and
+    // the quad's two on the other side (see cutCrossing).
+    uint32_t count[2] = {1, 1};
+    if (s[0] != 0 && s[1] != 0 && s[2] != 0) {
+      const int lone = s[0] != s[1] && s[0] != s[2] ? 0 : (s[1] != s[0] && s[1] != s[2] ? 1 : 2);
+      count[s[lone] > 0 ? 1 : 0] = 2;
+    }
+    SideList* tris = out.sideTris;
+    out.pending.push_back({t, run, {static_cast<uint32_t>(tris[0].size()), static_cast<uint32_t>(tris[1].size())}});
+    tris[0].resize(tris[0].size() + count[0]);
+    tris[1].resize(tris[1].size() + count[1]);
+  }
+}
+
+// The lists of chunks 1, 2, ... after chunk 0's (the split's): the side triangles copied on threads,
+// the indices into them (plane triangles, pending places) moved by where the chunk starts. The
+// calling thread runs cutVertices before its share of the copy.
+void Splitter::joinChunks(uint32_t chunks, const SplitOptions& options) {
+  size_t total[2] = {sideTris_[0].size(), sideTris_[1].size()};
+  for (uint32_t chunk = 1; chunk < chunks; ++chunk) {
+    CutOutput& part = cutChunks_[chunk - 1];
+    for (int side = 0; side < 2; ++side) {
+      part.first[side] = total[side];
+      total[side] += part.sideTris[side].size();
+      const uint32_t shift = static_cast<uint32_t>(part.first[side]);
+      for (uint32_t index : part.planeTris[side]) planeTris_[side].push_back(index + shift);
+    }
+    for (Pending p : part.pending) {
+      p.first[0] += static_cast<uint32_t>(part.first[0]);
+      p.first[1] += static_cast<uint32_t>(part.first[1]);
+      pending_.push_back(p);
+    }
+    weldedEdges_.insert(weldedEdges_.end(), part.crossing.begin(), part.crossing.end());
+    pairs_.insert(pairs_.end(), part.crossingPairs.begin(), part.crossingPairs.end());
+  }
+  const size_t copied = total[0] + total[1] - sideTris_[0].size() - sideTris_[1].size();
+  sideTris_[0].resize(total[0]);
+  sideTris_[1].resize(total[1]);
+  inChunks(chunks, static_cast<uint32_t>(copied), [&](uint32_t chunk, uint32_t begin, uint32_t end) {
+    if (chunk == 0) cutVertices(options);
+    copyChunkTriangles(chunks, begin, end);
+  });
+}
+
+// Items [begin, end) of the chunks' side triangles taken as one sequence (chunk 1 above, chunk 1
+// below, chunk 2 above, ...), copied to their places in sideTris_.
+void Splitter::copyChunkTriangles(uint32_t chunks, size_t begin, size_t end) {
+  size_t at = 0;  // where the current list starts in the sequence
+  for (uint32_t chunk = 1; chunk < chunks; ++chunk) {
+    const CutOutput& part = cutChunks_[chunk - 1];
+    for (int side = 0; side < 2; ++side) {
+      const SideList& from = part.sideTris[side];
+      const size_t lo = std::max(begin, at), hi = std::min(end, at + from.size());
+      if (lo < hi) {
+        std::copy(from.begin() + static_cast<std::ptrdiff_t>(lo - at), from.begin() + static_cast<std::ptrdiff_t>(hi - at),
+                  sideTris_[side].begin() + static_cast<std::ptrdiff_t>(part.first[side] + lo - at));
+      }
+      at += from.size();
+    }
   }
 }
 
@@ -988,95 +1053,6 @@ void Splitter::classify(double tolerance) {
       side_[id] = d > tolerance ? 1 : (d < -tolerance ? -1 : 0);
     }
   });
-}
-
-// Step 2: every edge with one end above and one below, by welded id pair and by source vertex pair
-// (unsorted; split() sorts them, so the chunks' order does not matter).
-void Splitter::collectCrossingEdges() {
-  const uint32_t triangleCount = static_cast<uint32_t>(mesh_->indices.size() / 3);
-  const uint32_t chunks = chunkCount(triangleCount);
-  if (cutChunks_.size() < chunks - 1) cutChunks_.resize(chunks - 1);
-  weldedEdges_.clear();
-  pairs_.clear();
-  inChunks(chunks, triangleCount, [&](uint32_t chunk, uint32_t begin, uint32_t end) {
-    std::vector<uint64_t>& welded = chunk == 0 ? weldedEdges_ : cutChunks_[chunk - 1].crossing;
-    std::vector<uint64_t>& pairs = chunk == 0 ? pairs_ : cutChunks_[chunk - 1].crossingPairs;
-    if (chunk > 0) {
-      welded.clear();
-      pairs.clear();
-    }
-    const uint32_t* indices = mesh_->indices.data();
-    uint32_t count[2] = {0, 0};
-    for (uint32_t t = begin; t < end; ++t) {
-      uint32_t g[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
-      if (mirrored_) std::swap(g[1], g[2]);  // cut-space winding, as cutRange sees it
-      const uint32_t id[3] = {ids_[g[0]], ids_[g[1]], ids_[g[2]]};
-      const int s[3] = {side_[id[0]], side_[id[1]], side_[id[2]]};
-      countSideTriangles(g, s, count);
-      for (int e = 0; e < 3; ++e) {
-        const int f = e == 2 ? 0 : e + 1;
-        if (s[e] * s[f] < 0) {
-          welded.push_back(pairKey(id[e], id[f]));
-          pairs.push_back(pairKey(g[e], g[f]));
-        }
-      }
-    }
-    CutOutput& out = chunk == 0 ? cutMain_ : cutChunks_[chunk - 1];
-    out.count[0] = count[0];
-    out.count[1] = count[1];
-  });
-  for (uint32_t chunk = 1; chunk < chunks; ++chunk) {
-    const CutOutput& part = cutChunks_[chunk - 1];
-    weldedEdges_.insert(weldedEdges_.end(), part.crossing.begin(), part.crossing.end());
-    pairs_.insert(pairs_.end(), part.crossingPairs.begin(), part.crossingPairs.end());
-  }
-}
-
-// How many side triangles step 3 makes of the triangle with corners g (cut-space winding) and
-// corner sides s, per side ([0] above, [1] below): added to count. The cases of wholeSide and
-// cutCrossing.
-void Splitter::countSideTriangles(const uint32_t (&g)[3], const int (&s)[3], uint32_t (&count)[2]) const {
-  int index = 0;
-  bool planar = false;
-  if (wholeSide(g, s, index, planar)) {
-    ++count[index];
-  } else if (s[0] == 0 || s[1] == 0 || s[2] == 0) {
-    ++count[0];  // through the on-plane vertex: one triangle per side
-    ++count[1];
-  } else {
-    const int lone = s[0] != s[1] && s[0] != s[2] ? 0 : (s[1] != s[0] && s[1] != s[2] ? 1 : 2);
-    count[s[lone] > 0 ? 0 : 1] += 1;  // the lone corner's triangle, the quad's two on the other side
-    count[s[lone] > 0 ? 1 : 0] += 2;
-  }
-}
-
-// Step 3 over every triangle: in one range, or in chunks on threads, each writing its triangles at
-// the place the counts of the chunks before it give (the same lists as one range gives).
-void Splitter::cutTriangles() {
-  const uint32_t triangleCount = static_cast<uint32_t>(mesh_->indices.size() / 3);
-  const uint32_t chunks = chunkCount(triangleCount);
-  uint32_t total[2] = {0, 0};
-  for (uint32_t chunk = 0; chunk < chunks; ++chunk) {
-    CutOutput& out = chunk == 0 ? cutMain_ : cutChunks_[chunk - 1];
-    for (int side = 0; side < 2; ++side) {
-      out.first[side] = total[side];
-      total[side] += out.count[side];
-      out.planeTris[side].clear();
-      out.cutTris[side].clear();
-    }
-  }
-  sideTris_[0].resize(total[0]);
-  sideTris_[1].resize(total[1]);
-  inChunks(chunks, triangleCount, [&](uint32_t chunk, uint32_t begin, uint32_t end) {
-    cutRange(begin, end, chunk == 0 ? cutMain_ : cutChunks_[chunk - 1]);
-  });
-  for (uint32_t chunk = 1; chunk < chunks; ++chunk) {
-    const CutOutput& part = cutChunks_[chunk - 1];
-    for (int side = 0; side < 2; ++side) {
-      planeTris_[side].insert(planeTris_[side].end(), part.planeTris[side].begin(), part.planeTris[side].end());
-      cutTris_[side].insert(cutTris_[side].end(), part.cutTris[side].begin(), part.cutTris[side].end());
-    }
-  }
 }
 
 // On-plane edges of one side without a reverse twin on that side, sorted (directed, welded ids).
@@ -1384,7 +1360,7 @@ void Splitter::linkWelded(uint32_t a, uint32_t b) {
 // pieces stay closed on both. Whole source triangles are never dropped.
 void Splitter::dropCollapsedTriangles() {
   for (int side = 0; side < 2; ++side) {
-    std::vector<SideTriangle>& tris = sideTris_[side];
+    SideList& tris = sideTris_[side];
     bool dropped = false;
     auto check = [&](SideTriangle& tri) {
       const glm::vec3 p[3] = {outputPosition(tri.v[0]), outputPosition(tri.v[1]), outputPosition(tri.v[2])};
@@ -1721,7 +1697,7 @@ glm::dvec3 Splitter::cutOfAdded(uint32_t ref) const {
 // the solid angles of that component's triangles, Van Oosterom and Strackee 1983) at one of its
 // points. Pieces are renumbered in order of their first triangle. Returns the new piece count.
 uint32_t Splitter::mergeCavities(int side, SideWork& w, uint32_t pieces) const {
-  const std::vector<SideTriangle>& tris = sideTris_[side];
+  const SideList& tris = sideTris_[side];
   bool anyCavity = false;
   for (uint32_t p = 0; p < pieces; ++p) anyCavity = anyCavity || w.volume[p] < 0.0;
   if (!anyCavity) return pieces;
@@ -1779,7 +1755,7 @@ uint32_t Splitter::mergeCavities(int side, SideWork& w, uint32_t pieces) const {
 // (six times, about origin_) and first triangle for mergeCavities (`volumes`), and whether the plane
 // reached it and its cut-space bounds for joinTouching (`bounds`; otherwise contactLo is left empty).
 void Splitter::islandStats(int side, SideWork& w, uint32_t pieces, bool volumes, bool bounds) const {
-  const std::vector<SideTriangle>& tris = sideTris_[side];
+  const SideList& tris = sideTris_[side];
   w.volume.assign(pieces, 0.0);
   w.firstTriangle.assign(pieces, kNone);
   w.contactReached.assign(bounds ? pieces : 0, 0);
@@ -1817,7 +1793,7 @@ uint32_t Splitter::regroup(SideWork& w, std::span<const uint32_t> root, uint32_t
 // did reach nearest to it (bounding boxes), so that only what the cut separates falls apart. Pieces
 // are renumbered in order of first triangle, as before. Returns the new piece count.
 uint32_t Splitter::joinTouching(int side, SideWork& w, uint32_t pieces, const SplitOptions& options) const {
-  const std::vector<SideTriangle>& tris = sideTris_[side];
+  const SideList& tris = sideTris_[side];
   const double tolerance = std::max(options.touchTolerance, 0.0) * container_->boundsDiagonal();
   // Bounds and reach per piece first: pieces whose boxes meet nothing, all reached by the plane (the
   // teeth of a comb cut across), are apart without a look at their triangles.
@@ -1935,7 +1911,7 @@ void Splitter::pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const {
 // cutWholeAndCollect united the whole source triangles', only the parts of cut triangles and the
 // caps (all triangles the plane reached when some were dropped and the places moved).
 void Splitter::uniteSide(int side, SideWork& w, uint32_t weldedCount) {
-  const std::vector<SideTriangle>& tris = sideTris_[side];
+  const SideList& tris = sideTris_[side];
   const uint32_t first = united_ ? idCount_ : 0;
   w.parent.resize(weldedCount);
   std::iota(w.parent.begin() + first, w.parent.end(), first);
@@ -2025,7 +2001,7 @@ bool Splitter::sectionSettlesIslands() {
 // touching parts joined. Fills w.pieceOf (per side triangle), w.pieceMap and this side's entries of
 // loopPiece_; returns the piece count.
 uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options) {
-  const std::vector<SideTriangle>& tris = sideTris_[side];
+  const SideList& tris = sideTris_[side];
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
   w.pieceOf.resize(tris.size());
   uint32_t pieces = 0;
@@ -2071,7 +2047,7 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options)
 // bucket count; no order at all (w.identity) when the triangles are in that order already (one
 // piece of one run, caps last). w.pieceSize gets each piece's triangle count.
 void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
-  const std::vector<SideTriangle>& tris = sideTris_[side];
+  const SideList& tris = sideTris_[side];
   const size_t slots = size_t(std::max(slotCount_, capSlot_)) + 1;
   const size_t buckets = size_t(pieces) * slots;
   w.pieceSize.assign(pieces, 0u);
@@ -2115,7 +2091,7 @@ void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
 // (stamped per piece), provenance, submesh runs (a run ends where the slot changes). Returns the end.
 size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, const SplitOptions& options,
                                 SplitPiece& out) {
-  const std::vector<SideTriangle>& tris = sideTris_[side];
+  const SideList& tris = sideTris_[side];
   MeshData& m = out.mesh;
   const size_t end = k + w.pieceSize[p];
   m.indices.resize(3 * (end - k));
@@ -2165,7 +2141,9 @@ size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, con
   return end;
 }
 
-// Starts piece `out` afresh (its buffers kept) and takes a new stamp for its vertex remap.
+// Starts piece `out` afresh (its buffers kept) and takes a new stamp for its vertex remap. Its
+// indices and provenance keep their size: writeTriangles sizes and overwrites them (a clear would
+// make the resize zero them first, a pass over memory as large as the piece).
 void Splitter::beginPiece(SideWork& w, int side, SplitPiece& out) {
   MeshData& m = out.mesh;
   m.positions.clear();
@@ -2176,9 +2154,7 @@ void Splitter::beginPiece(SideWork& w, int side, SplitPiece& out) {
   m.colors.clear();
   m.joints.clear();
   m.weights.clear();
-  m.indices.clear();
   m.submeshes.clear();
-  out.sourceTriangles.clear();
   w.pieceCut.clear();
   out.side = side == 0 ? 1 : -1;
   out.capTriangles = 0;
