@@ -300,14 +300,13 @@ class Splitter final : public IMeshSplitter {
   SplitStatus capAll(const SplitOptions& options, SplitResult& result);
   void classify(double tolerance);
   struct CutOutput;
-  void cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t run, uint32_t (&next)[2],
-                   CutOutput& out);
+  void cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t run, uint32_t (&next)[2]);
   [[gnu::always_inline]] bool wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const;
   [[gnu::noinline]] int inPlaneSide(const uint32_t (&g)[3]) const;
-  void cutWholeAndCollect(const SplitOptions& options);
+  void cutWholeAndCollect(bool unite);
   void collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput& out);
   void cutVertices(const SplitOptions& options);
-  void joinChunks(uint32_t chunks, const SplitOptions& options);
+  void joinChunks(uint32_t chunks);
   void copyChunkTriangles(uint32_t chunks, size_t begin, size_t end);
   void cutPending();
   // How many chunks (threads) a pass over `count` items uses: threads_ for big passes, else 1.
@@ -370,7 +369,8 @@ class Splitter final : public IMeshSplitter {
 
   // Scratch of one side's islands and pieces: each side has its own, so the two can be written at
   // once (SplitOptions::threads).
-  struct SideWork {
+  // (Aligned to cache lines so that one side's writes never share a line with the other's.)
+  struct alignas(64) SideWork {
     std::vector<uint32_t> parent, label, pieceOf, pieceMap, order, bucket, pieceSize;
     std::vector<uint32_t> partsOf;  // per piece: the islands it is made of (0: not known)
     RawBuffer<uint32_t> vertexRefs;  // the piece being written: its vertices' references, in order
@@ -453,29 +453,35 @@ class Splitter final : public IMeshSplitter {
 
   std::vector<double> distance_;   // per position id
   std::vector<int8_t> side_;       // per position id: +1, -1, 0
-  std::vector<uint64_t> weldedEdges_;  // sorted unique crossing edges by position id pair
-  std::vector<double> edgeT_;          // per welded edge: parameter from its lower id
-  std::vector<glm::dvec3> edgeCut_;    // per welded edge: cut-space point
-  std::vector<glm::vec3> edgeSource_;  // per welded edge: source-space point
-  std::vector<uint32_t> edgeFirstPair_;  // per welded edge: first source pair (attribute donor for caps)
-  std::vector<uint64_t> pairs_;        // sorted unique crossing edges by source vertex pair
-  std::vector<uint32_t> pairEdge_;     // per pair: welded edge
-  MeshData extra_;                     // attributes of new and cap vertices
-  uint32_t capBase_ = 0;               // first cap vertex reference
   struct Pending {  // cutWholeAndCollect: a crossing triangle and where its parts go
     uint32_t triangle, run;
     uint32_t first[2];
   };
   // Steps 2 and 3's output per chunk of source triangles; chunk 0's lists are the split's (below).
-  struct CutOutput {
+  // Aligned to cache lines: chunks write their own lists' ends on every triangle, and a line shared
+  // with another chunk's lists or with what the passes read (side_, ids_) goes back and forth.
+  struct alignas(64) CutOutput {
     SideList sideTris[2];                // [0] above, [1] below
     std::vector<uint32_t> planeTris[2];  // per side: the triangles that may have an on-plane edge
-    std::vector<uint32_t> cutTris[2];    // per side: the triangles made by cutting one (not whole ones)
     std::vector<uint64_t> crossing, crossingPairs;  // step 2's crossing edges (by id, by vertex)
     std::vector<Pending> pending;                   // the crossing triangles, in source order
     size_t first[2] = {0, 0};                       // chunks 1, 2, ...: where they start in sideTris_
   };
   CutOutput cutMain_;
+  std::vector<CutOutput> cutChunks_;  // chunks 1, 2, ... (cutChunks_[c - 1])
+  SideList* const sideTris_ = cutMain_.sideTris;
+  std::vector<uint32_t>* const planeTris_ = cutMain_.planeTris;
+  std::vector<Pending>& pending_ = cutMain_.pending;
+  alignas(64) std::vector<uint32_t> cutTris_[2];  // per side: the triangles made by cutting one (not whole ones)
+  std::vector<uint64_t>& weldedEdges_ = cutMain_.crossing;  // sorted unique (cutVertices) crossing edges by position id pair
+  std::vector<double> edgeT_;          // per welded edge: parameter from its lower id
+  std::vector<glm::dvec3> edgeCut_;    // per welded edge: cut-space point
+  std::vector<glm::vec3> edgeSource_;  // per welded edge: source-space point
+  std::vector<uint32_t> edgeFirstPair_;  // per welded edge: first source pair (attribute donor for caps)
+  std::vector<uint64_t>& pairs_ = cutMain_.crossingPairs;  // the same by source vertex pair
+  std::vector<uint32_t> pairEdge_;     // per pair: welded edge
+  MeshData extra_;                     // attributes of new and cap vertices
+  uint32_t capBase_ = 0;               // first cap vertex reference
   bool united_ = false;        // cutWholeAndCollect united the whole triangles' islands
   // One island per side without a search (see sectionSettlesIslands): islandCandidate_ after the
   // classification (a closed mesh of one part), cutsOnLoops_ after the
@@ -487,11 +493,6 @@ class Splitter final : public IMeshSplitter {
   std::vector<uint32_t> loopSourceIds_;  // everyJoinOnALoop: the position ids on loops, sorted
   std::vector<uint32_t> loopOfPoint_, loopParent_;  // sectionSettlesIslands: loops joined by caps
   bool dropped_[2] = {false, false};  // dropCollapsedTriangles removed triangles of that side
-  std::vector<CutOutput> cutChunks_;  // chunks 1, 2, ... (cutChunks_[c - 1])
-  SideList* const sideTris_ = cutMain_.sideTris;
-  std::vector<uint32_t>* const planeTris_ = cutMain_.planeTris;
-  std::vector<uint32_t>* const cutTris_ = cutMain_.cutTris;
-  std::vector<Pending>& pending_ = cutMain_.pending;
   size_t capStart_[2] = {0, 0};            // per side: the first cap triangle
   std::vector<uint64_t> boundary_[2];
   std::vector<uint64_t> segments_;     // section segments, sorted, counter-clockwise seen from +normal
@@ -595,8 +596,9 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
     }
   }
   // Steps 2 and 3 share a pass over the source: the crossing triangles are cut once their edges are
-  // known (made by cutVertices, during the chunks' join on threads).
-  cutWholeAndCollect(options);
+  // known.
+  cutWholeAndCollect(options.separateIslands && !islandCandidate_);
+  cutVertices(options);
   // 3. Cut the crossing triangles.
   cutPending();
   if (sideTris_[0].empty() || sideTris_[1].empty()) {
@@ -804,12 +806,11 @@ SplitStatus Splitter::capAll(const SplitOptions& options, SplitResult& result) {
 // The parts of crossing triangle t (corners g in cut-space winding, corner sides s, run slot `run`),
 // written to the side lists at next[0] (above) and next[1] (below), which advance; out's plane and
 // cut lists get their indices.
-void Splitter::cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t run, uint32_t (&next)[2],
-                           CutOutput& out) {
+void Splitter::cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t run, uint32_t (&next)[2]) {
   auto pushCut = [&](bool planar, int side, uint32_t a, uint32_t b, uint32_t c) {
     const int index = side > 0 ? 0 : 1;
-    out.cutTris[index].push_back(next[index]);
-    if (planar) out.planeTris[index].push_back(next[index]);  // may have an on-plane edge
+    cutTris_[index].push_back(next[index]);
+    if (planar) planeTris_[index].push_back(next[index]);  // may have an on-plane edge
     sideTris_[index][next[index]++] = {{a, b, c}, t | kReachedBit, run};
   };
   int zero = -1;
@@ -872,11 +873,10 @@ int Splitter::inPlaneSide(const uint32_t (&g)[3]) const {
 // uniteSide adds the rest). A crossing triangle gives its crossing edges and keeps its places in the
 // side lists (as many as it will have parts), to be cut by cutPending once cutVertices has made the
 // edges' new vertices. The chunks' lists are then laid end to end: the same lists as one chunk gives.
-// A closed mesh of one part is not united (islandCandidate_: its section may settle the islands).
-void Splitter::cutWholeAndCollect(const SplitOptions& options) {
+void Splitter::cutWholeAndCollect(bool unite) {
   const uint32_t triangleCount = static_cast<uint32_t>(mesh_->indices.size() / 3);
   const uint32_t chunks = chunkCount(triangleCount);
-  const bool unite = options.separateIslands && !islandCandidate_ && chunks == 1;
+  unite = unite && chunks == 1;
   if (cutChunks_.size() < chunks - 1) cutChunks_.resize(chunks - 1);
   for (int side = 0; side < 2 && unite; ++side) {
     work_[side].parent.resize(idCount_);
@@ -886,15 +886,11 @@ void Splitter::cutWholeAndCollect(const SplitOptions& options) {
   inChunks(chunks, triangleCount, [&](uint32_t chunk, uint32_t begin, uint32_t end) {
     collectRange(begin, end, unite, chunk == 0 ? cutMain_ : cutChunks_[chunk - 1]);
   });
-  if (chunks > 1) {
-    joinChunks(chunks, options);
-  } else {
-    cutVertices(options);
-  }
+  if (chunks > 1) joinChunks(chunks);
 }
 
 // The crossing edges sorted and made unique, their cut points, the new vertices and the output run
-// slots. Reads no side list.
+// slots.
 void Splitter::cutVertices(const SplitOptions& options) {
   std::sort(weldedEdges_.begin(), weldedEdges_.end());
   weldedEdges_.erase(std::unique(weldedEdges_.begin(), weldedEdges_.end()), weldedEdges_.end());
@@ -909,16 +905,12 @@ void Splitter::cutVertices(const SplitOptions& options) {
 // indices count from the start of its own lists).
 void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput& out) {
   const MeshData& mesh = *mesh_;
-  const bool main = &out == &cutMain_;
-  std::vector<uint64_t>& welded = main ? weldedEdges_ : out.crossing;
-  std::vector<uint64_t>& pairs = main ? pairs_ : out.crossingPairs;
-  welded.clear();
-  pairs.clear();
+  out.crossing.clear();
+  out.crossingPairs.clear();
   out.pending.clear();
   for (int side = 0; side < 2; ++side) {
     out.sideTris[side].clear();
     out.planeTris[side].clear();
-    out.cutTris[side].clear();
   }
   uint32_t run = 0;
   uint32_t runEnd = mesh.submeshes.empty() ? kNone : mesh.submeshes[0].firstIndex + mesh.submeshes[0].indexCount;
@@ -943,8 +935,8 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput&
     for (int e = 0; e < 3; ++e) {
       const int f = e == 2 ? 0 : e + 1;
       if (s[e] * s[f] < 0) {
-        welded.push_back(pairKey(id[e], id[f]));
-        pairs.push_back(pairKey(g[e], g[f]));
+        out.crossing.push_back(pairKey(id[e], id[f]));
+        out.crossingPairs.push_back(pairKey(g[e], g[f]));
       }
     }
     // Its parts per side: through an on-plane vertex one each; else the lone corner's triangle and
@@ -962,9 +954,8 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput&
 }
 
 // The lists of chunks 1, 2, ... after chunk 0's (the split's): the side triangles copied on threads,
-// the indices into them (plane triangles, pending places) moved by where the chunk starts. The
-// calling thread runs cutVertices before its share of the copy.
-void Splitter::joinChunks(uint32_t chunks, const SplitOptions& options) {
+// the indices into them (plane triangles, pending places) moved by where the chunk starts.
+void Splitter::joinChunks(uint32_t chunks) {
   size_t total[2] = {sideTris_[0].size(), sideTris_[1].size()};
   for (uint32_t chunk = 1; chunk < chunks; ++chunk) {
     CutOutput& part = cutChunks_[chunk - 1];
@@ -985,8 +976,7 @@ void Splitter::joinChunks(uint32_t chunks, const SplitOptions& options) {
   const size_t copied = total[0] + total[1] - sideTris_[0].size() - sideTris_[1].size();
   sideTris_[0].resize(total[0]);
   sideTris_[1].resize(total[1]);
-  inChunks(chunks, static_cast<uint32_t>(copied), [&](uint32_t chunk, uint32_t begin, uint32_t end) {
-    if (chunk == 0) cutVertices(options);
+  inChunks(chunks, static_cast<uint32_t>(copied), [&](uint32_t, uint32_t begin, uint32_t end) {
     copyChunkTriangles(chunks, begin, end);
   });
 }
@@ -1014,12 +1004,14 @@ void Splitter::copyChunkTriangles(uint32_t chunks, size_t begin, size_t end) {
 void Splitter::cutPending() {
   const MeshData& mesh = *mesh_;
   const size_t planeWhole[2] = {planeTris_[0].size(), planeTris_[1].size()};
+  cutTris_[0].clear();
+  cutTris_[1].clear();
   for (const Pending& p : pending_) {
     uint32_t g[3] = {mesh.indices[3 * p.triangle], mesh.indices[3 * p.triangle + 1], mesh.indices[3 * p.triangle + 2]};
     if (mirrored_) std::swap(g[1], g[2]);
     const int s[3] = {side_[ids_[g[0]]], side_[ids_[g[1]]], side_[ids_[g[2]]]};
     uint32_t next[2] = {p.first[0], p.first[1]};
-    cutCrossing(p.triangle, g, s, p.run, next, cutMain_);
+    cutCrossing(p.triangle, g, s, p.run, next);
   }
   if (pending_.empty()) return;
   // cutTris_ is ascending already (only cutPending writes it); planeTris_ is the whole triangles'
