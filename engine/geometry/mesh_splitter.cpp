@@ -50,13 +50,12 @@
 #include <iterator>
 #include <memory>
 #include <numeric>
-#include <system_error>
-#include <thread>
 #include <type_traits>
 
 #include "cleave/geometry/cap_triangulator.h"
 #include "cleave/geometry/island_contacts.h"
 #include "cleave/geometry/mass_kernel.h"
+#include "cleave/geometry/pass_threads.h"
 
 namespace cleave::geometry {
 
@@ -314,21 +313,11 @@ class Splitter final : public IMeshSplitter {
     return threads_ > 1 && count >= kParallelTriangles ? std::min<uint32_t>(threads_, 8) : 1;
   }
   // Runs job(chunk, begin, end) over [0, count) cut into `chunks` equal ranges: chunk 0 on the
-  // calling thread, the others on threads of their own (all here if none can be started).
+  // calling thread, the others on the splitter's parked threads (all here if none can be started).
   template <class Job>
-  static void inChunks(uint32_t chunks, uint32_t count, Job&& job) {
+  void inChunks(uint32_t chunks, uint32_t count, Job&& job) {
     auto range = [&](uint32_t c) { return uint32_t(uint64_t(count) * c / chunks); };
-    std::vector<std::thread> others;
-    uint32_t started = 1;
-    try {
-      for (; started < chunks; ++started) {
-        others.emplace_back([&job, &range, started] { job(started, range(started), range(started + 1)); });
-      }
-    } catch (const std::system_error&) {
-    }
-    for (uint32_t c = started; c < chunks; ++c) job(c, range(c), range(c + 1));
-    job(0, range(0), range(1));
-    for (std::thread& t : others) t.join();
+    passThreads_.run(chunks, [&](uint32_t c) { job(c, range(c), range(c + 1)); });
   }
   void collectBoundary(int side, std::vector<uint64_t>& boundary);
   void buildLoops();
@@ -409,21 +398,16 @@ class Splitter final : public IMeshSplitter {
   void gatherVertices(SideWork& w, MeshData& m) const;
   void pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const;
   void pieceMass(SideWork& w, SplitPiece& out) const;
-  // Runs job(0) and job(1): the first on a thread of its own when `parallel` (both here if no
-  // thread can be started), the second on the calling thread.
+  // Runs job(0) and job(1): at once when `parallel` (job(1) on the calling thread, job(0) on a
+  // parked thread, or after job(1) if none can be started), else one after the other.
   template <class Job>
-  static void bothSides(bool parallel, Job&& job) {
-    std::thread other;
+  void bothSides(bool parallel, Job&& job) {
     if (parallel) {
-      try {
-        other = std::thread([&job] { job(0); });
-      } catch (const std::system_error&) {
-        parallel = false;
-      }
+      passThreads_.run(2, [&](uint32_t i) { job(1 - static_cast<int>(i)); });
+    } else {
+      job(0);
+      job(1);
     }
-    if (!parallel) job(0);
-    job(1);
-    if (other.joinable()) other.join();
   }
   uint32_t aliasRoot(uint32_t welded) const {
     while (welded >= idCount_ && welded - idCount_ < alias_.size() && alias_[welded - idCount_] != welded)
@@ -526,6 +510,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<glm::dvec3> capBounds_;  // makeCapVertices: per cap group, [2 g] = lo, [2 g + 1] = hi
   SideWork work_[2];
   uint32_t threads_ = 1;  // SplitOptions::threads of the call
+  detail::PassThreads passThreads_;  // runs the passes' chunks when threads_ > 1
   std::vector<SplitPiece> spare_;
 };
 

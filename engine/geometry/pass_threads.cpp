@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: MIT
+#include "cleave/geometry/pass_threads.h"
+
+#include <system_error>
+
+namespace cleave::geometry::detail {
+
+PassThreads::~PassThreads() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& thread : threads_) thread.join();
+}
+
+void PassThreads::runErased(uint32_t count, void* job, Call call) {
+  if (count == 0) return;
+  // Start what this pass needs and is not running yet; stop at the first failure.
+  try {
+    while (threads_.size() + 1 < count) {
+      const uint32_t index = static_cast<uint32_t>(threads_.size()) + 1;
+      const uint64_t seen = pass_;  // only this thread changes pass_: the new one waits for the next
+      threads_.emplace_back([this, index, seen] { park(index, seen); });
+    }
+  } catch (const std::system_error&) {
+  }
+  const uint32_t onThreads = std::min<uint32_t>(count - 1, static_cast<uint32_t>(threads_.size()));
+  if (onThreads > 0) {
+    {
+      std::lock_guard lock(mutex_);
+      job_ = job;
+      call_ = call;
+      count_ = onThreads + 1;
+      pending_ = onThreads;
+      ++pass_;
+    }
+    wake_.notify_all();
+  }
+  call(job, 0);
+  for (uint32_t index = onThreads + 1; index < count; ++index) call(job, index);
+  if (onThreads > 0) {
+    std::unique_lock lock(mutex_);
+    done_.wait(lock, [this] { return pending_ == 0; });
+    job_ = nullptr;
+    call_ = nullptr;
+  }
+}
+
+void PassThreads::park(uint32_t index, uint64_t seen) {
+  for (;;) {
+    void* job = nullptr;
+    Call call = nullptr;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return stop_ || pass_ != seen; });
+      if (stop_) return;
+      seen = pass_;
+      if (index >= count_) continue;
+      job = job_;
+      call = call_;
+    }
+    call(job, index);
+    std::lock_guard lock(mutex_);
+    if (--pending_ == 0) done_.notify_one();
+  }
+}
+
+}  // namespace cleave::geometry::detail
