@@ -313,13 +313,16 @@ def half_volumes(result):
 class CleaveRunner:
     name = "cleave"
 
-    def __init__(self, exe, case, repeat):
+    def __init__(self, exe, case, repeat, warmup):
         self.exe = exe
         self.case = case
         self.repeat = repeat
         n = case["normal"]
+        # Each round is a new process, while VTK and manifold run in this one and are warm after
+        # the warm-up round: cleave-split gets that round's worth of untimed splits in every round.
         self.cmd = [exe, case["path"], "--plane", fmt_float(n[0]), fmt_float(n[1]), fmt_float(n[2]),
-                    fmt_float(case["d"]), "--json", "--repeat", str(repeat)]
+                    fmt_float(case["d"]), "--json", "--repeat", str(repeat),
+                    "--warmup", str(repeat if warmup > 0 else 0)]
 
     def run(self):
         proc = subprocess.run(self.cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -585,9 +588,11 @@ def markdown(results, rows):
 
 
 SECTION_NOTES = """\
-What is timed: cleave is `cleave-split FILE --plane NX NY NZ D --json --repeat R`, the tool's own
-timer around a cut (the container taking the mesh and its weld, both halves, caps, island
-separation, mass properties; no file I/O).
+What is timed: cleave is `cleave-split FILE --plane NX NY NZ D --json --repeat R --warmup R`, the
+tool's own timer around a cut (the container taking the mesh and its weld, both halves, caps,
+island separation, mass properties; no file I/O). VTK and manifold run in the script's own process
+and are warm after the warm-up round; cleave-split is a new process each round, so it makes R
+untimed splits first (with `--warmup 0`, neither side is warmed).
 VTK is `vtkClipClosedSurface` with one clipping plane and generated cap faces, run twice (the
 plane and its flip) for the two halves, on a `vtkPolyData` built once. manifold is
 `Manifold.split_by_plane` (one call gives both halves) on a `Manifold` built once, with
@@ -742,7 +747,7 @@ def main(argv):
     for case in cases:
         runners = {}
         if "cleave" in tools:
-            runners["cleave"] = CleaveRunner(cleave_exe, case, args.repeat)
+            runners["cleave"] = CleaveRunner(cleave_exe, case, args.repeat, args.warmup)
         runners["vtk"] = VtkRunner(np, vm, case, args.repeat)
         runners["manifold"] = ManifoldRunner(np, m3d, case, args.repeat)
         rec = {"name": case["name"], "desc": case["desc"], "file": os.path.relpath(case["path"], ROOT),
