@@ -229,11 +229,14 @@ void assignMapped(std::vector<T>& out, size_t count, const F& f) {
 
 std::atomic<uint64_t> gIslandSearchesSkipped{0};  // detail::islandSearchesSkipped
 
+// 16 bytes: every pass over a side reads them (the output run slot is worked out from `source`:
+// Splitter::slotOf).
 struct SideTriangle {
   uint32_t v[3];    // vertex references (see Splitter::kinds), cut-space outward winding
   uint32_t source;  // source triangle | kReachedBit when the plane reached it; a cap: kReachedBit | kCapBit | loop
-  uint32_t slot;    // output run slot
 };
+static_assert(sizeof(SideTriangle) == 16);
+constexpr uint32_t kDroppedSource = kNone;  // SideTriangle::source of a triangle about to be erased
 
 // std::allocator whose resize() leaves new elements of a trivial type unwritten: the side lists
 // grow by places that are filled before they are read (a crossing triangle's parts, the chunks'
@@ -299,7 +302,7 @@ class Splitter final : public IMeshSplitter {
   SplitStatus capAll(const SplitOptions& options, SplitResult& result);
   void classify(double tolerance);
   struct CutOutput;
-  void cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t run, uint32_t (&next)[2]);
+  void cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t (&next)[2]);
   [[gnu::always_inline]] bool wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const;
   [[gnu::noinline]] int inPlaneSide(const uint32_t (&g)[3]) const;
   void cutWholeAndCollect(bool unite);
@@ -409,6 +412,13 @@ class Splitter final : public IMeshSplitter {
       job(1);
     }
   }
+  // The output run slot of a side triangle: the cap slot for a cap, else its source triangle's run.
+  uint32_t slotOf(const SideTriangle& tri) const {
+    if (tri.source & kCapBit) return capSlot_;
+    if (runFirst_.size() <= 1) return 0;
+    const uint32_t t = tri.source & kSourceMask;
+    return static_cast<uint32_t>(std::upper_bound(runFirst_.begin(), runFirst_.end(), t) - runFirst_.begin()) - 1;
+  }
   uint32_t aliasRoot(uint32_t welded) const {
     while (welded >= idCount_ && welded - idCount_ < alias_.size() && alias_[welded - idCount_] != welded)
       welded = alias_[welded - idCount_];
@@ -438,7 +448,7 @@ class Splitter final : public IMeshSplitter {
   std::vector<double> distance_;   // per position id
   std::vector<int8_t> side_;       // per position id: +1, -1, 0
   struct Pending {  // cutWholeAndCollect: a crossing triangle and where its parts go
-    uint32_t triangle, run;
+    uint32_t triangle;
     uint32_t first[2];
   };
   // Steps 2 and 3's output per chunk of source triangles; chunk 0's lists are the split's (below).
@@ -504,6 +514,7 @@ class Splitter final : public IMeshSplitter {
   uint32_t closedLoops_ = 0;
   uint32_t slotCount_ = 0;  // output runs of the input
   uint32_t capSlot_ = 0;
+  std::vector<uint32_t> runFirst_;  // per input run: its first triangle (runs follow one another)
   std::vector<uint32_t> alias_;       // per welded cut edge: the welded id it was merged into
   std::vector<uint32_t> extraWelded_;  // per vertex reference past the source: its welded id
   std::vector<uint32_t> loopPiece_;
@@ -724,6 +735,8 @@ void Splitter::makeCutVertices() {
 void Splitter::assignSlots(const SplitOptions& options) {
   const MeshData& mesh = *mesh_;
   slotCount_ = mesh.submeshes.empty() ? 1u : static_cast<uint32_t>(mesh.submeshes.size());
+  runFirst_.clear();
+  for (const SubMesh& run : mesh.submeshes) runFirst_.push_back(run.firstIndex / 3);
   capSlot_ = slotCount_;
   for (uint32_t r = 0; r < slotCount_; ++r) {
     const uint32_t material = mesh.submeshes.empty() ? 0u : mesh.submeshes[r].materialId;
@@ -788,15 +801,15 @@ SplitStatus Splitter::capAll(const SplitOptions& options, SplitResult& result) {
   return SplitStatus::Ok;
 }
 
-// The parts of crossing triangle t (corners g in cut-space winding, corner sides s, run slot `run`),
+// The parts of crossing triangle t (corners g in cut-space winding, corner sides s),
 // written to the side lists at next[0] (above) and next[1] (below), which advance; out's plane and
 // cut lists get their indices.
-void Splitter::cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t run, uint32_t (&next)[2]) {
+void Splitter::cutCrossing(uint32_t t, const uint32_t (&g)[3], const int (&s)[3], uint32_t (&next)[2]) {
   auto pushCut = [&](bool planar, int side, uint32_t a, uint32_t b, uint32_t c) {
     const int index = side > 0 ? 0 : 1;
     cutTris_[index].push_back(next[index]);
     if (planar) planeTris_[index].push_back(next[index]);  // may have an on-plane edge
-    sideTris_[index][next[index]++] = {{a, b, c}, t | kReachedBit, run};
+    sideTris_[index][next[index]++] = {{a, b, c}, t | kReachedBit};
   };
   int zero = -1;
   for (int k = 0; k < 3; ++k) {
@@ -897,13 +910,7 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput&
     out.sideTris[side].clear();
     out.planeTris[side].clear();
   }
-  uint32_t run = 0;
-  uint32_t runEnd = mesh.submeshes.empty() ? kNone : mesh.submeshes[0].firstIndex + mesh.submeshes[0].indexCount;
   for (uint32_t t = begin; t < end; ++t) {
-    while (runEnd != kNone && 3 * t >= runEnd && run + 1 < mesh.submeshes.size()) {
-      ++run;
-      runEnd = mesh.submeshes[run].firstIndex + mesh.submeshes[run].indexCount;
-    }
     uint32_t g[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
     if (mirrored_) std::swap(g[1], g[2]);  // cut-space outward winding
     const uint32_t id[3] = {ids_[g[0]], ids_[g[1]], ids_[g[2]]};
@@ -913,7 +920,7 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput&
     if (wholeSide(g, s, index, planar)) {
       SideList& tris = out.sideTris[index];
       if (planar) out.planeTris[index].push_back(static_cast<uint32_t>(tris.size()));
-      tris.push_back({{g[0], g[1], g[2]}, planar ? t | kReachedBit : t, run});
+      tris.push_back({{g[0], g[1], g[2]}, planar ? t | kReachedBit : t});
       if (unite) uniteCorners(work_[index], id[0], id[1], id[2]);
       continue;
     }
@@ -932,7 +939,7 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput&
       count[s[lone] > 0 ? 1 : 0] = 2;
     }
     SideList* tris = out.sideTris;
-    out.pending.push_back({t, run, {static_cast<uint32_t>(tris[0].size()), static_cast<uint32_t>(tris[1].size())}});
+    out.pending.push_back({t, {static_cast<uint32_t>(tris[0].size()), static_cast<uint32_t>(tris[1].size())}});
     tris[0].resize(tris[0].size() + count[0]);
     tris[1].resize(tris[1].size() + count[1]);
   }
@@ -996,7 +1003,7 @@ void Splitter::cutPending() {
     if (mirrored_) std::swap(g[1], g[2]);
     const int s[3] = {side_[ids_[g[0]]], side_[ids_[g[1]]], side_[ids_[g[2]]]};
     uint32_t next[2] = {p.first[0], p.first[1]};
-    cutCrossing(p.triangle, g, s, p.run, next);
+    cutCrossing(p.triangle, g, s, next);
   }
   if (pending_.empty()) return;
   // cutTris_ is ascending already (only cutPending writes it); planeTris_ is the whole triangles'
@@ -1349,14 +1356,14 @@ void Splitter::dropCollapsedTriangles() {
         collapsed = collapsed || aliasRoot(a) == aliasRoot(b);
       }
       if (!collapsed) return;
-      tri.slot = kNone;
+      tri.source = kDroppedSource;
       dropped = true;
     };
     for (uint32_t index : cutTris_[side]) check(tris[index]);
     for (size_t index = capStart_[side]; index < tris.size(); ++index) check(tris[index]);
     dropped_[side] = dropped;
     if (dropped) {
-      tris.erase(std::remove_if(tris.begin(), tris.end(), [](const SideTriangle& t) { return t.slot == kNone; }),
+      tris.erase(std::remove_if(tris.begin(), tris.end(), [](const SideTriangle& t) { return t.source == kDroppedSource; }),
                  tris.end());
     }
   }
@@ -1436,9 +1443,9 @@ void Splitter::pushCapTriangles() {
   for (size_t k = 0; k < capTriangles_.size(); k += 3) {
     const uint32_t a = capTriangles_[k], b = capTriangles_[k + 1], c = capTriangles_[k + 2];
     const uint32_t source = kReachedBit | kCapBit | capLoopOf_[k / 3];
-    sideTris_[1].push_back({{capBase_ + a, capBase_ + b, capBase_ + c}, source, capSlot_});
+    sideTris_[1].push_back({{capBase_ + a, capBase_ + b, capBase_ + c}, source});
     sideTris_[0].push_back(
-        {{capBase_ + loopVertices + a, capBase_ + loopVertices + c, capBase_ + loopVertices + b}, source, capSlot_});
+        {{capBase_ + loopVertices + a, capBase_ + loopVertices + c, capBase_ + loopVertices + b}, source});
   }
 }
 
@@ -2038,7 +2045,7 @@ void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
   bool sorted = true;
   size_t previous = 0;
   for (size_t k = 0; k < tris.size(); ++k) {
-    const size_t key = size_t(w.pieceOf[k]) * slots + tris[k].slot;
+    const size_t key = size_t(w.pieceOf[k]) * slots + slotOf(tris[k]);
     sorted = sorted && previous <= key;
     previous = key;
     ++w.pieceSize[w.pieceOf[k]];
@@ -2048,17 +2055,18 @@ void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
   w.order.resize(tris.size());
   if (buckets <= 4 * tris.size() + 4096) {
     w.bucket.assign(buckets + 1, 0u);
-    for (size_t k = 0; k < tris.size(); ++k) ++w.bucket[size_t(w.pieceOf[k]) * slots + tris[k].slot + 1];
+    for (size_t k = 0; k < tris.size(); ++k) ++w.bucket[size_t(w.pieceOf[k]) * slots + slotOf(tris[k]) + 1];
     for (size_t b = 0; b < buckets; ++b) w.bucket[b + 1] += w.bucket[b];
     for (size_t k = 0; k < tris.size(); ++k) {
-      w.order[w.bucket[size_t(w.pieceOf[k]) * slots + tris[k].slot]++] = static_cast<uint32_t>(k);
+      w.order[w.bucket[size_t(w.pieceOf[k]) * slots + slotOf(tris[k])]++] = static_cast<uint32_t>(k);
     }
   } else {
     std::iota(w.order.begin(), w.order.end(), 0u);
     const std::vector<uint32_t>& piece = w.pieceOf;
     std::sort(w.order.begin(), w.order.end(), [&](uint32_t a, uint32_t b) {
       if (piece[a] != piece[b]) return piece[a] < piece[b];
-      if (tris[a].slot != tris[b].slot) return tris[a].slot < tris[b].slot;
+      const uint32_t slotA = slotOf(tris[a]), slotB = slotOf(tris[b]);
+      if (slotA != slotB) return slotA < slotB;
       return a < b;
     });
   }
@@ -2092,9 +2100,9 @@ size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, con
   };
   for (; k < end; ++k) {
     const SideTriangle& tri = tris[order ? order[k] : k];
-    if (tri.slot != slot) {
+    if (const uint32_t triSlot = slotOf(tri); triSlot != slot) {
       if (slot != kNone) closeRun();
-      slot = tri.slot;
+      slot = triSlot;
       runFirst = static_cast<uint32_t>(index - indices);
     }
     reached |= tri.source;
