@@ -323,7 +323,7 @@ MeshStatus MeshContainer::take(const MeshWeld* weld) {
   jointMatrices_.clear();
   // The cut space is the source space until a transform is set (setTransform updates the bounds).
   cutPositions_.assign(mesh.positions.begin(), mesh.positions.end());  // no zero fill first
-  updateBounds();
+  sourceBounds();
   if (weld) {
     positionIds_.assign(weld->positionIds.begin(), weld->positionIds.end());
     representatives_.assign(weld->representatives.begin(), weld->representatives.end());
@@ -660,6 +660,32 @@ void MeshContainer::computeConnected() {
   uint32_t parts = 0;
   for (uint32_t id = 0; id < ids && parts < 2; ++id) parts += used[id] && parent[id] == id ? 1u : 0u;
   connected_ = parts == 1;
+}
+
+// updateBounds for cut positions that are the source's: from the floats (half the bytes of the
+// doubles; a float widens to a double exactly, so their bounds are the same), in four running
+// bounds per axis (one would wait on the one before at every point).
+void MeshContainer::sourceBounds() {
+  const std::vector<glm::vec3>& positions = source_->positions;
+  const size_t n = positions.size();
+  glm::vec3 lo[4], hi[4];
+  for (int k = 0; k < 4; ++k) lo[k] = hi[k] = n > 0 ? positions[0] : glm::vec3(0.f);
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    for (int k = 0; k < 4; ++k) {
+      lo[k] = glm::min(lo[k], positions[i + k]);
+      hi[k] = glm::max(hi[k], positions[i + k]);
+    }
+  }
+  for (; i < n; ++i) {
+    lo[0] = glm::min(lo[0], positions[i]);
+    hi[0] = glm::max(hi[0], positions[i]);
+  }
+  const glm::vec3 low = glm::min(glm::min(lo[0], lo[1]), glm::min(lo[2], lo[3]));
+  const glm::vec3 high = glm::max(glm::max(hi[0], hi[1]), glm::max(hi[2], hi[3]));
+  boundsMin_ = n > 0 ? glm::dvec3(low) : glm::dvec3(INFINITY);
+  boundsMax_ = n > 0 ? glm::dvec3(high) : glm::dvec3(-INFINITY);
+  boundsDiagonal_ = n > 0 ? glm::length(boundsMax_ - boundsMin_) : 0.0;
 }
 
 void MeshContainer::updateBounds() {

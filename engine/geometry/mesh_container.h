@@ -113,6 +113,7 @@ class MeshContainer {
   bool pairedLists(uint32_t* parts);
   void computeConnected();
   void updateBounds();
+  void sourceBounds();  // updateBounds while the cut positions are the source's
   // The weld and closedness scratch arrays are per thread (see mesh_container.cpp), not per
   // container: a container made for every cut then reuses warm memory.
   glm::dmat4 model_{1.0};
