@@ -227,6 +227,21 @@ void assignMapped(std::vector<T>& out, size_t count, const F& f) {
   out.assign(MappedIterator<F>(&f, 0), MappedIterator<F>(&f, count));
 }
 
+// The index of the first of `sorted` not less than `key`, as std::lower_bound, with a conditional
+// move in place of its branch: the comparisons of the cut's edge lookups follow no pattern, so the
+// branch was mispredicted about every other step.
+size_t lowerBound(const std::vector<uint64_t>& sorted, uint64_t key) {
+  if (sorted.empty()) return 0;
+  const uint64_t* base = sorted.data();
+  size_t n = sorted.size();
+  while (n > 1) {
+    const size_t half = n / 2;
+    base = base[half] < key ? base + half : base;
+    n -= half;
+  }
+  return static_cast<size_t>(base - sorted.data()) + (*base < key ? 1 : 0);
+}
+
 std::atomic<uint64_t> gIslandSearchesSkipped{0};  // detail::islandSearchesSkipped
 
 // 16 bytes: every pass over a side reads them (the output run slot is worked out from `source`:
@@ -567,9 +582,7 @@ glm::dvec3 Splitter::sectionCut(uint32_t welded) const {
 }
 
 uint32_t Splitter::pairVertex(uint32_t a, uint32_t b) const {
-  const uint64_t key = pairKey(a, b);
-  const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), key);
-  return sourceCount_ + static_cast<uint32_t>(it - pairs_.begin());
+  return sourceCount_ + static_cast<uint32_t>(lowerBound(pairs_, pairKey(a, b)));
 }
 
 // A split in stages: bind the container and check the call; classify and find the crossing edges;
@@ -699,8 +712,7 @@ void Splitter::makeCutVertices() {
   for (size_t k = 0; k < pairCount; ++k) {
     uint32_t a = keyFrom(pairs_[k]), b = keyTo(pairs_[k]);
     const uint64_t welded = pairKey(ids_[a], ids_[b]);
-    const uint32_t e = static_cast<uint32_t>(std::lower_bound(weldedEdges_.begin(), weldedEdges_.end(), welded) -
-                                             weldedEdges_.begin());
+    const uint32_t e = static_cast<uint32_t>(lowerBound(weldedEdges_, welded));
     pairEdge_[k] = e;
     if (edgeFirstPair_[e] == kNone) edgeFirstPair_[e] = static_cast<uint32_t>(k);
     if (ids_[a] != keyFrom(welded)) std::swap(a, b);  // a: the end with the lower id, where t = 0
