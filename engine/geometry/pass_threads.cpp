@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "cleave/geometry/pass_threads.h"
 
+#include <exception>
 #include <system_error>
 
 namespace cleave::geometry::detail {
@@ -37,14 +38,22 @@ void PassThreads::runErased(uint32_t count, void* job, Call call) {
     }
     wake_.notify_all();
   }
-  call(job, 0);
-  for (uint32_t index = onThreads + 1; index < count; ++index) call(job, index);
+  // A job here that throws (a failed allocation) must not leave while the parked threads still run
+  // theirs, which reach into the caller's frame: wait for them, then pass the exception on.
+  std::exception_ptr failure;
+  try {
+    call(job, 0);
+    for (uint32_t index = onThreads + 1; index < count; ++index) call(job, index);
+  } catch (...) {
+    failure = std::current_exception();
+  }
   if (onThreads > 0) {
     std::unique_lock lock(mutex_);
     done_.wait(lock, [this] { return pending_ == 0; });
     job_ = nullptr;
     call_ = nullptr;
   }
+  if (failure) std::rethrow_exception(failure);
 }
 
 void PassThreads::park(uint32_t index, uint64_t seen) {

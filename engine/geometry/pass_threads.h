@@ -30,8 +30,9 @@ class PassThreads {
 
   // Runs job(i) for every i in [0, count) and returns when all have returned: job(0) on the
   // calling thread, the others on parked threads (started on first use). Where a thread cannot be
-  // started, its jobs run on the calling thread, after job(0). A job must not throw (one that does
-  // on a parked thread ends the program, as an exception leaving any std::thread does).
+  // started, its jobs run on the calling thread, after job(0). A job on the calling thread may
+  // throw: run() waits for the parked threads' jobs, then rethrows. One on a parked thread must not
+  // (it ends the program, as an exception leaving any std::thread does).
   template <class Job>
   void run(uint32_t count, Job&& job) {
     using Stored = std::remove_reference_t<Job>;

@@ -4,6 +4,8 @@
 #include "cleave/geometry/pass_threads.h"
 
 #include <atomic>
+#include <chrono>
+#include <stdexcept>
 #include <set>
 #include <thread>
 #include <vector>
@@ -42,6 +44,23 @@ TEST(PassThreads, ManyShortPassesSeeEachOthersWrites) {
     });
   }
   for (uint64_t v : values) EXPECT_EQ(v, 2000u);
+}
+
+TEST(PassThreads, AThrowOnTheCallingThreadWaitsForTheOthersThenPassesOn) {
+  PassThreads threads;
+  std::atomic<int> finished{0};
+  EXPECT_THROW(threads.run(3,
+                           [&](uint32_t i) {
+                             if (i == 0) throw std::runtime_error("job 0");
+                             std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                             finished.fetch_add(1);
+                           }),
+               std::runtime_error);
+  EXPECT_EQ(finished.load(), 2) << "run() returned before the parked threads' jobs";
+  // The threads are still usable.
+  std::atomic<int> runs{0};
+  threads.run(3, [&](uint32_t) { runs.fetch_add(1); });
+  EXPECT_EQ(runs.load(), 3);
 }
 
 TEST(PassThreads, ZeroJobsRunNothingAndAnUnusedPoolStartsNoThread) {
