@@ -469,8 +469,9 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
   const double geometryStart = nowMilliseconds();
   geometry::IMeshSplitter& splitter = job.settings.convexHint ? *s.convex : *s.concave;
   if (job.skinned() && s.container.closed()) {  // closed on the container's weld: no weld again
-    out.posedVolume = geometry::integrateClosedSurface(s.container.cutPositions(), s.container.mesh().indices,
-                                                       s.container.mirrored())
+    std::vector<glm::dvec3> unused;  // a posed container holds its doubles: doubles() copies nothing
+    out.posedVolume = geometry::integrateClosedSurface(s.container.cutPositions().doubles(unused),
+                                                       s.container.mesh().indices, s.container.mirrored())
                           .volume;
   }
   std::string shatterMessage;

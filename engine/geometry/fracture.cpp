@@ -35,10 +35,10 @@ struct Part {
 enum class Against { Inside, Outside, Crossing };
 
 // Where the part's cut-space positions lie against the plane.
-Against classify(std::span<const glm::dvec3> points, const Plane& plane, double tolerance) {
+Against classify(const CutPositions& points, const Plane& plane, double tolerance) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const glm::dvec3& p : points) {
-    const double d = glm::dot(plane.normal, p) - plane.offset;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double d = glm::dot(plane.normal, points[i]) - plane.offset;
     lo = std::min(lo, d);
     hi = std::max(hi, d);
   }
@@ -87,14 +87,16 @@ SplitStatus cutPart(IMeshSplitter& splitter, CapSimplifier& simplifier, const Me
 
 // Mass properties of a part no plane cut (it lay wholly inside its cell): integrated in cut space.
 MassProperties massOfWhole(const MeshContainer& container) {
+  std::vector<glm::dvec3> scratch;
+  const std::span<const glm::dvec3> positions = container.cutPositions().doubles(scratch);
   if (container.closed()) {
-    return integrateClosedSurface(container.cutPositions(), container.mesh().indices, container.mirrored(), false);
+    return integrateClosedSurface(positions, container.mesh().indices, container.mirrored(), false);
   }
   std::vector<uint32_t> indices = container.mesh().indices;
   if (container.mirrored()) {
     for (size_t t = 0; t + 2 < indices.size(); t += 3) std::swap(indices[t + 1], indices[t + 2]);
   }
-  return computeMassProperties(container.cutPositions(), indices);
+  return computeMassProperties(positions, indices);
 }
 
 struct CellRun {

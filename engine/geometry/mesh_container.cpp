@@ -321,8 +321,9 @@ MeshStatus MeshContainer::take(const MeshWeld* weld) {
   const MeshData& mesh = *source_;
   model_ = glm::dmat4(1.0);
   jointMatrices_.clear();
-  // The cut space is the source space until a transform is set (setTransform updates the bounds).
-  cutPositions_.assign(mesh.positions.begin(), mesh.positions.end());  // no zero fill first
+  // The cut space is the source space until a transform is set (setTransform updates the bounds):
+  // cutPositions() reads the source floats, no copy is made.
+  cutPositions_.clear();
   sourceBounds();
   if (weld) {
     positionIds_.assign(weld->positionIds.begin(), weld->positionIds.end());
@@ -705,6 +706,12 @@ void MeshContainer::setTransform(const glm::mat4& model) {
   const bool identity = model == glm::mat4(1.f);
   if (identity && cutIsSource_) return;  // the cut positions, bounds and winding are those already set
   cutIsSource_ = identity;
+  if (identity) {  // back to the source floats (after another transform or a pose)
+    cutPositions_.clear();
+    mirrored_ = inverted_;
+    sourceBounds();
+    return;
+  }
   cutPositions_.resize(source_->positions.size());
   for (size_t i = 0; i < cutPositions_.size(); ++i) {
     cutPositions_[i] = glm::dvec3(model_ * glm::dvec4(glm::dvec3(source_->positions[i]), 1.0));

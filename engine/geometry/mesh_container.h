@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "cleave/base/status.h"
+#include "cleave/geometry/cut_positions.h"
 #include "cleave/geometry/mesh_data.h"
 #include "cleave/geometry/split_types.h"
 
@@ -54,7 +55,11 @@ class MeshContainer {
   MeshStatus setSkinningPose(std::span<const glm::mat4> jointMatrices, const glm::mat4& model);
 
   const MeshData& mesh() const { return *source_; }
-  std::span<const glm::dvec3> cutPositions() const { return cutPositions_; }
+  // The cut-space positions (cut_positions.h): the source floats while the cut space is the source
+  // space (after setMesh, or setTransform with the identity), else the transformed or posed ones.
+  CutPositions cutPositions() const {
+    return cutIsSource_ ? CutPositions(std::span<const glm::vec3>(source_->positions)) : CutPositions(cutPositions_);
+  }
   // Position id per vertex: vertices at the same position (within the weld tolerance) share an id.
   std::span<const uint32_t> positionIds() const { return positionIds_; }
   uint32_t positionIdCount() const { return positionIdCount_; }
@@ -98,7 +103,7 @@ class MeshContainer {
   MeshData mesh_;                          // the copy, when the mesh was given by reference
   std::shared_ptr<const MeshData> shared_;  // the mesh, when shared
   const MeshData* source_ = &mesh_;         // the mesh held: mesh_ or *shared_
-  std::vector<glm::dvec3> cutPositions_;
+  std::vector<glm::dvec3> cutPositions_;  // empty while the cut space is the source space
   std::vector<uint32_t> positionIds_;
   uint32_t positionIdCount_ = 0;
   bool mirrored_ = false;
@@ -113,7 +118,7 @@ class MeshContainer {
   bool pairedLists(uint32_t* parts);
   void computeConnected();
   void updateBounds();
-  void sourceBounds();  // updateBounds while the cut positions are the source's
+  void sourceBounds();  // updateBounds while the cut space is the source space, from the floats
   // The weld and closedness scratch arrays are per thread (see mesh_container.cpp), not per
   // container: a container made for every cut then reuses warm memory.
   glm::dmat4 model_{1.0};

@@ -446,7 +446,7 @@ class Splitter final : public IMeshSplitter {
   // Per call.
   const MeshContainer* container_ = nullptr;
   const MeshData* mesh_ = nullptr;
-  std::span<const glm::dvec3> cut_;
+  CutPositions cut_;  // the source floats or the container's doubles (cut_positions.h)
   std::span<const uint32_t> ids_;
   std::span<const uint32_t> reps_;
   uint32_t idCount_ = 0;

@@ -345,7 +345,8 @@ void splitAndCheck(const std::string& name, const MeshData& mesh, Tally& tally) 
     ADD_FAILURE() << name << ": the reader returned a mesh the container refuses: " << set.message;
     return;
   }
-  const std::span<const glm::dvec3> cut = container.cutPositions();
+  std::vector<glm::dvec3> cutScratch;
+  const std::span<const glm::dvec3> cut = container.cutPositions().doubles(cutScratch);
   glm::dvec3 lo, hi;
   geometry::testing::bounds(cut, lo, hi);
   const double diagonal = glm::length(hi - lo);
@@ -696,7 +697,8 @@ void cutOnFloats(const std::string& name, const MeshData& mesh, FloatTally& tall
     return;
   }
   ++tally.meshes;
-  const std::span<const glm::dvec3> cut = container.cutPositions();
+  std::vector<glm::dvec3> cutScratch;
+  const std::span<const glm::dvec3> cut = container.cutPositions().doubles(cutScratch);
   glm::dvec3 lo, hi;
   geometry::testing::bounds(cut, lo, hi);
   uint64_t seed = 1469598103934665603ull;  // FNV-1a of the name: a stable seed per mesh
@@ -790,7 +792,9 @@ TEST(Corpus, FractureOfClosedCgalMeshesKeepsVolumeAndClosedPieces) {
     MeshContainer container;
     if (container.setMesh(read.mesh).code != SplitStatus::Ok || !container.closed()) continue;
     if (!geometry::testing::floatWeldReport(read.mesh).manifold()) continue;
-    const double volume = geometry::computeMassProperties(container.cutPositions(), read.mesh.indices).volume;
+    std::vector<glm::dvec3> scratch;
+    const double volume =
+        geometry::computeMassProperties(container.cutPositions().doubles(scratch), read.mesh.indices).volume;
     if (!(std::abs(volume) > 0.0)) continue;
     glm::dvec3 lo, hi;
     geometry::testing::bounds(container.cutPositions(), lo, hi);

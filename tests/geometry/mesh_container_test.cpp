@@ -285,6 +285,64 @@ TEST(MeshContainer, TransformMakesCutSpaceAndDetectsMirroring) {
   EXPECT_FALSE(c.mirrored());
 }
 
+// While the cut space is the source space the cut positions are the source floats (no copy); a
+// transform moves them into an array of doubles, and the identity brings back the source, with its
+// bounds and winding, whatever came between (a mirroring transform, a skinning pose).
+TEST(MeshContainer, CutPositionsAreTheSourceFloatsUntilATransform) {
+  MeshData m = seamCube();
+  for (glm::vec3& p : m.positions) p = 0.1f * p + glm::vec3(0.3f, -0.7f, 0.01f);  // values a float rounds
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    m.joints.emplace_back(0, 0, 0, 0);
+    m.weights.emplace_back(1.f, 0.f, 0.f, 0.f);
+  }
+  MeshContainer c;
+  ASSERT_EQ(c.setMesh(m).code, SplitStatus::Ok);
+  auto expectSource = [&](const char* after) {
+    const CutPositions cut = c.cutPositions();
+    EXPECT_TRUE(cut.isSource()) << after;
+    ASSERT_EQ(cut.size(), m.positions.size()) << after;
+    EXPECT_EQ(cut.source().data(), c.mesh().positions.data()) << after;
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    size_t read = 0;
+    for (const glm::dvec3 p : cut) {
+      EXPECT_EQ(p, glm::dvec3(m.positions[read])) << after << " " << read;
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+      ++read;
+    }
+    EXPECT_EQ(read, m.positions.size()) << after;
+    EXPECT_EQ(c.boundsMin(), lo) << after;
+    EXPECT_EQ(c.boundsMax(), hi) << after;
+    EXPECT_FALSE(c.mirrored()) << after;
+    std::vector<glm::dvec3> scratch;
+    const std::span<const glm::dvec3> copied = cut.doubles(scratch);
+    EXPECT_EQ(copied.data(), scratch.data()) << after;
+    EXPECT_TRUE(std::equal(copied.begin(), copied.end(), cut.begin())) << after;
+  };
+  expectSource("setMesh");
+  c.setTransform(glm::scale(glm::mat4(1.f), glm::vec3(2.f, -1.f, 1.f)));
+  {
+    const CutPositions cut = c.cutPositions();
+    EXPECT_FALSE(cut.isSource());
+    EXPECT_TRUE(cut.source().empty());
+    ASSERT_EQ(cut.size(), m.positions.size());
+    EXPECT_EQ(cut[3], glm::dvec3(2.0 * m.positions[3].x, -double(m.positions[3].y), m.positions[3].z));
+    EXPECT_TRUE(c.mirrored());
+    std::vector<glm::dvec3> scratch;
+    EXPECT_TRUE(cut.doubles(scratch).data() != scratch.data()) << "the held doubles, not a copy";
+    EXPECT_TRUE(scratch.empty());
+  }
+  c.setTransform(glm::mat4(1.f));
+  expectSource("identity after a mirroring transform");
+  const std::vector<glm::mat4> joints = {glm::translate(glm::mat4(1.f), glm::vec3(0, 5, 0))};
+  ASSERT_EQ(c.setSkinningPose(joints, glm::mat4(1.f)).code, SplitStatus::Ok);
+  EXPECT_FALSE(c.cutPositions().isSource());
+  EXPECT_NEAR(c.cutPositions()[0].y, double(m.positions[0].y) + 5.0, 1e-6);
+  c.setTransform(glm::mat4(1.f));
+  expectSource("identity after a skinning pose");
+  EXPECT_TRUE(c.jointMatrices().empty());
+}
+
 TEST(MeshContainer, SkinningPoseBlendsJointMatrices) {
   MeshData m = seamCube();
   for (const glm::vec3& p : m.positions) {

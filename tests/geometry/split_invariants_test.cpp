@@ -239,7 +239,8 @@ std::vector<std::string> checkSplit(IMeshSplitter& splitter, const MeshContainer
   const bool skinned = !c.jointMatrices.empty();
   const glm::dmat4 model(c.model);
   const bool mirrored = glm::determinant(glm::dmat3(model)) < 0.0;
-  const std::span<const glm::dvec3> cut = container.cutPositions();
+  std::vector<glm::dvec3> cutScratch;
+  const std::span<const glm::dvec3> cut = container.cutPositions().doubles(cutScratch);
   const MeshData& source = c.mesh;
   const double diagonal = testing::boundsDiagonal(cut);
   const double tol = options.relativeTolerance * container.boundsDiagonal();
@@ -628,7 +629,7 @@ TEST(SplitIslands, SettledByTheSectionTheyAreWhatTheSearchFinds) {
     std::vector<Plane> planes = testing::randomPlanes(c.seed + 100, 40, lo, hi);
     for (int a = 0; a < 3; ++a) planes.push_back(planeOf(glm::dvec3(a == 0, a == 1, a == 2), 0.5 * (lo[a] + hi[a])));
     testing::SeededRandom rng(c.seed + 200);
-    const std::span<const glm::dvec3> cut = known.cutPositions();
+    const CutPositions cut = known.cutPositions();
     for (size_t k = 0; k < 10; ++k) {  // through a vertex
       const glm::dvec3 normal = rng.unitVector();
       planes.push_back(planeOf(normal, glm::dot(normal, cut[(k * 7919) % cut.size()])));

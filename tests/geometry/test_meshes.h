@@ -76,6 +76,16 @@ inline void bounds(std::span<const glm::dvec3> p, glm::dvec3& lo, glm::dvec3& hi
   }
 }
 
+// The same over a container's cut positions (the source floats or its own doubles).
+inline void bounds(const CutPositions& p, glm::dvec3& lo, glm::dvec3& hi) {
+  lo = glm::dvec3(INFINITY);
+  hi = glm::dvec3(-INFINITY);
+  for (const glm::dvec3 q : p) {
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+}
+
 inline double boundsDiagonal(std::span<const glm::dvec3> p) {
   glm::dvec3 lo, hi;
   bounds(p, lo, hi);

@@ -519,7 +519,8 @@ bool measure(const Arguments& args, Input& in) {
                    message.empty() ? geometry::toString(status) : message.c_str());
       return false;
     }
-    in.mass = geometry::computeMassProperties(posed.cutPositions(), in.mesh.indices);
+    std::vector<glm::dvec3> scratch;
+    in.mass = geometry::computeMassProperties(posed.cutPositions().doubles(scratch), in.mesh.indices);
     for (const glm::dvec3& q : posed.cutPositions()) grow(q);
   } else {
     in.mass = geometry::computeMassProperties(in.mesh);
