@@ -227,16 +227,9 @@ MeshStatus MeshContainer::validate(const MeshData& mesh) {
       }
     }
   }
-  static_assert(sizeof(glm::vec3) == 3 * sizeof(uint32_t));
-  uint32_t special = 0;
-  const size_t words = 3 * n;
-  const unsigned char* bytes = reinterpret_cast<const unsigned char*>(mesh.positions.data());
-  for (size_t k = 0; k < words; ++k) {
-    uint32_t bits;
-    std::memcpy(&bits, bytes + 4 * k, sizeof bits);
-    special |= (bits & 0x7f800000u) == 0x7f800000u;
-  }
-  if (special) {
+  // The source-space bounds on the way (take() keeps them).
+  glm::vec3 lo, hi;
+  if (!detail::finiteBounds(mesh.positions, lo, hi)) {
     for (size_t i = 0; i < n; ++i) {
       if (!finite(mesh.positions[i])) return reject("vertex " + std::to_string(i) + " has a NaN or infinite position");
     }
@@ -264,6 +257,7 @@ MeshStatus MeshContainer::validate(const MeshData& mesh) {
     return reject("submesh runs cover " + std::to_string(covered) + " of " + std::to_string(mesh.indices.size()) +
                   " indices");
   }
+  setSourceBounds(lo, hi);
   return {};
 }
 
@@ -277,7 +271,7 @@ MeshStatus MeshContainer::setMesh(const MeshData& mesh) {
 
 MeshStatus MeshContainer::setMesh(const MeshData& mesh, const MeshWeld& weld) {
   MeshStatus valid = validate(mesh);
-  if (valid.ok()) valid = consistent(mesh, weld);
+  if (valid.ok()) valid = adoptWeld(mesh, weld);
   if (!valid.ok()) return valid;
   mesh_ = mesh;
   shared_.reset();
@@ -291,23 +285,41 @@ MeshStatus MeshContainer::setMesh(std::shared_ptr<const MeshData> mesh, const Me
     return invalid("invalid mesh: no mesh given");
   }
   MeshStatus valid = validate(*mesh);
-  if (valid.ok() && weld) valid = consistent(*mesh, *weld);
+  if (valid.ok() && weld) valid = adoptWeld(*mesh, *weld);
   if (!valid.ok()) return valid;
   shared_ = std::move(mesh);
   source_ = shared_.get();
   return take(weld);
 }
 
-// A weld fits a mesh when there is one id per vertex, each id below the count, each representative
-// a vertex carrying its own id, representatives ascending (ids numbered by first vertex).
-MeshStatus MeshContainer::consistent(const MeshData& mesh, const MeshWeld& weld) {
+// Takes a weld worked out before when it fits the mesh: one id per vertex, each below the count,
+// each representative a vertex carrying its own id, representatives ascending (ids numbered by first
+// vertex). Each array is copied and checked in one pass; on failure the container is cleared.
+MeshStatus MeshContainer::adoptWeld(const MeshData& mesh, const MeshWeld& weld) {
   const size_t n = mesh.positions.size();
   const size_t ids = weld.representatives.size();
   bool ok = weld.positionIds.size() == n && ids > 0 && ids <= n;
-  if (ok) ok = !detail::anyAtOrAbove(weld.positionIds, static_cast<uint32_t>(ids));
-  for (size_t k = 0; ok && k < ids; ++k) {
-    const uint32_t r = weld.representatives[k];
-    ok = r < n && weld.positionIds[r] == k && (k == 0 || r > weld.representatives[k - 1]);
+  if (ok) {
+    positionIds_.resize(n);
+    const uint32_t* from = weld.positionIds.data();
+    uint32_t* to = positionIds_.data();
+    const uint32_t limit = static_cast<uint32_t>(ids);
+    uint32_t over = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t id = from[i];
+      over |= uint32_t(id >= limit);
+      to[i] = id;
+    }
+    ok = over == 0;
+  }
+  if (ok) {
+    representatives_.resize(ids);
+    uint32_t previous = 0;
+    for (size_t k = 0; ok && k < ids; ++k) {
+      const uint32_t r = weld.representatives[k];
+      ok = r < n && positionIds_[r] == k && (k == 0 || r > previous);
+      representatives_[k] = previous = r;
+    }
   }
   if (ok) return {};
   clear();
@@ -323,11 +335,8 @@ MeshStatus MeshContainer::take(const MeshWeld* weld) {
   jointMatrices_.clear();
   // The cut space is the source space until a transform is set (setTransform updates the bounds):
   // cutPositions() reads the source floats, no copy is made.
-  cutPositions_.clear();
-  sourceBounds();
-  if (weld) {
-    positionIds_.assign(weld->positionIds.begin(), weld->positionIds.end());
-    representatives_.assign(weld->representatives.begin(), weld->representatives.end());
+  cutPositions_.clear();  // the bounds are the source's, from validate()
+  if (weld) {  // ids and representatives adopted by adoptWeld()
     positionIdCount_ = static_cast<uint32_t>(representatives_.size());
     closed_ = weld->closed;
     connected_ = weld->connected;
@@ -663,30 +672,20 @@ void MeshContainer::computeConnected() {
   connected_ = parts == 1;
 }
 
-// updateBounds for cut positions that are the source's: from the floats (half the bytes of the
-// doubles; a float widens to a double exactly, so their bounds are the same), in four running
-// bounds per axis (one would wait on the one before at every point).
+// updateBounds for cut positions that are the source's: from the floats (a float widens to a double
+// exactly, so their bounds are the same). validate() works them out on its way over the positions;
+// this is for setTransform's return to the source space.
 void MeshContainer::sourceBounds() {
-  const std::vector<glm::vec3>& positions = source_->positions;
-  const size_t n = positions.size();
-  glm::vec3 lo[4], hi[4];
-  for (int k = 0; k < 4; ++k) lo[k] = hi[k] = n > 0 ? positions[0] : glm::vec3(0.f);
-  size_t i = 0;
-  for (; i + 4 <= n; i += 4) {
-    for (int k = 0; k < 4; ++k) {
-      lo[k] = glm::min(lo[k], positions[i + k]);
-      hi[k] = glm::max(hi[k], positions[i + k]);
-    }
-  }
-  for (; i < n; ++i) {
-    lo[0] = glm::min(lo[0], positions[i]);
-    hi[0] = glm::max(hi[0], positions[i]);
-  }
-  const glm::vec3 low = glm::min(glm::min(lo[0], lo[1]), glm::min(lo[2], lo[3]));
-  const glm::vec3 high = glm::max(glm::max(hi[0], hi[1]), glm::max(hi[2], hi[3]));
-  boundsMin_ = n > 0 ? glm::dvec3(low) : glm::dvec3(INFINITY);
-  boundsMax_ = n > 0 ? glm::dvec3(high) : glm::dvec3(-INFINITY);
-  boundsDiagonal_ = n > 0 ? glm::length(boundsMax_ - boundsMin_) : 0.0;
+  glm::vec3 lo, hi;
+  detail::finiteBounds(source_->positions, lo, hi);  // finite: validate() checked them
+  setSourceBounds(lo, hi);
+}
+
+void MeshContainer::setSourceBounds(const glm::vec3& lo, const glm::vec3& hi) {
+  const bool any = lo.x <= hi.x;
+  boundsMin_ = any ? glm::dvec3(lo) : glm::dvec3(INFINITY);
+  boundsMax_ = any ? glm::dvec3(hi) : glm::dvec3(-INFINITY);
+  boundsDiagonal_ = any ? glm::length(boundsMax_ - boundsMin_) : 0.0;
 }
 
 void MeshContainer::updateBounds() {

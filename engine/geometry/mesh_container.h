@@ -96,7 +96,7 @@ class MeshContainer {
  private:
   void weld();
   MeshStatus validate(const MeshData& mesh);
-  MeshStatus consistent(const MeshData& mesh, const MeshWeld& weld);
+  MeshStatus adoptWeld(const MeshData& mesh, const MeshWeld& weld);
   MeshStatus take(const MeshWeld* weld);
   void clear();
 
@@ -119,6 +119,7 @@ class MeshContainer {
   void computeConnected();
   void updateBounds();
   void sourceBounds();  // updateBounds while the cut space is the source space, from the floats
+  void setSourceBounds(const glm::vec3& lo, const glm::vec3& hi);  // bounds of the source floats
   // The weld and closedness scratch arrays are per thread (see mesh_container.cpp), not per
   // container: a container made for every cut then reuses warm memory.
   glm::dmat4 model_{1.0};

@@ -224,6 +224,46 @@ TEST(MeshContainer, RejectsNaNAndInfinitePositions) {
   EXPECT_TRUE(c.mesh().empty());  // a rejected mesh leaves nothing to split
 }
 
+// The check and the bounds read the positions four at a time with a scalar tail: a special value
+// is found, and a vertex sets the bounds, wherever it is (in a block, in the tail, on any axis).
+TEST(MeshContainer, EveryVertexIsCheckedAndBounded) {
+  for (const int extra : {0, 1, 2, 3}) {  // 24 vertices (whole blocks of four), then a tail of 1-3
+    MeshData base = seamCube();
+    for (int k = 0; k < extra; ++k) {  // unused vertices
+      base.positions.push_back(glm::vec3(0.5f));
+      if (!base.normals.empty()) base.normals.push_back(glm::vec3(0, 0, 1));
+      if (!base.uv0.empty()) base.uv0.push_back(glm::vec2(0.f));
+    }
+    MeshContainer c;
+    for (size_t i = 0; i < base.positions.size(); ++i) {
+      for (int axis = 0; axis < 3; ++axis) {
+        for (const float special : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                                    -std::numeric_limits<float>::infinity()}) {
+          MeshData m = base;
+          m.positions[i][axis] = special;
+          const MeshStatus set = c.setMesh(m);
+          EXPECT_EQ(set.code, SplitStatus::InvalidInput) << extra << " " << i << " " << axis;
+          EXPECT_NE(set.message.find("vertex " + std::to_string(i) + " "), std::string::npos) << set.message;
+        }
+        for (const float far : {-3.f, 4.f}) {
+          MeshData m = base;
+          m.positions[i][axis] = far;
+          const MeshStatus set = c.setMesh(m);
+          ASSERT_EQ(set.code, SplitStatus::Ok) << set.message;
+          glm::dvec3 lo(INFINITY), hi(-INFINITY);
+          for (const glm::vec3& p : m.positions) {
+            lo = glm::min(lo, glm::dvec3(p));
+            hi = glm::max(hi, glm::dvec3(p));
+          }
+          EXPECT_EQ(c.boundsMin(), lo) << extra << " " << i << " " << axis << " " << far;
+          EXPECT_EQ(c.boundsMax(), hi) << extra << " " << i << " " << axis << " " << far;
+          EXPECT_EQ(c.boundsDiagonal(), glm::length(hi - lo));
+        }
+      }
+    }
+  }
+}
+
 TEST(MeshContainer, RejectsBadIndices) {
   MeshContainer c;
   MeshStatus set;
