@@ -1867,8 +1867,12 @@ void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
   gather(m.joints, mesh.joints, extra_.joints);
   gather(m.weights, mesh.weights, extra_.weights);
   glm::dvec3 lo(INFINITY), hi(-INFINITY);  // the bounds on the way, for the mass properties
+  // While the cut space is the source space a source vertex's cut position is its float position,
+  // just gathered: read in order from there rather than gathered from the source again.
+  const glm::vec3* gathered = cut_.isSource() ? m.positions.data() : nullptr;
   assignMapped(w.pieceCut, count, [&](size_t i) {
-    const glm::dvec3 q = cutOfAny(refs[i]);
+    const uint32_t ref = refs[i];
+    const glm::dvec3 q = gathered && ref < sourceCount ? glm::dvec3(gathered[i]) : cutOfAny(ref);
     lo = glm::min(lo, q);
     hi = glm::max(hi, q);
     return q;
