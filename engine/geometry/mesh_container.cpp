@@ -54,34 +54,38 @@ bool sizedLike(const std::vector<T>& attribute, size_t n) {
 
 MeshStatus invalid(std::string text) { return MeshStatus::failure(SplitStatus::InvalidInput, std::move(text)); }
 
-// True for a closed mesh wound inwards: its signed volume (summed about `centre`, the centre of its
-// bounds, which keeps the terms small) is negative beyond the rounding of the sum. Files come this
-// way (CGAL's beam.off, tetrahedron.off, ellipe0.003.off); cut as they are, their sections run
-// clockwise, every loop looks like a hole, and no cap can be made. Four running sums (triangle t into
-// sum t % 4) keep the additions from waiting on each other; the order is fixed, so is the answer.
-bool woundInwards(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
-                  const glm::dvec3& centre) {
-  auto term = [&](size_t t) {
-    const glm::dvec3 a = glm::dvec3(positions[indices[3 * t]]) - centre;
-    const glm::dvec3 b = glm::dvec3(positions[indices[3 * t + 1]]) - centre;
-    const glm::dvec3 c = glm::dvec3(positions[indices[3 * t + 2]]) - centre;
-    return glm::dot(a, glm::cross(b, c));
-  };
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, m0 = 0.0, m1 = 0.0, m2 = 0.0, m3 = 0.0;
-  const size_t triangles = indices.size() / 3;
-  size_t t = 0;
-  for (; t + 4 <= triangles; t += 4) {
-    const double d0 = term(t), d1 = term(t + 1), d2 = term(t + 2), d3 = term(t + 3);
-    s0 += d0, s1 += d1, s2 += d2, s3 += d3;
-    m0 += std::abs(d0), m1 += std::abs(d1), m2 += std::abs(d2), m3 += std::abs(d3);
+// Whether a closed mesh is wound inwards: its signed volume (six times, summed about `centre`, the
+// centre of its bounds, which keeps the terms small) is negative beyond the rounding of the sum.
+// Files come this way (CGAL's beam.off, tetrahedron.off, ellipe0.003.off); cut as they are, their
+// sections run clockwise, every loop looks like a hole, and no cap can be made. Triangles are added
+// in index order into four running sums (triangle t into sum t % 4, those past the last multiple
+// of four into sum 0), so that the additions do not wait on each other; the order is fixed, so is
+// the answer. fileEdges adds them on its first pass over the triangles.
+class InwardsTest {
+ public:
+  InwardsTest(std::span<const glm::vec3> positions, std::span<const uint32_t> indices, const glm::dvec3& centre)
+      : positions_(positions), indices_(indices), centre_(centre), whole_(indices.size() / 3 / 4 * 4) {}
+  void add(size_t t) {
+    const glm::dvec3 a = glm::dvec3(positions_[indices_[3 * t]]) - centre_;
+    const glm::dvec3 b = glm::dvec3(positions_[indices_[3 * t + 1]]) - centre_;
+    const glm::dvec3 c = glm::dvec3(positions_[indices_[3 * t + 2]]) - centre_;
+    const double term = glm::dot(a, glm::cross(b, c));
+    const size_t lane = t < whole_ ? t & 3 : 0;
+    sum_[lane] += term;
+    magnitude_[lane] += std::abs(term);
   }
-  for (; t < triangles; ++t) {
-    const double d = term(t);
-    s0 += d;
-    m0 += std::abs(d);
+  bool inwards() const {
+    return (sum_[0] + sum_[1]) + (sum_[2] + sum_[3]) < -1e-9 * ((magnitude_[0] + magnitude_[1]) + (magnitude_[2] + magnitude_[3]));
   }
-  return (s0 + s1) + (s2 + s3) < -1e-9 * ((m0 + m1) + (m2 + m3));
-}
+
+ private:
+  std::span<const glm::vec3> positions_;
+  std::span<const uint32_t> indices_;
+  glm::dvec3 centre_;
+  size_t whole_;  // triangles in whole groups of four
+  double sum_[4] = {0.0, 0.0, 0.0, 0.0};
+  double magnitude_[4] = {0.0, 0.0, 0.0, 0.0};
+};
 
 uint64_t cellKey(int64_t x, int64_t y, int64_t z) {
   return (uint64_t(x) << (2 * kCellBits)) | (uint64_t(y) << kCellBits) | uint64_t(z);
@@ -330,7 +334,6 @@ MeshStatus MeshContainer::adoptWeld(const MeshData& mesh, const MeshWeld& weld) 
 // The rest of setMesh once source_ points at a valid mesh: the weld (taken or worked out), the cut
 // space (the source space for now) and its bounds.
 MeshStatus MeshContainer::take(const MeshWeld* weld) {
-  const MeshData& mesh = *source_;
   model_ = glm::dmat4(1.0);
   jointMatrices_.clear();
   // The cut space is the source space until a transform is set (setTransform updates the bounds):
@@ -344,9 +347,9 @@ MeshStatus MeshContainer::take(const MeshWeld* weld) {
     this->weld();
   }
   // A closed mesh wound inwards is cut as if mirrored: the splitter's loops and caps then follow
-  // its own winding, its pieces keep that winding and their volumes come out positive.
-  const glm::dvec3 centre = 0.5 * (boundsMin_ + boundsMax_);
-  inverted_ = closed_ && (weld ? weld->inverted : woundInwards(mesh.positions, mesh.indices, centre));
+  // its own winding, its pieces keep that winding and their volumes come out positive. (Worked out
+  // by computeClosed when welding.)
+  if (weld) inverted_ = closed_ && weld->inverted;
   mirrored_ = inverted_;
   cutIsSource_ = true;
   return {};
@@ -366,7 +369,7 @@ void MeshContainer::weld() {
   const double tolerance = kWeldRelative * boundsDiagonal_;
   if (!weldHashed(tolerance, boundsMin_, boundsMax_)) weldSorted(tolerance, boundsMin_);
   positionIdCount_ = static_cast<uint32_t>(representatives_.size());
-  computeClosed();  // also sets connected_
+  computeClosed();  // also sets connected_ and inverted_
 }
 
 // The fast weld: a hashed grid of cells about twice the median edge length wide (weldCellSize), each
@@ -532,22 +535,25 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
 // higher id exactly once in each direction (pairedLists). The connectivity of a closed mesh comes
 // from the same lists, unless degenerate triangles (which the lists leave out) join ids too.
 void MeshContainer::computeClosed() {
-  bool degenerate = false;
-  const size_t edges = fileEdges(degenerate);
+  bool degenerate = false, inwards = false;
+  const size_t edges = fileEdges(degenerate, inwards);
   closed_ = edges > 0 && edges % 2 == 0 && positionIdCount_ < 0x80000000u;
   connected_ = false;
+  inverted_ = false;
   if (!closed_) return;
   uint32_t parts = 0;
   closed_ = pairedLists(degenerate ? nullptr : &parts);
   if (closed_ && degenerate) computeConnected();
   else connected_ = closed_ && parts == 1;
+  inverted_ = closed_ && inwards;
 }
 
 // The counting sort of computeClosed: per position id a, in weldScratch().edgeTargets from
 // edgeStart[a] to edgeStart[a + 1], the edges whose lower id is a, each as 2 b (a to b) or 2 b + 1
 // (b to a). Returns the number of edges filed; `degenerate` tells whether some triangle was left
-// out for a repeated id.
-size_t MeshContainer::fileEdges(bool& degenerate) {
+// out for a repeated id; `inwards`, InwardsTest over every triangle (its position gathers share the
+// pass and its misses).
+size_t MeshContainer::fileEdges(bool& degenerate, bool& inwards) {
   std::vector<uint32_t>& edgeStart = weldScratch().edgeStart;
   std::vector<uint32_t>& edgeTargets = weldScratch().edgeTargets;
   std::vector<uint32_t>& cursor = weldScratch().cellNext;  // reused: fill cursor per id
@@ -561,8 +567,10 @@ size_t MeshContainer::fileEdges(bool& degenerate) {
     out[2] = positionIds_[index[t + 2]];
     return out[0] != out[1] && out[1] != out[2] && out[2] != out[0];
   };
+  InwardsTest winding(source_->positions, source_->indices, 0.5 * (boundsMin_ + boundsMax_));
   size_t edges = 0;
   for (size_t t = 0; t < indexCount; t += 3) {
+    winding.add(t / 3);
     uint32_t c[3];
     if (!corners(t, c)) {
       degenerate = true;
@@ -571,6 +579,7 @@ size_t MeshContainer::fileEdges(bool& degenerate) {
     for (int e = 0; e < 3; ++e) ++edgeStart[std::min(c[e], c[e == 2 ? 0 : e + 1]) + 1];
     edges += 3;
   }
+  inwards = winding.inwards();
   for (uint32_t id = 0; id < ids; ++id) edgeStart[id + 1] += edgeStart[id];
   edgeTargets.resize(edges);
   cursor.assign(edgeStart.begin(), edgeStart.end() - 1);

@@ -114,7 +114,7 @@ class MeshContainer {
   bool weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi);
   void weldSorted(double tolerance, const glm::dvec3& lo);
   void computeClosed();
-  size_t fileEdges(bool& degenerate);
+  size_t fileEdges(bool& degenerate, bool& inwards);
   bool pairedLists(uint32_t* parts);
   void computeConnected();
   void updateBounds();
