@@ -370,6 +370,8 @@ class Splitter final : public IMeshSplitter {
   // The cut-space position of any vertex reference: source vertices inline, the rest by a call.
   glm::dvec3 cutOfAny(uint32_t ref) const { return ref < sourceCount_ ? cut_[ref] : cutOfAdded(ref); }
   glm::dvec3 cutOfAdded(uint32_t ref) const;
+  // The signed distance of position id `id` from the plane (classify's sides come from it).
+  double distanceOf(uint32_t id) const { return glm::dot(normal_, cut_[reps_[id]]) - offset_; }
   uint32_t weldedRef(uint32_t ref) const {  // writePieces: the welded id of a vertex reference
     return ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_];
   }
@@ -460,7 +462,6 @@ class Splitter final : public IMeshSplitter {
   double onPlaneTolerance_ = 0.0;
   double diagonal_ = 0.0;  // the container's cut-space bounds diagonal
 
-  std::vector<double> distance_;   // per position id
   std::vector<int8_t> side_;       // per position id: +1, -1, 0
   struct Pending {  // cutWholeAndCollect: a crossing triangle and where its parts go
     uint32_t triangle;
@@ -687,7 +688,8 @@ void Splitter::cutEdges() {
   edgeFirstPair_.assign(edgeCount, kNone);
   for (size_t e = 0; e < edgeCount; ++e) {
     const uint32_t lo = keyFrom(weldedEdges_[e]), hi = keyTo(weldedEdges_[e]);
-    const double t = distance_[lo] / (distance_[lo] - distance_[hi]);
+    const double dLo = distanceOf(lo), dHi = distanceOf(hi);
+    const double t = dLo / (dLo - dHi);
     edgeT_[e] = t;
     const uint32_t a = reps_[lo], b = reps_[hi];
     edgeCut_[e] = cut_[a] + t * (cut_[b] - cut_[a]);
@@ -1040,13 +1042,18 @@ void Splitter::uniteCorners(SideWork& w, uint32_t a, uint32_t b, uint32_t c) {
 
 // Step 1: the signed distance and side of every position id (in chunks on threads when big).
 void Splitter::classify(double tolerance) {
-  distance_.resize(idCount_);
   side_.resize(idCount_);
+  // The distances are not kept: cutEdges works out again the few it needs (the same expression,
+  // the same bits). The source floats read directly when they are the cut positions.
+  const glm::vec3* source = cut_.source().data();
   inChunks(chunkCount(idCount_), idCount_, [&](uint32_t, uint32_t begin, uint32_t end) {
-    for (uint32_t id = begin; id < end; ++id) {
-      const double d = glm::dot(normal_, cut_[reps_[id]]) - offset_;
-      distance_[id] = d;
-      side_[id] = d > tolerance ? 1 : (d < -tolerance ? -1 : 0);
+    auto sideOf = [tolerance](double d) -> int8_t { return d > tolerance ? 1 : (d < -tolerance ? -1 : 0); };
+    if (source) {
+      for (uint32_t id = begin; id < end; ++id) {
+        side_[id] = sideOf(glm::dot(normal_, glm::dvec3(source[reps_[id]])) - offset_);
+      }
+    } else {
+      for (uint32_t id = begin; id < end; ++id) side_[id] = sideOf(distanceOf(id));
     }
   });
 }
