@@ -392,6 +392,7 @@ class Splitter final : public IMeshSplitter {
     glm::dvec3 pieceLo{INFINITY}, pieceHi{-INFINITY};  // and their bounds
     std::vector<uint32_t> flipped;
     std::vector<double> volume;
+    std::vector<double> solidAngle;  // mergeCavities: per piece, seen from one cavity
     std::vector<uint32_t> firstTriangle, groupNumber;
     std::vector<glm::dvec3> contactCorners;  // joinTouching: 3 cut-space corners per side triangle
     std::vector<uint32_t> contactRoot;
@@ -1704,23 +1705,25 @@ uint32_t Splitter::mergeCavities(int side, SideWork& w, uint32_t pieces) const {
   bool anyCavity = false;
   for (uint32_t p = 0; p < pieces; ++p) anyCavity = anyCavity || w.volume[p] < 0.0;
   if (!anyCavity) return pieces;
+  // Per cavity, one pass over the side: the solid angle of every outward piece at once (each sum in
+  // triangle order, as piece by piece), then the smallest enclosing one (the first of equals).
   for (uint32_t p = 0; p < pieces; ++p) {
     if (!(w.volume[p] < 0.0)) continue;
     const glm::dvec3 q = cutOfAny(tris[w.firstTriangle[p]].v[0]);
+    w.solidAngle.assign(pieces, 0.0);
+    for (size_t k = 0; k < tris.size(); ++k) {
+      const uint32_t o = w.pieceOf[k];
+      if (!(w.volume[o] > 0.0)) continue;
+      const glm::dvec3 a = cutOfAny(tris[k].v[0]) - q, b = cutOfAny(tris[k].v[1]) - q, c = cutOfAny(tris[k].v[2]) - q;
+      const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+      const double numerator = glm::dot(a, glm::cross(b, c));
+      const double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(b, c) * la + glm::dot(c, a) * lb;
+      w.solidAngle[o] += 2.0 * std::atan2(numerator, denominator);
+    }
     uint32_t best = kNone;
     for (uint32_t o = 0; o < pieces; ++o) {
-      if (!(w.volume[o] > 0.0) || (best != kNone && w.volume[o] >= w.volume[best])) continue;
-      double solidAngle = 0.0;
-      for (size_t k = 0; k < tris.size(); ++k) {
-        if (w.pieceOf[k] != o) continue;
-        const glm::dvec3 a = cutOfAny(tris[k].v[0]) - q, b = cutOfAny(tris[k].v[1]) - q,
-                         c = cutOfAny(tris[k].v[2]) - q;
-        const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-        const double numerator = glm::dot(a, glm::cross(b, c));
-        const double denominator = la * lb * lc + glm::dot(a, b) * lc + glm::dot(b, c) * la + glm::dot(c, a) * lb;
-        solidAngle += 2.0 * std::atan2(numerator, denominator);
-      }
-      if (solidAngle > 2.0 * kPi) best = o;  // winding number above 1/2
+      const bool encloses = w.volume[o] > 0.0 && w.solidAngle[o] > 2.0 * kPi;  // winding number above 1/2
+      if (encloses && (best == kNone || w.volume[o] < w.volume[best])) best = o;
     }
     if (best != kNone) w.pieceMap[p] = best;
   }

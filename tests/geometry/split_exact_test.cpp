@@ -456,6 +456,43 @@ TEST(ConcaveSplitter, HollowSphereCavityStaysWithItsShell) {
   for (const SplitPiece& piece : s.result.pieces) EXPECT_GT(piece.mass.volume, 0.0);
 }
 
+TEST(ConcaveSplitter, CavityGoesWithTheSmallestPartAroundIt) {
+  // Three spheres about one centre: radius 3 facing out (cut near its top), 2 facing out (whole,
+  // below the plane) and 1 facing in (whole, inside both). The cavity belongs to the smaller of the
+  // two outward parts around it; with strict connectivity the two stay apart.
+  auto sphere = [](float radius, bool inward) {
+    MeshData m = primitives::uvSphere(radius, 48, 24);
+    if (inward) {
+      for (size_t t = 0; t + 2 < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
+      for (glm::vec3& n : m.normals) n = -n;
+    }
+    return m;
+  };
+  MeshData all;
+  for (const MeshData& part : {sphere(3.f, false), sphere(2.f, false), sphere(1.f, true)}) {
+    const uint32_t base = static_cast<uint32_t>(all.positions.size());
+    all.positions.insert(all.positions.end(), part.positions.begin(), part.positions.end());
+    all.normals.insert(all.normals.end(), part.normals.begin(), part.normals.end());
+    all.uv0.insert(all.uv0.end(), part.uv0.begin(), part.uv0.end());
+    for (uint32_t i : part.indices) all.indices.push_back(base + i);
+  }
+  const double middle = computeMassProperties(sphere(2.f, false)).volume;
+  const double cavity = -computeMassProperties(sphere(1.f, true)).volume;
+  ASSERT_GT(middle, 0.0);
+  ASSERT_GT(cavity, 0.0);
+  SplitOptions options;
+  options.islands = IslandMode::Connected;
+  Split s = run(all, planeOf({0, 1, 0}, 2.5), options);
+  ASSERT_EQ(s.status, SplitStatus::Ok) << s.result.message;
+  ASSERT_EQ(s.result.pieces.size(), 3u);  // the cap above; below, the big part and the middle one
+  int found = 0;
+  for (const SplitPiece& piece : s.result.pieces) {
+    EXPECT_GT(piece.mass.volume, 0.0);
+    if (std::abs(piece.mass.volume - (middle - cavity)) < 1e-9 * middle) ++found;
+  }
+  EXPECT_EQ(found, 1) << "the middle sphere with the cavity in it, as one piece";
+}
+
 TEST(ConcaveSplitter, CapSubmeshIsReusedWhenAPieceIsCutAgain) {
   SplitOptions options;
   options.capMaterialId = 3;
