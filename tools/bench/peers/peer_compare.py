@@ -529,7 +529,8 @@ def markdown(results, rows):
                  f"load average at start {meta['loadavg_start']}.")
     lines.append(f"Versions: Python {meta['python']}, {', '.join(f'{k} {v}' for k, v in meta['versions'].items())}"
                  + (f", cleave-split built from the work tree at commit {meta['cleave_commit']}"
-                    if meta.get("cleave_commit") else "") + ".")
+                    if meta.get("cleave_commit") else
+                    (f", cleave-split given as {meta['cleave']}" if meta.get("cleave") else "")) + ".")
     lines.append(f"{meta['rounds']} measured round(s) round-robin ({' → '.join(tools)}), each tool "
                  f"repeating the split {meta['repeat']} time(s) per round (the round's figure is the median "
                  f"of those), after {meta['warmup']} warm-up round(s). Columns: median over rounds, and the "
@@ -730,7 +731,9 @@ def main(argv):
         "rounds": args.rounds, "repeat": args.repeat, "warmup": args.warmup,
         "command": command,
         "cleave": os.path.relpath(cleave_exe, ROOT) if cleave_exe else None,
-        "cleave_commit": git_commit() if cleave_exe else None,
+        # The work tree's commit only describes the default build; an executable given with
+        # --cleave is named by its path (its commit is not known here).
+        "cleave_commit": git_commit() if cleave_exe and not args.cleave else None,
     }
     print(f"[info] cpu {meta['cpu']}, pinned to CPU {cpu}, load {meta['loadavg_start']}, "
           f"vtk {meta['versions']['vtk']} ({meta['vtk_smp_backend']}), "
