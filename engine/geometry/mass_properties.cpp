@@ -58,6 +58,10 @@ std::vector<uint32_t> weldExactly(std::span<const Vec> positions) {
   return id;
 }
 
+// Whether, on the ids, every directed edge of a non-degenerate triangle is used once and its reverse
+// once. The directed edges go into an open-addressing set (a repeat is an edge used twice the same
+// way), then each one's reverse is looked up: linear in the edges, where a sort was not (the open
+// pieces of multi-part art ask this of every piece and of every part of it).
 bool closedOnIds(std::span<const uint32_t> id, std::span<const uint32_t> indices) {
   std::vector<uint64_t> edges;
   edges.reserve(indices.size());
@@ -69,13 +73,28 @@ bool closedOnIds(std::span<const uint32_t> id, std::span<const uint32_t> indices
     edges.push_back((uint64_t(c) << 32) | a);
   }
   if (edges.empty()) return false;
-  std::sort(edges.begin(), edges.end());
-  for (size_t k = 1; k < edges.size(); ++k) {
-    if (edges[k] == edges[k - 1]) return false;  // an edge used twice in the same direction
+  constexpr uint64_t kEmpty = ~uint64_t(0);  // never an edge: its two ids would be equal
+  int shift = 63;
+  size_t capacity = 2;
+  while (capacity < 2 * edges.size()) {
+    capacity *= 2;
+    --shift;
+  }
+  std::vector<uint64_t> set(capacity, kEmpty);
+  const size_t mask = capacity - 1;
+  auto slotOf = [&](uint64_t key) {  // Fibonacci hashing: the top bits of the product
+    size_t slot = static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> shift);
+    while (set[slot] != kEmpty && set[slot] != key) slot = (slot + 1) & mask;
+    return slot;
+  };
+  for (uint64_t e : edges) {
+    const size_t slot = slotOf(e);
+    if (set[slot] == e) return false;  // an edge used twice in the same direction
+    set[slot] = e;
   }
   for (uint64_t e : edges) {
-    uint64_t reverse = (e << 32) | (e >> 32);
-    if (!std::binary_search(edges.begin(), edges.end(), reverse)) return false;
+    const uint64_t reverse = (e << 32) | (e >> 32);
+    if (set[slotOf(reverse)] != reverse) return false;
   }
   return true;
 }

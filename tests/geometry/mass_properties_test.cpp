@@ -188,6 +188,28 @@ TEST(MassProperties, ClosednessRejectsAFlippedTriangle) {
   EXPECT_FALSE(isClosedAndOriented(mesh.positions, mesh.indices));
 }
 
+// Every edge in both directions is not enough: a surface listed twice uses each directed edge twice.
+// Its open parts (tiles of a sphere, one triangle each) and a mesh whose lone edges pair up only by
+// chance of their ids are open too; a large closed mesh (many probes of the edge set) is closed.
+TEST(MassProperties, ClosednessWantsEachDirectedEdgeOnceAndItsReverseOnce) {
+  MeshData sphere = prim::uvSphere(1.f, 64, 32);
+  EXPECT_TRUE(isClosedAndOriented(sphere.positions, sphere.indices));
+  MeshData twice = sphere;
+  twice.indices.insert(twice.indices.end(), sphere.indices.begin(), sphere.indices.end());
+  EXPECT_FALSE(isClosedAndOriented(twice.positions, twice.indices)) << "each directed edge used twice";
+  MeshData both = sphere;  // the surface and its reverse: every edge once in each direction, twice
+  for (size_t t = 0; t + 2 < sphere.indices.size(); t += 3) {
+    both.indices.insert(both.indices.end(), {sphere.indices[t], sphere.indices[t + 2], sphere.indices[t + 1]});
+  }
+  EXPECT_FALSE(isClosedAndOriented(both.positions, both.indices));
+  const std::vector<uint32_t> lone = {sphere.indices.begin(), sphere.indices.begin() + 3};
+  EXPECT_FALSE(isClosedAndOriented(sphere.positions, lone));
+  MeshData big = prim::uvSphere(1.f, 512, 256);
+  EXPECT_TRUE(isClosedAndOriented(big.positions, big.indices));
+  big.indices.resize(big.indices.size() - 3);
+  EXPECT_FALSE(isClosedAndOriented(big.positions, big.indices));
+}
+
 TEST(PrincipalInertia, DiagonalTensorIsSortedAscendingWithProperRotation) {
   PrincipalInertia p = principalInertia(glm::dmat3(glm::dvec3(3, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 2)));
   EXPECT_EQ(p.moments, glm::dvec3(1, 2, 3));
