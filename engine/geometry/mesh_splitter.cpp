@@ -42,7 +42,6 @@
 #include "cleave/geometry/mesh_splitter.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cassert>
 #include <bit>
 #include <cmath>
@@ -241,8 +240,6 @@ size_t lowerBound(const std::vector<uint64_t>& sorted, uint64_t key) {
   }
   return static_cast<size_t>(base - sorted.data()) + (*base < key ? 1 : 0);
 }
-
-std::atomic<uint64_t> gIslandSearchesSkipped{0};  // detail::islandSearchesSkipped
 
 // 16 bytes: every pass over a side reads them (the output run slot is worked out from `source`:
 // Splitter::slotOf).
@@ -646,6 +643,7 @@ SplitStatus Splitter::begin(const MeshContainer& container, const Plane& plane, 
   result.bridgedChains = 0;
   result.uncappedLoops = 0;
   result.sidesDisagree = false;
+  result.islandsFromSection = false;
   container_ = &container;
   threads_ = options.threads;
   mesh_ = &container.mesh();
@@ -2252,7 +2250,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
   const bool parallel = threads_ > 1 && wanted[0] && wanted[1] &&
                         sideTris_[0].size() + sideTris_[1].size() >= kParallelTriangles;
   oneIslandEach_ = sectionSettlesIslands();
-  if (oneIslandEach_) gIslandSearchesSkipped.fetch_add(1, std::memory_order_relaxed);
+  result.islandsFromSection = oneIslandEach_;
   uint32_t pieces[2] = {0, 0};
   bothSides(parallel, [&](int side) {
     if (wanted[side]) pieces[side] = labelSide(side, work_[side], options);
@@ -2282,7 +2280,5 @@ SplitResult splitMesh(const MeshData& mesh, const glm::mat4& model, const Plane&
   return result;
 }
 std::unique_ptr<IMeshSplitter> makeConvexSplitter() { return std::make_unique<Splitter>(true); }
-
-uint64_t detail::islandSearchesSkipped() { return gIslandSearchesSkipped.load(std::memory_order_relaxed); }
 
 }  // namespace cleave::geometry

@@ -57,10 +57,4 @@ std::unique_ptr<IMeshSplitter> makeConvexSplitter();
 SplitResult splitMesh(const MeshData& mesh, const glm::mat4& model, const Plane& plane,
                       const SplitOptions& options = {});
 
-namespace detail {
-// For tests: how many splits so far (any thread, since the program started) found each side one
-// island from the section alone, without the island search (mesh_splitter.cpp).
-uint64_t islandSearchesSkipped();
-}  // namespace detail
-
 }  // namespace cleave::geometry

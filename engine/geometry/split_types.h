@@ -143,6 +143,9 @@ struct SplitResult {
   // themselves) and were left open instead of failing the split (CapClosedLoops, open pieces only).
   uint32_t uncappedLoops = 0;
   bool sidesDisagree = false;   // the section differed between the two sides (non-manifold where cut)
+  // Each side's islands were settled by the section (a closed mesh known to be one part, every cut
+  // point on a loop, one loop or loops one cap joins): no island search was made.
+  bool islandsFromSection = false;
 };
 
 
