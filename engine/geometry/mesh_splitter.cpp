@@ -1039,20 +1039,14 @@ void Splitter::uniteCorners(SideWork& w, uint32_t a, uint32_t b, uint32_t c) {
   }
 }
 
-// Step 1: the signed distance and side of every position id (in chunks on threads when big).
+// Step 1: the side of every position id (in chunks on threads when big). The distances are not
+// kept: cutEdges works out again the few it needs (distanceOf, the same bits).
 void Splitter::classify(double tolerance) {
   side_.resize(idCount_);
-  // The distances are not kept: cutEdges works out again the few it needs (the same expression,
-  // the same bits). The source floats read directly when they are the cut positions.
-  const glm::vec3* source = cut_.source().data();
   inChunks(chunkCount(idCount_), idCount_, [&](uint32_t, uint32_t begin, uint32_t end) {
-    auto sideOf = [tolerance](double d) -> int8_t { return d > tolerance ? 1 : (d < -tolerance ? -1 : 0); };
-    if (source) {
-      for (uint32_t id = begin; id < end; ++id) {
-        side_[id] = sideOf(glm::dot(normal_, glm::dvec3(source[reps_[id]])) - offset_);
-      }
-    } else {
-      for (uint32_t id = begin; id < end; ++id) side_[id] = sideOf(distanceOf(id));
+    for (uint32_t id = begin; id < end; ++id) {
+      const double d = distanceOf(id);
+      side_[id] = d > tolerance ? 1 : (d < -tolerance ? -1 : 0);
     }
   });
 }

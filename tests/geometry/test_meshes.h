@@ -67,17 +67,9 @@ inline std::vector<glm::dvec3> toCutSpace(const MeshData& mesh, const glm::dmat4
   return out;
 }
 
-inline void bounds(std::span<const glm::dvec3> p, glm::dvec3& lo, glm::dvec3& hi) {
-  lo = glm::dvec3(INFINITY);
-  hi = glm::dvec3(-INFINITY);
-  for (const glm::dvec3& q : p) {
-    lo = glm::min(lo, q);
-    hi = glm::max(hi, q);
-  }
-}
-
-// The same over a container's cut positions (the source floats or its own doubles).
-inline void bounds(const CutPositions& p, glm::dvec3& lo, glm::dvec3& hi) {
+// Over a span of doubles or a container's cut positions (the source floats or its own doubles).
+template <class Points>
+void bounds(const Points& p, glm::dvec3& lo, glm::dvec3& hi) {
   lo = glm::dvec3(INFINITY);
   hi = glm::dvec3(-INFINITY);
   for (const glm::dvec3 q : p) {
