@@ -34,7 +34,9 @@
 //     Islands: union-find over welded ids (cap triangles included) on each side; with
 //     IslandMode::Touching, parts that touch, pass into or hold one another are then joined, and a
 //     part the plane did not reach goes with the nearest piece it did (island_contacts.h); pieces are ordered
-//     by their smallest source triangle. Each piece is written in source space with its own vertex
+//     by their smallest source triangle. When the section rules out cavities (a closed mesh of one
+//     part), the joins are looked for once the pieces are written, from the bounds and reach the
+//     writing works out anyway; a side is written again only if parts were joined. Each piece is written in source space with its own vertex
 //     remap, submesh runs in input order (cap triangles join an existing run of the cap material).
 //  7. Mass properties per piece on the cut-space positions.
 // Every scratch array lives in the splitter and every output array in the reused SplitResult, so a
@@ -379,6 +381,9 @@ class Splitter final : public IMeshSplitter {
   struct alignas(64) SideWork {
     std::vector<uint32_t> parent, label, pieceOf, pieceMap, order, bucket, pieceSize;
     std::vector<uint32_t> partsOf;  // per piece: the islands it is made of (0: not known)
+    uint32_t islands = 0;           // labelSide: the islands found (0 when not searched)
+    bool searched = false;          // labelSide searched for islands
+    bool joinAfterWrite = false;    // touching parts are joined once the pieces are written
     RawBuffer<uint32_t> vertexRefs;  // the piece being written: its vertices' references, in order
     size_t vertexCount = 0;          // how many of vertexRefs
     bool identity = false;  // orderSide: the output order is the side list's
@@ -399,9 +404,13 @@ class Splitter final : public IMeshSplitter {
   };
   static uint32_t find(SideWork& w, uint32_t x);
   static void uniteCorners(SideWork& w, uint32_t a, uint32_t b, uint32_t c);
-  uint32_t labelSide(int side, SideWork& w, const SplitOptions& options);
+  uint32_t labelSide(int side, SideWork& w, const SplitOptions& options, bool noCavities);
+  void assignLoops(int side, SideWork& w, uint32_t pieces);
+  uint32_t writeAndJoin(int side, uint32_t pieces, uint32_t firstPiece, bool weldKnown, const SplitOptions& options,
+                        SplitResult& result);
   bool everyJoinOnALoop();
   bool sectionSettlesIslands();
+  bool sectionRulesOutCavities(const SplitOptions& options) const;
   void uniteSide(int side, SideWork& w, uint32_t weldedCount);
   void islandStats(int side, SideWork& w, uint32_t pieces, bool volumes, bool bounds) const;
   uint32_t mergeCavities(int side, SideWork& w, uint32_t pieces) const;
@@ -1795,7 +1804,7 @@ uint32_t Splitter::joinTouching(int side, SideWork& w, uint32_t pieces, const Sp
   const double tolerance = std::max(options.touchTolerance, 0.0) * container_->boundsDiagonal();
   // Bounds and reach per piece first: pieces whose boxes meet nothing, all reached by the plane (the
   // teeth of a comb cut across), are apart without a look at their triangles.
-  // (islandStats and mergeCavities worked them out, per piece as numbered now.)
+  // (islandStats and mergeCavities, or writeSide, worked them out, per piece as numbered now.)
   std::vector<uint8_t>& reached = w.contactReached;
   std::vector<glm::dvec3>& lo = w.contactLo;
   std::vector<glm::dvec3>& hi = w.contactHi;
@@ -1998,17 +2007,29 @@ bool Splitter::sectionSettlesIslands() {
   return groups == 1;
 }
 
+// True when no island of a side can be a cavity (a closed shell wound inwards, inside another one):
+// the conditions of sectionSettlesIslands but for the loop count, and every loop capped. Then every
+// island holds a loop, whole, and a hole's cap triangles join it to the border around it, so each
+// island is the whole surface of a part of the solid, wound outwards.
+bool Splitter::sectionRulesOutCavities(const SplitOptions& options) const {
+  if (!options.cap || !islandCandidate_ || !cutsOnLoops_ || dropped_[0] || dropped_[1] || !sidesAgree_) return false;
+  if (openChains_ != 0 || bridgedChains_ != 0 || !chains_.empty() || loops_.empty()) return false;
+  return std::all_of(loops_.begin(), loops_.end(), [](const LoopInfo& loop) { return loop.capped; });
+}
+
 // Islands of one side: union-find over welded ids (only roots are linked, a parent always has a
-// lower id than its child), then cavities into what encloses them and, with IslandMode::Touching,
-// touching parts joined. Fills w.pieceOf (per side triangle), w.pieceMap and this side's entries of
-// loopPiece_; returns the piece count.
-uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options) {
+// lower id than its child), then cavities into what encloses them (unless `noCavities`: the
+// section rules them out) and, with IslandMode::Touching, touching parts joined: here, or after
+// the pieces are written when there are no cavities to merge first (w.joinAfterWrite: the writing
+// works out each piece's bounds and reach anyway). Fills w.pieceOf (per side triangle),
+// w.pieceMap and this side's entries of loopPiece_; returns the piece count.
+uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options, bool noCavities) {
   const SideList& tris = sideTris_[side];
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
   w.pieceOf.resize(tris.size());
   uint32_t pieces = 0;
-  const bool search = options.separateIslands && !oneIslandEach_;
-  if (!search) {
+  w.searched = options.separateIslands && !oneIslandEach_;
+  if (!w.searched) {
     std::fill(w.pieceOf.begin(), w.pieceOf.end(), 0u);
     pieces = tris.empty() ? 0 : 1;
   } else {
@@ -2022,26 +2043,31 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options)
       w.pieceOf[k] = w.label[root];
     }
   }
-  const uint32_t islands = pieces;
+  w.islands = pieces;
   w.pieceMap.resize(pieces);
   std::iota(w.pieceMap.begin(), w.pieceMap.end(), 0u);
-  const bool cavities = options.cap && options.separateIslands && pieces > 1;
+  const bool cavities = options.cap && options.separateIslands && pieces > 1 && !noCavities;
   const bool touching = options.separateIslands && options.islands == IslandMode::Touching && pieces > 1;
-  if (cavities || touching) islandStats(side, w, pieces, cavities, touching);
+  w.joinAfterWrite = touching && !cavities;
+  if (cavities || (touching && !w.joinAfterWrite)) islandStats(side, w, pieces, cavities, touching);
   if (cavities) pieces = mergeCavities(side, w, pieces);
-  if (touching && pieces > 1) pieces = joinTouching(side, w, pieces, options);
-  // Cap loops per piece: a loop's cap belongs to the island of its first vertex.
+  if (touching && !w.joinAfterWrite && pieces > 1) pieces = joinTouching(side, w, pieces, options);
+  assignLoops(side, w, pieces);
+  return pieces;
+}
+
+// This side's entries of loopPiece_ (a loop's cap belongs to the piece of its first vertex) and
+// w.partsOf, the islands of each piece for its weld: one where the section settled them, counted
+// after a search, not known without one.
+void Splitter::assignLoops(int side, SideWork& w, uint32_t pieces) {
   for (size_t l = 0; l < loops_.size(); ++l) {
     if (!loops_[l].capped) continue;
-    loopPiece_[2 * l + side] = search ? w.pieceMap[w.label[find(w, loopIds_[loops_[l].begin])]] : 0;
+    loopPiece_[2 * l + side] = w.searched ? w.pieceMap[w.label[find(w, loopIds_[loops_[l].begin])]] : 0;
   }
-  // The islands of each piece, for its weld: one where the section settled them, counted after a
-  // search, not known without one.
   w.partsOf.assign(pieces, oneIslandEach_ ? 1u : 0u);
-  if (search) {
-    for (uint32_t i = 0; i < islands; ++i) ++w.partsOf[w.pieceMap[i]];
+  if (w.searched) {
+    for (uint32_t i = 0; i < w.islands; ++i) ++w.partsOf[w.pieceMap[i]];
   }
-  return pieces;
 }
 
 // Output order of one side's triangles: by piece, then output run slot, then as generated (source
@@ -2219,7 +2245,32 @@ void Splitter::writeSide(int side, SideWork& w, uint32_t pieces, uint32_t firstP
     }
     collectUsedJoints(out.mesh, out.joints);
     if (options.computeMass) pieceMass(w, out);
+    if (w.joinAfterWrite) {  // what islandStats would give: the bounds of its corners, its reach
+      w.contactLo[p] = w.pieceLo;
+      w.contactHi[p] = w.pieceHi;
+      w.contactReached[p] = out.reached ? 1 : 0;
+    }
   }
+}
+
+// The pieces of one side; with w.joinAfterWrite, then parts that touch joined and, if any were,
+// the side written again as fewer pieces (from firstPiece on still). Returns the piece count.
+uint32_t Splitter::writeAndJoin(int side, uint32_t pieces, uint32_t firstPiece, bool weldKnown,
+                                const SplitOptions& options, SplitResult& result) {
+  SideWork& w = work_[side];
+  if (w.joinAfterWrite) {
+    w.contactLo.resize(pieces);
+    w.contactHi.resize(pieces);
+    w.contactReached.resize(pieces);
+  }
+  writeSide(side, w, pieces, firstPiece, weldKnown, options, result);
+  if (!w.joinAfterWrite) return pieces;
+  w.joinAfterWrite = false;
+  const uint32_t joined = joinTouching(side, w, pieces, options);
+  if (joined == pieces) return pieces;
+  assignLoops(side, w, joined);
+  writeSide(side, w, joined, firstPiece, weldKnown, options, result);
+  return joined;
 }
 
 // Both sides: islands, then the pieces. With threads > 1 on a big mesh the two sides run at once,
@@ -2245,15 +2296,23 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
                         sideTris_[0].size() + sideTris_[1].size() >= kParallelTriangles;
   oneIslandEach_ = sectionSettlesIslands();
   result.islandsFromSection = oneIslandEach_;
+  const bool noCavities = sectionRulesOutCavities(options);
   uint32_t pieces[2] = {0, 0};
   bothSides(parallel, [&](int side) {
-    if (wanted[side]) pieces[side] = labelSide(side, work_[side], options);
+    if (wanted[side]) pieces[side] = labelSide(side, work_[side], options, noCavities);
   });
+  // Each side in its own range; a side that joined touching parts after writing them ends short of
+  // its range, and the pieces above are then moved down over the gap.
+  const uint32_t firstBelow = pieces[0];
   preparePieces(result, size_t(pieces[0]) + pieces[1]);
   bothSides(parallel, [&](int side) {
     if (pieces[side] == 0) return;
-    writeSide(side, work_[side], pieces[side], side == 0 ? 0u : pieces[0], weldKnown, options, result);
+    pieces[side] = writeAndJoin(side, pieces[side], side == 0 ? 0u : firstBelow, weldKnown, options, result);
   });
+  if (pieces[0] < firstBelow) {
+    for (uint32_t p = 0; p < pieces[1]; ++p) std::swap(result.pieces[pieces[0] + p], result.pieces[firstBelow + p]);
+  }
+  preparePieces(result, size_t(pieces[0]) + pieces[1]);
 }
 
 }  // namespace

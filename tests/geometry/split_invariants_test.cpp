@@ -670,6 +670,32 @@ void appendTetrahedron(MeshData& m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::
   }
 }
 
+// Cuts `m` set up twice: with the weld found for it (closed and one part) and with that weld saying
+// it is not known to be one part, which takes the island search with nothing settled or put off.
+// Both must give the same pieces; returns the first result.
+SplitResult cutKnownAndSearched(const MeshData& m, const Plane& plane, IslandMode mode) {
+  MeshContainer welded;
+  EXPECT_TRUE(welded.setMesh(m).ok());
+  EXPECT_TRUE(welded.closed());
+  EXPECT_TRUE(welded.connected());
+  MeshWeld weld, unknown;
+  welded.copyWeld(weld);
+  unknown = weld;
+  unknown.connected = false;
+  MeshContainer known, searched;
+  EXPECT_TRUE(known.setMesh(m, weld).ok());
+  EXPECT_TRUE(searched.setMesh(m, unknown).ok());
+  auto splitter = makeConcaveSplitter();
+  SplitOptions options;
+  options.islands = mode;
+  SplitResult a, b;
+  EXPECT_EQ(splitter->split(known, plane, options, a), SplitStatus::Ok) << a.message;
+  EXPECT_EQ(splitter->split(searched, plane, options, b), SplitStatus::Ok) << b.message;
+  const std::vector<std::string> problems = samePieces(a, b);
+  EXPECT_TRUE(problems.empty()) << problems.front();
+  return a;
+}
+
 // One part whose two sides also meet at a vertex on the plane that no loop passes: a cube cut
 // through its middle (one loop) and, joined to it at a lower corner, a tetrahedron below the plane
 // touching at one vertex the tip of another above it. Above, the cube's half and the upper
@@ -684,26 +710,8 @@ TEST(SplitIslands, AVertexOnThePlaneOffTheLoopsTakesTheSearch) {
   const glm::vec3 touch(3.f, 3.f, 0.f);
   appendTetrahedron(m, glm::vec3(1.f, 1.f, -1.f), touch, glm::vec3(3.f, 1.5f, -0.6f), glm::vec3(1.5f, 3.f, -0.6f));
   appendTetrahedron(m, touch, glm::vec3(4.f, 3.f, 1.f), glm::vec3(3.f, 4.f, 1.f), glm::vec3(4.f, 4.f, 0.3f));
-  MeshContainer welded;
-  ASSERT_TRUE(welded.setMesh(m).ok());
-  ASSERT_TRUE(welded.closed());
-  ASSERT_TRUE(welded.connected());
-  MeshWeld weld, unknown;
-  welded.copyWeld(weld);
-  unknown = weld;
-  unknown.connected = false;
-  MeshContainer known, searched;
-  ASSERT_TRUE(known.setMesh(m, weld).ok());
-  ASSERT_TRUE(searched.setMesh(m, unknown).ok());
-  auto splitter = makeConcaveSplitter();
   for (IslandMode mode : {IslandMode::Touching, IslandMode::Connected}) {
-    SplitOptions options;
-    options.islands = mode;
-    SplitResult a, b;
-    ASSERT_EQ(splitter->split(known, planeOf({0, 0, 1}, 0.0), options, a), SplitStatus::Ok);
-    ASSERT_EQ(splitter->split(searched, planeOf({0, 0, 1}, 0.0), options, b), SplitStatus::Ok);
-    const std::vector<std::string> problems = samePieces(a, b);
-    EXPECT_TRUE(problems.empty()) << problems.front();
+    const SplitResult a = cutKnownAndSearched(m, planeOf({0, 0, 1}, 0.0), mode);
     size_t above = 0;
     bool aboveOnePart = true;
     for (const SplitPiece& piece : a.pieces) {
@@ -713,6 +721,27 @@ TEST(SplitIslands, AVertexOnThePlaneOffTheLoopsTakesTheSearch) {
     }
     EXPECT_EQ(above, mode == IslandMode::Touching ? 1u : 2u);
     EXPECT_EQ(aboveOnePart, mode == IslandMode::Connected);
+  }
+}
+
+// One part whose pieces above the plane pass into one another: a comb of two teeth, the right tooth
+// leaning over so that its top passes into the left one, cut below where they meet. The section
+// rules out cavities, so the touching parts are joined after the pieces are written, and the side
+// is written again as one piece: the same pieces as the search that joins them first (the weld
+// saying the mesh is not known to be one part), and the pieces below moved down to follow.
+TEST(SplitIslands, PartsJoinedAfterWritingGiveThePiecesOfJoiningFirst) {
+  MeshData m = prim::combPrism(2);
+  for (glm::vec3& q : m.positions) {
+    if (q.y > 0.7f && q.x > 0.f) q.x -= 0.15f;  // the right tooth's top, over the left one's
+  }
+  for (IslandMode mode : {IslandMode::Touching, IslandMode::Connected}) {
+    const SplitResult a = cutKnownAndSearched(m, planeOf({0, 1, 0}, 0.5), mode);
+    ASSERT_EQ(a.pieces.size(), mode == IslandMode::Touching ? 2u : 3u);
+    EXPECT_GT(a.pieces.front().side, 0);
+    EXPECT_LT(a.pieces.back().side, 0);
+    EXPECT_EQ(a.pieces.front().capLoops, mode == IslandMode::Touching ? 2u : 1u);
+    EXPECT_EQ(a.pieces.back().capLoops, 2u);
+    EXPECT_FALSE(a.islandsFromSection);
   }
 }
 
