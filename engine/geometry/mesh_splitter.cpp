@@ -387,9 +387,10 @@ class Splitter final : public IMeshSplitter {
     RawBuffer<uint32_t> vertexRefs;  // the piece being written: its vertices' references, in order
     size_t vertexCount = 0;          // how many of vertexRefs
     bool identity = false;  // orderSide: the output order is the side list's
-    std::vector<uint64_t> stampRemap;  // per vertex reference: stamp << 32 | index in the piece
-    std::vector<uint64_t> weldRemap;   // per welded id: stamp << 32 | position id in the piece
-    uint32_t stampValue = 0;
+    // Per vertex reference: its index in the piece being written, or kNone (every entry, between
+    // pieces: gatherVertices sets back those writeTriangles set).
+    std::vector<uint32_t> localOf;
+    std::vector<uint32_t> weldRemap;   // per welded id: its position id in the piece, or kNone (all, between pieces)
     std::vector<glm::dvec3> pieceCut;  // cut-space positions of the piece being written
     glm::dvec3 pieceLo{INFINITY}, pieceHi{-INFINITY};  // and their bounds
     std::vector<uint32_t> flipped;
@@ -1880,9 +1881,12 @@ void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
   glm::dvec3 lo(INFINITY), hi(-INFINITY);  // the bounds on the way, for the mass properties
   // While the cut space is the source space a source vertex's cut position is its float position,
   // just gathered: read in order from there rather than gathered from the source again.
+  // The piece's entries of localOf are set back to kNone on the way, ready for the next piece.
   const glm::vec3* gathered = cut_.isSource() ? m.positions.data() : nullptr;
+  uint32_t* const localOf = w.localOf.data();
   assignMapped(w.pieceCut, count, [&](size_t i) {
     const uint32_t ref = refs[i];
+    localOf[ref] = kNone;
     const glm::dvec3 q = gathered && ref < sourceCount ? glm::dvec3(gathered[i]) : cutOfAny(ref);
     lo = glm::min(lo, q);
     hi = glm::max(hi, q);
@@ -1899,23 +1903,24 @@ void Splitter::pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const {
   const size_t count = w.vertexCount;
   const uint32_t* refs = w.vertexRefs.data();
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
-  if (w.weldRemap.size() < weldedCount) w.weldRemap.resize(weldedCount, 0);
-  const uint64_t stamp = uint64_t(w.stampValue) << 32;  // the piece's stamp, fresh for this piece
+  if (w.weldRemap.size() < weldedCount) w.weldRemap.resize(weldedCount, kNone);
   weld.positionIds.resize(count);
   weld.representatives.clear();
   weld.closed = closed;
   weld.inverted = closed && container_->inverted();  // pieces keep the winding of the mesh
-  for (size_t i = 0; i < count; ++i) {
+  auto weldedOfPiece = [&](uint32_t i) {
     const uint32_t ref = refs[i];
-    uint32_t welded = ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_];
-    welded = aliasRoot(welded);
-    uint64_t& entry = w.weldRemap[welded];
-    if ((entry & ~uint64_t(0xffffffffu)) != stamp) {
-      entry = stamp | weld.representatives.size();
-      weld.representatives.push_back(static_cast<uint32_t>(i));
+    return aliasRoot(ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_]);
+  };
+  for (uint32_t i = 0; i < count; ++i) {
+    uint32_t& entry = w.weldRemap[weldedOfPiece(i)];
+    if (entry == kNone) {
+      entry = static_cast<uint32_t>(weld.representatives.size());
+      weld.representatives.push_back(i);
     }
-    weld.positionIds[i] = static_cast<uint32_t>(entry);
+    weld.positionIds[i] = entry;
   }
+  for (uint32_t i : weld.representatives) w.weldRemap[weldedOfPiece(i)] = kNone;  // ready for the next piece
 }
 
 // The union-find of one side's islands over welded ids: every triangle's corners united, or, after
@@ -2117,7 +2122,7 @@ void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
 }
 
 // The pieceSize[p] triangles of piece p from output position k on: indices through a vertex remap
-// (stamped per piece), provenance, submesh runs (a run ends where the slot changes). Returns the end.
+// (w.localOf), provenance, submesh runs (a run ends where the slot changes). Returns the end.
 size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, const SplitOptions& options,
                                 SplitPiece& out) {
   const SideList& tris = sideTris_[side];
@@ -2129,8 +2134,7 @@ size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, con
   uint32_t* index = indices;
   uint32_t* provenance = out.sourceTriangles.data();
   const uint32_t* order = w.identity ? nullptr : w.order.data();
-  const uint64_t stamp = uint64_t(w.stampValue) << 32;
-  uint64_t* const remap = w.stampRemap.data();
+  uint32_t* const remap = w.localOf.data();
   uint32_t* const refs = w.vertexRefs.reserve(3 * (end - k));
   uint32_t vertices = 0;
   const int second = mirrored_ ? 2 : 1, third = mirrored_ ? 1 : 2;
@@ -2155,10 +2159,10 @@ size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, con
     // Without a branch (whether a corner is new to the piece does not follow a pattern): the
     // reference is always written past the piece's vertices and only counted when it is new.
     for (uint32_t ref : corner) {
-      const uint64_t entry = remap[ref];
-      const bool fresh = (entry & ~uint64_t(0xffffffffu)) != stamp;
-      const uint32_t local = fresh ? vertices : static_cast<uint32_t>(entry);
-      remap[ref] = stamp | local;
+      const uint32_t entry = remap[ref];
+      const bool fresh = entry == kNone;
+      const uint32_t local = fresh ? vertices : entry;
+      remap[ref] = local;
       refs[vertices] = ref;
       vertices += fresh ? 1u : 0u;
       *index++ = local;
@@ -2170,9 +2174,9 @@ size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, con
   return end;
 }
 
-// Starts piece `out` afresh (its buffers kept) and takes a new stamp for its vertex remap. Its
-// indices and provenance keep their size: writeTriangles sizes and overwrites them (a clear would
-// make the resize zero them first, a pass over memory as large as the piece).
+// Starts piece `out` afresh (its buffers kept). Its indices and provenance keep their size:
+// writeTriangles sizes and overwrites them (a clear would make the resize zero them first, a pass
+// over memory as large as the piece).
 void Splitter::beginPiece(SideWork& w, int side, SplitPiece& out) {
   MeshData& m = out.mesh;
   m.positions.clear();
@@ -2190,12 +2194,6 @@ void Splitter::beginPiece(SideWork& w, int side, SplitPiece& out) {
   out.capLoops = 0;
   out.reached = false;
   out.mass = MassProperties{};
-  ++w.stampValue;
-  if (w.stampValue == 0) {  // wrapped: clear the stamps once
-    std::fill(w.stampRemap.begin(), w.stampRemap.end(), uint64_t(0));
-    std::fill(w.weldRemap.begin(), w.weldRemap.end(), uint64_t(0));
-    w.stampValue = 1;
-  }
   w.vertexCount = 0;
 }
 
@@ -2224,7 +2222,7 @@ void Splitter::pieceMass(SideWork& w, SplitPiece& out) const {
 void Splitter::writeSide(int side, SideWork& w, uint32_t pieces, uint32_t firstPiece, bool weldKnown,
                          const SplitOptions& options, SplitResult& result) {
   const uint32_t refCount = capBase_ + 2 * static_cast<uint32_t>(loopIds_.size());
-  if (w.stampRemap.size() < refCount) w.stampRemap.resize(refCount, 0);
+  if (w.localOf.size() < refCount) w.localOf.resize(refCount, kNone);
   orderSide(side, w, pieces);
   size_t k = 0;
   for (uint32_t p = 0; p < pieces; ++p) {
