@@ -391,7 +391,7 @@ class Splitter final : public IMeshSplitter {
     // pieces: gatherVertices sets back those writeTriangles set).
     std::vector<uint32_t> localOf;
     std::vector<uint32_t> weldRemap;   // per welded id: its position id in the piece, or kNone (all, between pieces)
-    std::vector<glm::dvec3> pieceCut;  // cut-space positions of the piece being written
+    RawBuffer<glm::dvec3> pieceCut;  // cut-space positions of the piece being written (vertexCount)
     glm::dvec3 pieceLo{INFINITY}, pieceHi{-INFINITY};  // and their bounds
     std::vector<uint32_t> flipped;
     std::vector<double> volume;
@@ -424,6 +424,7 @@ class Splitter final : public IMeshSplitter {
   static void beginPiece(SideWork& w, int side, SplitPiece& out);
   size_t writeTriangles(int side, SideWork& w, size_t k, uint32_t p, const SplitOptions& options, SplitPiece& out);
   void gatherVertices(SideWork& w, MeshData& m) const;
+  void gatherPositions(SideWork& w, std::vector<glm::vec3>& positions) const;
   void pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const;
   void pieceMass(SideWork& w, SplitPiece& out) const;
   // Runs job(0) and job(1): at once when `parallel` (job(1) on the calling thread, job(0) on a
@@ -1870,7 +1871,7 @@ void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
       return ref < sourceCount ? source[ref] : extra[ref - sourceCount];
     });
   };
-  gather(m.positions, mesh.positions, extra_.positions);
+  gatherPositions(w, m.positions);
   gather(m.normals, mesh.normals, extra_.normals);
   gather(m.tangents, mesh.tangents, extra_.tangents);
   gather(m.uv0, mesh.uv0, extra_.uv0);
@@ -1878,19 +1879,31 @@ void Splitter::gatherVertices(SideWork& w, MeshData& m) const {
   gather(m.colors, mesh.colors, extra_.colors);
   gather(m.joints, mesh.joints, extra_.joints);
   gather(m.weights, mesh.weights, extra_.weights);
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);  // the bounds on the way, for the mass properties
-  // While the cut space is the source space a source vertex's cut position is its float position,
-  // just gathered: read in order from there rather than gathered from the source again.
-  // The piece's entries of localOf are set back to kNone on the way, ready for the next piece.
-  const glm::vec3* gathered = cut_.isSource() ? m.positions.data() : nullptr;
+}
+
+// The piece's float positions and, on the same pass, their cut-space positions (w.pieceCut) and
+// bounds. While the cut space is the source space a source vertex's cut position is its float
+// position widened, so it is not read twice. The piece's entries of localOf are set back to kNone
+// on the way, ready for the next piece.
+void Splitter::gatherPositions(SideWork& w, std::vector<glm::vec3>& positions) const {
+  const size_t count = w.vertexCount;
+  const uint32_t* refs = w.vertexRefs.data();
+  const uint32_t sourceCount = sourceCount_;
+  const glm::vec3* source = mesh_->positions.data();
+  const glm::vec3* extra = extra_.positions.data();
+  const bool sourceSpace = cut_.isSource();
   uint32_t* const localOf = w.localOf.data();
-  assignMapped(w.pieceCut, count, [&](size_t i) {
+  glm::dvec3* const cut = w.pieceCut.reserve(count);
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  assignMapped(positions, count, [&](size_t i) {
     const uint32_t ref = refs[i];
     localOf[ref] = kNone;
-    const glm::dvec3 q = gathered && ref < sourceCount ? glm::dvec3(gathered[i]) : cutOfAny(ref);
+    const glm::vec3 p = ref < sourceCount ? source[ref] : extra[ref - sourceCount];
+    const glm::dvec3 q = sourceSpace && ref < sourceCount ? glm::dvec3(p) : cutOfAny(ref);
+    cut[i] = q;
     lo = glm::min(lo, q);
     hi = glm::max(hi, q);
-    return q;
+    return p;
   });
   w.pieceLo = lo;
   w.pieceHi = hi;
@@ -2188,7 +2201,6 @@ void Splitter::beginPiece(SideWork& w, int side, SplitPiece& out) {
   m.joints.clear();
   m.weights.clear();
   m.submeshes.clear();
-  w.pieceCut.clear();
   out.side = side == 0 ? 1 : -1;
   out.capTriangles = 0;
   out.capLoops = 0;
@@ -2200,8 +2212,9 @@ void Splitter::beginPiece(SideWork& w, int side, SplitPiece& out) {
 // Mass properties of the piece just written, on its cut-space positions; a closed piece's winding.
 void Splitter::pieceMass(SideWork& w, SplitPiece& out) const {
   const MeshData& m = out.mesh;
+  const std::span<const glm::dvec3> pieceCut(w.pieceCut.data(), w.vertexCount);
   if (piecesClosed_) {
-    out.mass = detail::integrateWrittenSurface(w.pieceCut, m.indices, mirrored_, w.pieceLo, w.pieceHi);
+    out.mass = detail::integrateWrittenSurface(pieceCut, m.indices, mirrored_, w.pieceLo, w.pieceHi);
   } else {
     std::span<const uint32_t> indices = m.indices;
     if (mirrored_) {
@@ -2209,7 +2222,7 @@ void Splitter::pieceMass(SideWork& w, SplitPiece& out) const {
       for (size_t t = 0; t + 2 < w.flipped.size(); t += 3) std::swap(w.flipped[t + 1], w.flipped[t + 2]);
       indices = w.flipped;
     }
-    out.mass = computeMassProperties(std::span<const glm::dvec3>(w.pieceCut), indices);
+    out.mass = computeMassProperties(pieceCut, indices);
   }
   // A closed piece is wound like its source unless its volume says otherwise (a shell of a
   // mesh whose other shells outweigh it in the other direction).
