@@ -2039,18 +2039,18 @@ bool Splitter::sectionRulesOutCavities(const SplitOptions& options) const {
 // lower id than its child), then cavities into what encloses them (unless `noCavities`: the
 // section rules them out) and, with IslandMode::Touching, touching parts joined: here, or after
 // the pieces are written when there are no cavities to merge first (w.joinAfterWrite: the writing
-// works out each piece's bounds and reach anyway). Fills w.pieceOf (per side triangle),
-// w.pieceMap and this side's entries of loopPiece_; returns the piece count.
+// works out each piece's bounds and reach anyway). Fills w.pieceOf (per side triangle; left as it
+// was when the side is not searched, one piece), w.pieceMap and this side's entries of
+// loopPiece_; returns the piece count.
 uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options, bool noCavities) {
   const SideList& tris = sideTris_[side];
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
-  w.pieceOf.resize(tris.size());
   uint32_t pieces = 0;
   w.searched = options.separateIslands && !oneIslandEach_;
   if (!w.searched) {
-    std::fill(w.pieceOf.begin(), w.pieceOf.end(), 0u);
-    pieces = tris.empty() ? 0 : 1;
+    pieces = tris.empty() ? 0 : 1;  // w.pieceOf is not filled: every triangle is in piece 0
   } else {
+    w.pieceOf.resize(tris.size());
     uniteSide(side, w, weldedCount);
     // One ascending pass points every id at its root.
     for (uint32_t x = 0; x < weldedCount; ++x) w.parent[x] = w.parent[w.parent[x]];
@@ -2104,32 +2104,32 @@ void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
     w.identity = true;
     return;
   }
+  // w.pieceOf is not filled for a side of one piece (labelSide).
+  const uint32_t* piece = pieces == 1 ? nullptr : w.pieceOf.data();
+  auto keyOf = [&](size_t k) { return size_t(piece ? piece[k] : 0u) * slots + slotOf(tris[k]); };
+  // One pass tells whether the keys ascend already and, for the counting sort, counts them.
+  const bool counting = buckets <= 4 * tris.size() + 4096;
+  if (counting) w.bucket.assign(buckets + 1, 0u);
   bool sorted = true;
   size_t previous = 0;
   for (size_t k = 0; k < tris.size(); ++k) {
-    const size_t key = size_t(w.pieceOf[k]) * slots + slotOf(tris[k]);
+    const size_t key = keyOf(k);
     sorted = sorted && previous <= key;
     previous = key;
-    ++w.pieceSize[w.pieceOf[k]];
+    ++w.pieceSize[piece ? piece[k] : 0u];
+    if (counting) ++w.bucket[key + 1];
   }
   w.identity = sorted;
   if (sorted) return;
   w.order.resize(tris.size());
-  if (buckets <= 4 * tris.size() + 4096) {
-    w.bucket.assign(buckets + 1, 0u);
-    for (size_t k = 0; k < tris.size(); ++k) ++w.bucket[size_t(w.pieceOf[k]) * slots + slotOf(tris[k]) + 1];
+  if (counting) {
     for (size_t b = 0; b < buckets; ++b) w.bucket[b + 1] += w.bucket[b];
-    for (size_t k = 0; k < tris.size(); ++k) {
-      w.order[w.bucket[size_t(w.pieceOf[k]) * slots + slotOf(tris[k])]++] = static_cast<uint32_t>(k);
-    }
+    for (size_t k = 0; k < tris.size(); ++k) w.order[w.bucket[keyOf(k)]++] = static_cast<uint32_t>(k);
   } else {
     std::iota(w.order.begin(), w.order.end(), 0u);
-    const std::vector<uint32_t>& piece = w.pieceOf;
     std::sort(w.order.begin(), w.order.end(), [&](uint32_t a, uint32_t b) {
-      if (piece[a] != piece[b]) return piece[a] < piece[b];
-      const uint32_t slotA = slotOf(tris[a]), slotB = slotOf(tris[b]);
-      if (slotA != slotB) return slotA < slotB;
-      return a < b;
+      const size_t keyA = keyOf(a), keyB = keyOf(b);
+      return keyA != keyB ? keyA < keyB : a < b;
     });
   }
 }
