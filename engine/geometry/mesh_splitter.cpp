@@ -1082,8 +1082,8 @@ void Splitter::collectBoundary(int sideIndex, std::vector<uint64_t>& boundary) {
     size_t j = k;
     while (j < edges.size() && edges[j] == edges[k]) ++j;
     const uint64_t reverse = directedKey(keyTo(edges[k]), keyFrom(edges[k]));
-    const auto range = std::equal_range(edges.begin(), edges.end(), reverse);
-    const size_t twins = static_cast<size_t>(range.second - range.first);
+    size_t twins = 0;  // the search without a branch (lowerBound): a twin is rare, its place random
+    for (size_t at = lowerBound(edges, reverse); at < edges.size() && edges[at] == reverse; ++at) ++twins;
     for (size_t c = twins; c < j - k; ++c) boundary.push_back(edges[k]);
     k = j;
   }
