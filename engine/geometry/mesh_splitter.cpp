@@ -1091,7 +1091,7 @@ void Splitter::collectBoundary(int sideIndex, std::vector<uint64_t>& boundary) {
 
 // The unused segment leaving `at` that turns most to the left coming in along `incoming`.
 uint32_t Splitter::nextSegment(uint32_t at, uint32_t incoming) const {
-  const auto first = std::lower_bound(segments_.begin(), segments_.end(), directedKey(at, 0));
+  const auto first = segments_.begin() + static_cast<std::ptrdiff_t>(lowerBound(segments_, directedKey(at, 0)));
   uint32_t best = kNone;
   double bestTurn = -INFINITY;
   const glm::dvec2 here = project(sectionCut(at));
