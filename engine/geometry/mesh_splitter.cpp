@@ -405,6 +405,7 @@ class Splitter final : public IMeshSplitter {
   };
   static uint32_t find(SideWork& w, uint32_t x);
   static void uniteCorners(SideWork& w, uint32_t a, uint32_t b, uint32_t c);
+  static void unite(uint32_t* parent, uint32_t x, uint32_t y);
   uint32_t labelSide(int side, SideWork& w, const SplitOptions& options, bool noCavities);
   void assignLoops(int side, SideWork& w, uint32_t pieces);
   uint32_t writeAndJoin(int side, uint32_t pieces, uint32_t firstPiece, bool weldKnown, const SplitOptions& options,
@@ -1038,15 +1039,25 @@ void Splitter::cutPending() {
   }
 }
 
-// Unites the islands of position ids a, b and c of one side (only roots are linked, the lower id
-// becomes the parent, so a parent always has a lower id than its child).
+// Unites the islands of position ids a, b and c of one side. A parent always has a lower id than
+// its child, so a root is the lowest id of its island (as labelSide's one-pass flattening needs).
 void Splitter::uniteCorners(SideWork& w, uint32_t a, uint32_t b, uint32_t c) {
-  a = find(w, a);
-  for (uint32_t other : {b, c}) {
-    other = find(w, other);
-    if (a == other) continue;
-    w.parent[std::max(a, other)] = std::min(a, other);
-    a = std::min(a, other);
+  uint32_t* parent = w.parent.data();
+  unite(parent, a, b);
+  unite(parent, a, c);
+}
+
+// Rem's union with splicing: the two paths are climbed together, the one whose parent is higher
+// moving up; each node left behind is pointed at the other path's lower parent on the way, so the
+// paths shorten as they are walked and no separate find runs. Stops where the paths meet or at a
+// root, which is linked below the other path.
+void Splitter::unite(uint32_t* parent, uint32_t x, uint32_t y) {
+  while (parent[x] != parent[y]) {
+    if (parent[x] < parent[y]) std::swap(x, y);  // x: the path with the higher parent
+    const uint32_t up = parent[x];
+    parent[x] = parent[y];
+    if (up == x) return;  // x was a root: now linked below y's parent
+    x = up;
   }
 }
 
