@@ -2051,8 +2051,8 @@ bool Splitter::sectionRulesOutCavities(const SplitOptions& options) const {
 // section rules them out) and, with IslandMode::Touching, touching parts joined: here, or after
 // the pieces are written when there are no cavities to merge first (w.joinAfterWrite: the writing
 // works out each piece's bounds and reach anyway). Fills w.pieceOf (per side triangle; left as it
-// was when the side is not searched, one piece), w.pieceMap and this side's entries of
-// loopPiece_; returns the piece count.
+// was when the side is one piece), w.pieceMap and this side's entries of loopPiece_; returns the
+// piece count.
 uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options, bool noCavities) {
   const SideList& tris = sideTris_[side];
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
@@ -2061,15 +2061,30 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options,
   if (!w.searched) {
     pieces = tris.empty() ? 0 : 1;  // w.pieceOf is not filled: every triangle is in piece 0
   } else {
-    w.pieceOf.resize(tris.size());
     uniteSide(side, w, weldedCount);
-    // One ascending pass points every id at its root.
-    for (uint32_t x = 0; x < weldedCount; ++x) w.parent[x] = w.parent[w.parent[x]];
+    // One ascending pass points every id at its root, and counts the roots among the ids this side
+    // can use (those on its side or on the plane, and the cut points).
+    const int8_t otherSide = side == 0 ? -1 : 1;
+    uint32_t roots = 0, lastRoot = 0;
+    for (uint32_t x = 0; x < weldedCount; ++x) {
+      const uint32_t root = w.parent[x] = w.parent[w.parent[x]];
+      if (root == x && (x >= idCount_ || side_[x] != otherSide)) {
+        ++roots;
+        lastRoot = x;
+      }
+    }
     w.label.assign(weldedCount, kNone);
-    for (size_t k = 0; k < tris.size(); ++k) {
-      const uint32_t root = w.parent[weldedRef(tris[k].v[0])];
-      if (w.label[root] == kNone) w.label[root] = pieces++;
-      w.pieceOf[k] = w.label[root];
+    if (roots == 1 && !tris.empty()) {
+      // Every id this side can use is in one island: so is every triangle, and no label is needed
+      // per triangle (w.pieceOf is not filled, as for a side not searched).
+      w.label[lastRoot] = pieces++;
+    } else {
+      w.pieceOf.resize(tris.size());
+      for (size_t k = 0; k < tris.size(); ++k) {
+        const uint32_t root = w.parent[weldedRef(tris[k].v[0])];
+        if (w.label[root] == kNone) w.label[root] = pieces++;
+        w.pieceOf[k] = w.label[root];
+      }
     }
   }
   w.islands = pieces;
