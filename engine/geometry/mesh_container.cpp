@@ -529,6 +529,19 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
   }
 }
 
+// The corners of a triangle (three distinct ids, in winding order) around its lowest id: two of its
+// edges meet there, so fileEdges files both under that id at once (one counter update, not two
+// that wait on each other) and the third, opposite edge under the lower of the other two.
+namespace {
+struct LowestCorner {
+  explicit LowestCorner(const uint32_t (&c)[3])
+      : lowest(c[0] < c[1] ? (c[0] < c[2] ? 0 : 2) : (c[1] < c[2] ? 1 : 2)),
+        next(lowest == 2 ? 0 : lowest + 1),
+        previous(lowest == 0 ? 2 : lowest - 1) {}
+  int lowest, next, previous;
+};
+}  // namespace
+
 // Closedness on position ids: every directed edge of a non-degenerate triangle used once, and its
 // reverse used once. Each edge is filed (counting sort) under the lower of its two ids, as the
 // higher id and a direction bit (fileEdges); the surface is closed when every list holds each
@@ -576,7 +589,9 @@ size_t MeshContainer::fileEdges(bool& degenerate, bool& inwards) {
       degenerate = true;
       continue;
     }
-    for (int e = 0; e < 3; ++e) ++edgeStart[std::min(c[e], c[e == 2 ? 0 : e + 1]) + 1];
+    const LowestCorner at(c);
+    edgeStart[c[at.lowest] + 1] += 2;
+    ++edgeStart[std::min(c[at.next], c[at.previous]) + 1];
     edges += 3;
   }
   inwards = winding.inwards();
@@ -586,10 +601,17 @@ size_t MeshContainer::fileEdges(bool& degenerate, bool& inwards) {
   for (size_t t = 0; t < indexCount; t += 3) {
     uint32_t c[3];
     if (!corners(t, c)) continue;
-    for (int e = 0; e < 3; ++e) {
-      const uint32_t a = c[e], b = c[e == 2 ? 0 : e + 1];
-      edgeTargets[cursor[std::min(a, b)]++] = a < b ? 2 * b : 2 * a + 1;
-    }
+    const LowestCorner at(c);
+    // The two edges at the lowest corner, in edge order: the one leaving it (to the next corner,
+    // forward) and the one arriving at it (from the previous corner, reverse).
+    const uint32_t leaving = 2 * c[at.next], arriving = 2 * c[at.previous] + 1;
+    uint32_t* pair = edgeTargets.data() + cursor[c[at.lowest]];
+    cursor[c[at.lowest]] += 2;
+    pair[0] = at.lowest == 0 ? leaving : arriving;
+    pair[1] = at.lowest == 0 ? arriving : leaving;
+    // The edge opposite, from the next corner to the previous one.
+    const uint32_t a = c[at.next], b = c[at.previous];
+    edgeTargets[cursor[std::min(a, b)]++] = a < b ? 2 * b : 2 * a + 1;
   }
   return edges;
 }
