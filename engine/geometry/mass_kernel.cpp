@@ -6,6 +6,7 @@
 #include "cleave/geometry/mass_kernel.h"
 
 #include <atomic>
+#include <cstring>
 
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(CLEAVE_MASS_SCALAR)
 #define CLEAVE_MASS_VECTOR 1
@@ -86,6 +87,38 @@ template <class L>
 }
 
 #ifdef CLEAVE_MASS_VECTOR
+typedef double Lane2 __attribute__((vector_size(2 * sizeof(double))));
+typedef double Lane4 __attribute__((vector_size(4 * sizeof(double))));
+
+// Points p[tri[o]], p[tri[3 + o]], ..., p[tri[21 + o]] read two doubles each from `at` (0: x and y,
+// 1: y and z) and laid out as eight pairs in order, the first four in `low` and the last in `high`.
+[[gnu::always_inline]] inline void loadPairs(const glm::dvec3* p, const uint32_t* tri, int o, int at, Lane8& low,
+                                             Lane8& high) {
+  Lane2 pair[kLanes];
+  for (int j = 0; j < kLanes; ++j) std::memcpy(&pair[j], &p[tri[3 * j + o]][at], sizeof(Lane2));
+  const Lane4 p01 = __builtin_shufflevector(pair[0], pair[1], 0, 1, 2, 3);
+  const Lane4 p23 = __builtin_shufflevector(pair[2], pair[3], 0, 1, 2, 3);
+  const Lane4 p45 = __builtin_shufflevector(pair[4], pair[5], 0, 1, 2, 3);
+  const Lane4 p67 = __builtin_shufflevector(pair[6], pair[7], 0, 1, 2, 3);
+  low = __builtin_shufflevector(p01, p23, 0, 1, 2, 3, 4, 5, 6, 7);
+  high = __builtin_shufflevector(p45, p67, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+
+// One corner (offset o: 0, second or third) of the eight triangles at tri as lanes x, y and z: each
+// point read as (x, y) and as (y, z), the pairs transposed by two-source shuffles (x and y from the
+// first pairs' even and odd places, z from the second pairs' odd places). Built from scalars each
+// lane took about as many shuffles again, and the shuffles bound the kernel; the values are the same.
+[[gnu::always_inline]] inline void cornerLanes(const glm::dvec3* p, const uint32_t* tri, int o, Lane8& x, Lane8& y,
+                                               Lane8& z) {
+  static_assert(sizeof(glm::dvec3) == 3 * sizeof(double));
+  Lane8 xyLow, xyHigh, yzLow, yzHigh;
+  loadPairs(p, tri, o, 0, xyLow, xyHigh);
+  loadPairs(p, tri, o, 1, yzLow, yzHigh);
+  x = __builtin_shufflevector(xyLow, xyHigh, 0, 2, 4, 6, 8, 10, 12, 14);
+  y = __builtin_shufflevector(xyLow, xyHigh, 1, 3, 5, 7, 9, 11, 13, 15);
+  z = __builtin_shufflevector(yzLow, yzHigh, 1, 3, 5, 7, 9, 11, 13, 15);
+}
+
 // Eight triangles at a time, triangle 8 k + j in lane j; the rest by the scalar tail.
 [[gnu::always_inline]] inline MomentSums sumLanes(std::span<const glm::dvec3> p, std::span<const uint32_t> indices,
                                                   const glm::dvec3& ref, bool flip) {
@@ -97,16 +130,13 @@ template <class L>
   Sums<Lane8> s;
   const uint32_t* tri = indices.data();
   for (size_t k = 0; k < blocks; ++k, tri += 3 * kLanes) {
-    // Built from braced lists (element stores would go through memory and stall the loads).
     Lane8 x[3], y[3], z[3];
     const int corner[3] = {0, second, third};
     for (int c = 0; c < 3; ++c) {
-      const int o = corner[c];
-      const glm::dvec3 &q0 = p[tri[o]], &q1 = p[tri[3 + o]], &q2 = p[tri[6 + o]], &q3 = p[tri[9 + o]],
-                       &q4 = p[tri[12 + o]], &q5 = p[tri[15 + o]], &q6 = p[tri[18 + o]], &q7 = p[tri[21 + o]];
-      x[c] = Lane8{q0.x, q1.x, q2.x, q3.x, q4.x, q5.x, q6.x, q7.x} - rx;
-      y[c] = Lane8{q0.y, q1.y, q2.y, q3.y, q4.y, q5.y, q6.y, q7.y} - ry;
-      z[c] = Lane8{q0.z, q1.z, q2.z, q3.z, q4.z, q5.z, q6.z, q7.z} - rz;
+      cornerLanes(p.data(), tri, corner[c], x[c], y[c], z[c]);
+      x[c] -= rx;
+      y[c] -= ry;
+      z[c] -= rz;
     }
     addTetrahedron<Lane8>(s, x[0], y[0], z[0], x[1], y[1], z[1], x[2], y[2], z[2]);
   }
