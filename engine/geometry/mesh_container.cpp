@@ -618,7 +618,7 @@ size_t MeshContainer::fileEdges(bool& degenerate, bool& inwards) {
 
 // Whether every list of fileEdges holds each higher id once in each direction: per list, a tally
 // per higher id (one for a forward entry, 1 << 16 for a reverse one) must read exactly 0x10001 at
-// every entry (then it is cleared); no branch depends on the entries until the list's verdict. A list of 65536 entries
+// its first entry (then it is cleared); no branch depends on the entries until the list's verdict. A list of 65536 entries
 // or more (whose tally could carry) is sorted and read in pairs instead. With `parts`, the parts of
 // the id graph the lists make (a union-find over the forward entries; ids in no list are in none).
 bool MeshContainer::pairedLists(uint32_t* parts) {
@@ -647,9 +647,14 @@ bool MeshContainer::pairedLists(uint32_t* parts) {
       }
     } else {
       for (const uint32_t* i = first; i < last; ++i) tally[*i >> 1] += (*i & 1u) ? 0x10000u : 1u;
+      // Read and cleared in one pass: the first entry of a higher id finds its whole tally, a later
+      // one finds it cleared (0).
       uint32_t wrong = 0;
-      for (const uint32_t* i = first; i < last; ++i) wrong |= tally[*i >> 1] ^ 0x10001u;
-      for (const uint32_t* i = first; i < last; ++i) tally[*i >> 1] = 0;
+      for (const uint32_t* i = first; i < last; ++i) {
+        const uint32_t count = tally[*i >> 1];
+        wrong |= uint32_t(count != 0x10001u && count != 0);
+        tally[*i >> 1] = 0;
+      }
       if (wrong != 0) return false;
     }
     if (!parts) continue;

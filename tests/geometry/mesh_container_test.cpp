@@ -208,6 +208,26 @@ TEST(MeshContainer, OpenMeshIsNotClosed) {
   EXPECT_FALSE(c.closed());
 }
 
+// Every edge used an even number of times, with both directions, is not enough: each must be used
+// exactly once each way. A cube listed twice (each directed edge twice) and a cube with its mirror
+// (each edge twice each way) are not closed surfaces.
+TEST(MeshContainer, EdgesUsedTwiceEachWayAreNotClosed) {
+  const MeshData cube = seamCube();
+  MeshData twice = cube;
+  twice.indices.insert(twice.indices.end(), cube.indices.begin(), cube.indices.end());
+  MeshContainer c;
+  ASSERT_TRUE(c.setMesh(twice).ok());
+  EXPECT_FALSE(c.closed());
+  MeshData mirrored = twice;
+  for (size_t t = cube.indices.size(); t < mirrored.indices.size(); t += 3) {
+    std::swap(mirrored.indices[t + 1], mirrored.indices[t + 2]);
+  }
+  ASSERT_TRUE(c.setMesh(mirrored).ok());
+  EXPECT_FALSE(c.closed());
+  ASSERT_TRUE(c.setMesh(cube).ok());
+  EXPECT_TRUE(c.closed());
+}
+
 TEST(MeshContainer, RejectsNaNAndInfinitePositions) {
   MeshContainer c;
   MeshData m = seamCube();
