@@ -383,6 +383,7 @@ class Splitter final : public IMeshSplitter {
     std::vector<uint32_t> partsOf;  // per piece: the islands it is made of (0: not known)
     uint32_t islands = 0;           // labelSide: the islands found (0 when not searched)
     bool searched = false;          // labelSide searched for islands
+    bool oneIsland = false;         // searched, and one island: no labels (w.label, w.pieceOf)
     bool joinAfterWrite = false;    // touching parts are joined once the pieces are written
     RawBuffer<uint32_t> vertexRefs;  // the piece being written: its vertices' references, in order
     size_t vertexCount = 0;          // how many of vertexRefs
@@ -406,7 +407,8 @@ class Splitter final : public IMeshSplitter {
   static uint32_t find(SideWork& w, uint32_t x);
   static void uniteCorners(SideWork& w, uint32_t a, uint32_t b, uint32_t c);
   static void unite(uint32_t* parent, uint32_t x, uint32_t y);
-  uint32_t labelSide(int side, SideWork& w, const SplitOptions& options, bool noCavities);
+  uint32_t labelSide(int side, SideWork& w, const SplitOptions& options, bool noCavities, bool knownOne);
+  bool loopsBoundIslands() const;
   void assignLoops(int side, SideWork& w, uint32_t pieces);
   uint32_t writeAndJoin(int side, uint32_t pieces, uint32_t firstPiece, bool weldKnown, const SplitOptions& options,
                         SplitResult& result);
@@ -656,6 +658,7 @@ SplitStatus Splitter::begin(const MeshContainer& container, const Plane& plane, 
   result.uncappedLoops = 0;
   result.sidesDisagree = false;
   result.islandsFromSection = false;
+  result.islandFromLoops = false;
   container_ = &container;
   threads_ = options.threads;
   mesh_ = &container.mesh();
@@ -2010,8 +2013,7 @@ bool Splitter::everyJoinOnALoop() {
 // Nothing may have been dropped as collapsed (a dropped triangle may have joined two parts), and the
 // section has no open or bridged chain. The islands found this way are what the union-find finds.
 bool Splitter::sectionSettlesIslands() {
-  if (!islandCandidate_ || !cutsOnLoops_ || dropped_[0] || dropped_[1] || !sidesAgree_) return false;
-  if (openChains_ != 0 || bridgedChains_ != 0 || !chains_.empty() || loops_.empty()) return false;
+  if (!loopsBoundIslands()) return false;
   if (loops_.size() == 1) return true;
   // Loops joined through the cap triangles (points into loopIds_, loop after loop).
   loopOfPoint_.resize(loopIds_.size());
@@ -2036,13 +2038,20 @@ bool Splitter::sectionSettlesIslands() {
   return groups == 1;
 }
 
+// The conditions under which every island of either side holds a whole loop, and a loop is one
+// island of each side (see sectionSettlesIslands): a closed mesh of one part, every point where the
+// sides meet on a traced loop, nothing dropped, both sides with the same boundary, closed loops only.
+bool Splitter::loopsBoundIslands() const {
+  return islandCandidate_ && cutsOnLoops_ && !dropped_[0] && !dropped_[1] && sidesAgree_ && openChains_ == 0 &&
+         bridgedChains_ == 0 && chains_.empty() && !loops_.empty();
+}
+
 // True when no island of a side can be a cavity (a closed shell wound inwards, inside another one):
 // the conditions of sectionSettlesIslands but for the loop count, and every loop capped. Then every
 // island holds a loop, whole, and a hole's cap triangles join it to the border around it, so each
 // island is the whole surface of a part of the solid, wound outwards.
 bool Splitter::sectionRulesOutCavities(const SplitOptions& options) const {
-  if (!options.cap || !islandCandidate_ || !cutsOnLoops_ || dropped_[0] || dropped_[1] || !sidesAgree_) return false;
-  if (openChains_ != 0 || bridgedChains_ != 0 || !chains_.empty() || loops_.empty()) return false;
+  if (!options.cap || !loopsBoundIslands()) return false;
   return std::all_of(loops_.begin(), loops_.end(), [](const LoopInfo& loop) { return loop.capped; });
 }
 
@@ -2053,32 +2062,33 @@ bool Splitter::sectionRulesOutCavities(const SplitOptions& options) const {
 // works out each piece's bounds and reach anyway). Fills w.pieceOf (per side triangle; left as it
 // was when the side is one piece), w.pieceMap and this side's entries of loopPiece_; returns the
 // piece count.
-uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options, bool noCavities) {
+uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options, bool noCavities, bool knownOne) {
   const SideList& tris = sideTris_[side];
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
   uint32_t pieces = 0;
   w.searched = options.separateIslands && !oneIslandEach_;
+  w.oneIsland = false;
   if (!w.searched) {
     pieces = tris.empty() ? 0 : 1;  // w.pieceOf is not filled: every triangle is in piece 0
+  } else if (knownOne && !tris.empty()) {
+    w.oneIsland = true;  // the other side's islands prove it (see writePieces)
+    pieces = 1;
   } else {
     uniteSide(side, w, weldedCount);
     // One ascending pass points every id at its root, and counts the roots among the ids this side
     // can use (those on its side or on the plane, and the cut points).
     const int8_t otherSide = side == 0 ? -1 : 1;
-    uint32_t roots = 0, lastRoot = 0;
+    uint32_t roots = 0;
     for (uint32_t x = 0; x < weldedCount; ++x) {
       const uint32_t root = w.parent[x] = w.parent[w.parent[x]];
-      if (root == x && (x >= idCount_ || side_[x] != otherSide)) {
-        ++roots;
-        lastRoot = x;
-      }
+      roots += root == x && (x >= idCount_ || side_[x] != otherSide) ? 1u : 0u;
     }
-    w.label.assign(weldedCount, kNone);
     if (roots == 1 && !tris.empty()) {
-      // Every id this side can use is in one island: so is every triangle, and no label is needed
-      // per triangle (w.pieceOf is not filled, as for a side not searched).
-      w.label[lastRoot] = pieces++;
+      // Every id this side can use is in one island: so is every triangle, and no label is needed.
+      w.oneIsland = true;
+      pieces = 1;
     } else {
+      w.label.assign(weldedCount, kNone);
       w.pieceOf.resize(tris.size());
       for (size_t k = 0; k < tris.size(); ++k) {
         const uint32_t root = w.parent[weldedRef(tris[k].v[0])];
@@ -2106,7 +2116,8 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options,
 void Splitter::assignLoops(int side, SideWork& w, uint32_t pieces) {
   for (size_t l = 0; l < loops_.size(); ++l) {
     if (!loops_[l].capped) continue;
-    loopPiece_[2 * l + side] = w.searched ? w.pieceMap[w.label[find(w, loopIds_[loops_[l].begin])]] : 0;
+    const bool labelled = w.searched && !w.oneIsland;
+    loopPiece_[2 * l + side] = labelled ? w.pieceMap[w.label[find(w, loopIds_[loops_[l].begin])]] : 0;
   }
   w.partsOf.assign(pieces, oneIslandEach_ ? 1u : 0u);
   if (w.searched) {
@@ -2335,9 +2346,22 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
   result.islandsFromSection = oneIslandEach_;
   const bool noCavities = sectionRulesOutCavities(options);
   uint32_t pieces[2] = {0, 0};
-  bothSides(parallel, [&](int side) {
-    if (wanted[side]) pieces[side] = labelSide(side, work_[side], options, noCavities);
-  });
+  if (parallel || !wanted[0] || !wanted[1]) {
+    bothSides(parallel, [&](int side) {
+      if (wanted[side]) pieces[side] = labelSide(side, work_[side], options, noCavities, false);
+    });
+  } else {
+    // The smaller side first. Islands of the two sides joined by the loops they share (each loop one
+    // island of each side, each island at least one loop: loopsBoundIslands) make a connected graph
+    // of as many edges as loops, since the mesh is one part: islands(small) + islands(big) <= loops
+    // + 1. So when every loop has an island of its own on the smaller side, the bigger side is one
+    // island, found without a search (the union-find would find the same).
+    const int small = sideTris_[0].size() <= sideTris_[1].size() ? 0 : 1;
+    pieces[small] = labelSide(small, work_[small], options, noCavities, false);
+    const bool bigIsOne = loopsBoundIslands() && work_[small].searched && work_[small].islands == loops_.size();
+    pieces[1 - small] = labelSide(1 - small, work_[1 - small], options, noCavities, bigIsOne);
+    result.islandFromLoops = bigIsOne && work_[1 - small].oneIsland && !sideTris_[1 - small].empty();
+  }
   // Each side in its own range; a side that joined touching parts after writing them ends short of
   // its range, and the pieces above are then moved down over the gap.
   const uint32_t firstBelow = pieces[0];

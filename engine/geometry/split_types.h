@@ -146,6 +146,9 @@ struct SplitResult {
   // Each side's islands were settled by the section (a closed mesh known to be one part, every cut
   // point on a loop, one loop or loops one cap joins): no island search was made.
   bool islandsFromSection = false;
+  // One side was found to be one island without a search: every loop of the section was an island
+  // of its own on the other side, and the mesh is one part, so the loops join all of this side.
+  bool islandFromLoops = false;
 };
 
 

@@ -606,7 +606,7 @@ std::vector<std::string> samePieces(const SplitResult& a, const SplitResult& b) 
 // search): random planes, axis planes and planes through vertices, the pieces compared byte for byte.
 TEST(SplitIslands, SettledByTheSectionTheyAreWhatTheSearchFinds) {
   auto splitter = makeConcaveSplitter();
-  size_t compared = 0, skipped = 0;
+  size_t compared = 0, skipped = 0, fromLoops = 0;
   for (const std::string& name : kAllCases) {
     InvariantCase c = makeCase(name);
     MeshContainer welded;
@@ -647,14 +647,18 @@ TEST(SplitIslands, SettledByTheSectionTheyAreWhatTheSearchFinds) {
       EXPECT_TRUE(problems.empty()) << name << " plane #" << k << " (" << describePlane(planes[k])
                                     << "): " << problems.front();
       EXPECT_FALSE(b.islandsFromSection) << name << " plane #" << k << ": not known to be one part";
+      EXPECT_FALSE(b.islandFromLoops) << name << " plane #" << k << ": not known to be one part";
       skipped += a.islandsFromSection ? 1 : 0;
+      fromLoops += a.islandFromLoops ? 1 : 0;
       ++compared;
     }
   }
   std::cout << "[ checked  ] islands settled by the section: " << skipped << " of " << compared
-            << " split pairs without a search, the same pieces as the search\n";
+            << " split pairs without a search, and " << fromLoops
+            << " with one side's search saved by the other's; the same pieces as the search\n";
   EXPECT_GT(skipped, compared / 4);  // the shortcut is taken often enough to be tested
   EXPECT_LT(skipped, compared);      // and refused where it must be (several caps, several parts)
+  EXPECT_GT(fromLoops, 0u);          // a comb or a star cut across its teeth
 }
 
 // Outward-wound tetrahedron a, b, c, d appended to m (positions and indices only).
@@ -694,6 +698,21 @@ SplitResult cutKnownAndSearched(const MeshData& m, const Plane& plane, IslandMod
   const std::vector<std::string> problems = samePieces(a, b);
   EXPECT_TRUE(problems.empty()) << problems.front();
   return a;
+}
+
+// A comb cut across its teeth near the tips: the tips (the smaller side) are one island per loop,
+// which proves the other side one island, so it is not searched; the pieces are the search's.
+TEST(SplitIslands, ASideJoinedByEveryLoopIsOneIslandWithoutASearch) {
+  const MeshData comb = primitives::combPrism(16);
+  const SplitResult a = cutKnownAndSearched(comb, planeOf({0, 1, 0}, 0.7), IslandMode::Touching);
+  EXPECT_TRUE(a.islandFromLoops);
+  EXPECT_FALSE(a.islandsFromSection);
+  ASSERT_EQ(a.pieces.size(), 17u);
+  EXPECT_EQ(a.pieces.back().capLoops, 16u);  // the spine below holds every loop
+  // Across the spine the section is one loop: settled by the section, no search on either side.
+  const SplitResult b = cutKnownAndSearched(comb, planeOf({0, 1, 0}, 0.1), IslandMode::Touching);
+  EXPECT_TRUE(b.islandsFromSection);
+  EXPECT_FALSE(b.islandFromLoops);
 }
 
 // One part whose two sides also meet at a vertex on the plane that no loop passes: a cube cut
