@@ -355,7 +355,13 @@ class Splitter final : public IMeshSplitter {
   void capUvBounds(const SplitOptions& options);
   glm::dvec2 capUv(const SplitOptions& options, uint32_t k, uint32_t g) const;
   glm::dmat3 capLinear(bool fromExtra, uint32_t donor) const;
-  void writeCapVertex(const SplitOptions& options, uint32_t k, int s, size_t at, const glm::dvec2& uv);
+  // The linear part of a cap vertex's cut-space transform and its inverse (the cap's normal and
+  // tangent taken back to the source's space): the same on both sides of the cap.
+  struct CapFrame {
+    glm::dmat3 linear{1.0}, inverse{1.0};
+  };
+  void writeCapVertex(const SplitOptions& options, uint32_t k, int s, size_t at, const glm::dvec2& uv,
+                      const CapFrame& frame);
   void linkWelded(uint32_t a, uint32_t b);
   glm::vec3 outputPosition(uint32_t ref) const {
     return ref < sourceCount_ ? mesh_->positions[ref] : extra_.positions[ref - sourceCount_];
@@ -1603,7 +1609,14 @@ void Splitter::makeCapVertices(const SplitOptions& options) {
   for (uint32_t k = 0; k < count; ++k) {
     while (k >= loops_[loopIndex].end) ++loopIndex;
     const glm::dvec2 uv = capUv(options, k, capUvGroup(options, loopIndex));
-    for (int s = 0; s < 2; ++s) writeCapVertex(options, k, s, base + size_t(s) * count + k, uv);
+    CapFrame frame;
+    if (!mesh.normals.empty() || !mesh.tangents.empty()) {  // else neither is written
+      const uint32_t welded = loopIds_[k];
+      const bool fromExtra = welded >= idCount_;
+      frame.linear = capLinear(fromExtra, fromExtra ? edgeFirstPair_[welded - idCount_] : reps_[welded]);
+      frame.inverse = glm::inverse(frame.linear);
+    }
+    for (int s = 0; s < 2; ++s) writeCapVertex(options, k, s, base + size_t(s) * count + k, uv, frame);
   }
 }
 
@@ -1670,13 +1683,12 @@ glm::dmat3 Splitter::capLinear(bool fromExtra, uint32_t donor) const {
 // Cap vertex `at` of loop point k on cap side s (0: the below cap, normal +n; 1: the above cap,
 // normal -n, U mirrored): the donor's position, colour and skin, the cap's normal and tangent
 // taken back to the source's space, the UV in the atlas.
-void Splitter::writeCapVertex(const SplitOptions& options, uint32_t k, int s, size_t at, const glm::dvec2& uv) {
+void Splitter::writeCapVertex(const SplitOptions& options, uint32_t k, int s, size_t at, const glm::dvec2& uv,
+                              const CapFrame& frame) {
   const MeshData& mesh = *mesh_;
   const uint32_t welded = loopIds_[k];
   const bool fromExtra = welded >= idCount_;
   const uint32_t donor = fromExtra ? edgeFirstPair_[welded - idCount_] : reps_[welded];
-  const glm::dmat3 linear = capLinear(fromExtra, donor);
-  const glm::dmat3 inverse = glm::inverse(linear);
   const glm::dvec3 outward = s == 0 ? normal_ : -normal_;
   const glm::dvec3 tangentCut = s == 0 ? u_ : -u_;
   glm::dvec2 capUv = uv;
@@ -1685,13 +1697,15 @@ void Splitter::writeCapVertex(const SplitOptions& options, uint32_t k, int s, si
   const glm::dvec2 atlasSize(options.atlasRect.z, options.atlasRect.w);
   const glm::vec2 mapped(atlasOrigin + capUv * atlasSize);
   extra_.positions[at] = fromExtra ? edgeSource_[welded - idCount_] : mesh.positions[donor];
-  const glm::dvec3 n = glm::normalize(glm::transpose(linear) * outward);
-  const glm::dvec3 t = glm::normalize(inverse * tangentCut);
-  const glm::dvec3 b = inverse * v_;  // the bitangent: cross(outward, tangentCut) = v on both sides
-  if (!mesh.normals.empty()) extra_.normals[at] = glm::vec3(n);
-  if (!mesh.tangents.empty()) {
-    const float w = glm::dot(glm::cross(n, t), b) < 0.0 ? -1.f : 1.f;
-    extra_.tangents[at] = glm::vec4(glm::vec3(t), w);
+  if (!mesh.normals.empty() || !mesh.tangents.empty()) {
+    const glm::dvec3 n = glm::normalize(glm::transpose(frame.linear) * outward);
+    if (!mesh.normals.empty()) extra_.normals[at] = glm::vec3(n);
+    if (!mesh.tangents.empty()) {
+      const glm::dvec3 t = glm::normalize(frame.inverse * tangentCut);
+      const glm::dvec3 b = frame.inverse * v_;  // the bitangent: cross(outward, tangentCut) = v on both sides
+      const float w = glm::dot(glm::cross(n, t), b) < 0.0 ? -1.f : 1.f;
+      extra_.tangents[at] = glm::vec4(glm::vec3(t), w);
+    }
   }
   if (!mesh.uv0.empty()) extra_.uv0[at] = mapped;
   if (!mesh.uv1.empty()) extra_.uv1[at] = mapped;
