@@ -48,6 +48,7 @@
 #include <bit>
 #include <cmath>
 #include <compare>
+#include <cstring>
 #include <iterator>
 #include <memory>
 #include <numeric>
@@ -617,10 +618,14 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   // so the whole triangles are not united on the way. The ids on the plane are kept for the check.
   islandCandidate_ = options.separateIslands && container.closed() && container.connected();
   onPlaneIds_.clear();
-  if (islandCandidate_) {
-    for (auto at = std::find(side_.begin(), side_.end(), int8_t(0)); at != side_.end();
-         at = std::find(at + 1, side_.end(), int8_t(0))) {
-      onPlaneIds_.push_back(static_cast<uint32_t>(at - side_.begin()));
+  if (islandCandidate_) {  // memchr: a vector search over the bytes, where std::find goes one by one
+    const int8_t* sides = side_.data();
+    for (size_t from = 0; from < side_.size();) {
+      const void* hit = std::memchr(sides + from, 0, side_.size() - from);
+      if (hit == nullptr) break;
+      const size_t at = static_cast<size_t>(static_cast<const int8_t*>(hit) - sides);
+      onPlaneIds_.push_back(static_cast<uint32_t>(at));
+      from = at + 1;
     }
   }
   // Steps 2 and 3 share a pass over the source: the crossing triangles are cut once their edges are
