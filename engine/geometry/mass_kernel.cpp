@@ -91,7 +91,8 @@ typedef double Lane2 __attribute__((vector_size(2 * sizeof(double))));
 typedef double Lane4 __attribute__((vector_size(4 * sizeof(double))));
 
 // Points p[tri[o]], p[tri[3 + o]], ..., p[tri[21 + o]] read two doubles each from `at` (0: x and y,
-// 1: y and z) and laid out as eight pairs in order, the first four in `low` and the last in `high`.
+// 1: y and z) and laid out as eight pairs in order, the first four in `low` and the last four in
+// `high`.
 [[gnu::always_inline]] inline void loadPairs(const glm::dvec3* p, const uint32_t* tri, int o, int at, Lane8& low,
                                              Lane8& high) {
   Lane2 pair[kLanes];

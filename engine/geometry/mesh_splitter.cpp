@@ -2133,9 +2133,9 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options,
 // w.partsOf, the islands of each piece for its weld: one where the section settled them, counted
 // after a search, not known without one.
 void Splitter::assignLoops(int side, SideWork& w, uint32_t pieces) {
+  const bool labelled = w.searched && !w.oneIsland;
   for (size_t l = 0; l < loops_.size(); ++l) {
     if (!loops_[l].capped) continue;
-    const bool labelled = w.searched && !w.oneIsland;
     loopPiece_[2 * l + side] = labelled ? w.pieceMap[w.label[find(w, loopIds_[loops_[l].begin])]] : 0;
   }
   w.partsOf.assign(pieces, oneIslandEach_ ? 1u : 0u);
@@ -2379,7 +2379,7 @@ void Splitter::writePieces(const SplitOptions& options, SplitResult& result) {
     pieces[small] = labelSide(small, work_[small], options, noCavities, false);
     const bool bigIsOne = loopsBoundIslands() && work_[small].searched && work_[small].islands == loops_.size();
     pieces[1 - small] = labelSide(1 - small, work_[1 - small], options, noCavities, bigIsOne);
-    result.islandFromLoops = bigIsOne && work_[1 - small].oneIsland && !sideTris_[1 - small].empty();
+    result.islandFromLoops = bigIsOne && !sideTris_[1 - small].empty();  // labelSide took it as shown
   }
   // Each side in its own range; a side that joined touching parts after writing them ends short of
   // its range, and the pieces above are then moved down over the gap.
