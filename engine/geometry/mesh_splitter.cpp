@@ -57,6 +57,7 @@
 #include "cleave/geometry/cap_triangulator.h"
 #include "cleave/geometry/island_contacts.h"
 #include "cleave/geometry/mass_kernel.h"
+#include "cleave/geometry/offset_list.h"
 #include "cleave/geometry/pass_threads.h"
 
 namespace cleave::geometry {
@@ -253,29 +254,9 @@ struct SideTriangle {
 static_assert(sizeof(SideTriangle) == 16);
 constexpr uint32_t kDroppedSource = kNone;  // SideTriangle::source of a triangle about to be erased
 
-// std::allocator whose resize() leaves new elements of a trivial type unwritten: the side lists
-// grow by places that are filled before they are read (a crossing triangle's parts, the chunks'
-// triangles laid end to end), so zeroing them first would be a wasted pass over memory.
-template <typename T>
-struct UnfilledAllocator : std::allocator<T> {
-  static_assert(std::is_trivially_default_constructible_v<T>);
-  template <typename U>
-  struct rebind {
-    using other = UnfilledAllocator<U>;
-  };
-  UnfilledAllocator() = default;
-  template <typename U>
-  UnfilledAllocator(const UnfilledAllocator<U>&) noexcept {}
-  template <typename U>
-  void construct(U* at) noexcept {
-    ::new (static_cast<void*>(at)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* at, Args&&... args) {
-    ::new (static_cast<void*>(at)) U(std::forward<Args>(args)...);
-  }
-};
-using SideList = std::vector<SideTriangle, UnfilledAllocator<SideTriangle>>;
+// A side's triangles: filled by up to two threads with nothing to copy after (OffsetList), grown by
+// places that are filled before they are read (a crossing triangle's parts).
+using SideList = detail::OffsetList<SideTriangle>;
 
 struct LoopInfo {
   uint32_t begin = 0, end = 0;  // into loopIds_ / points_
@@ -288,7 +269,7 @@ struct LoopInfo {
 class Splitter final : public IMeshSplitter {
  public:
   explicit Splitter(bool convexFastPath) : convexFastPath_(convexFastPath) {}
-  Splitter(const Splitter&) = delete;  // sideTris_ and friends point into the splitter itself
+  Splitter(const Splitter&) = delete;  // planeTris_ and friends point into the splitter itself
   Splitter& operator=(const Splitter&) = delete;
 
   SplitStatus split(const MeshContainer& container, const Plane& plane, const SplitOptions& options,
@@ -321,10 +302,10 @@ class Splitter final : public IMeshSplitter {
   [[gnu::always_inline]] bool wholeSide(const uint32_t (&g)[3], const int (&s)[3], int& index, bool& planar) const;
   [[gnu::noinline]] int inPlaneSide(const uint32_t (&g)[3]) const;
   void cutWholeAndCollect(bool unite);
-  void collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput& out);
+  template <bool kBackwards>
+  void collectRange(uint32_t begin, uint32_t end, bool unite, SideTriangle* const (&lists)[2], CutOutput& out);
   void cutVertices(const SplitOptions& options);
   void joinChunks(uint32_t chunks);
-  void copyChunkTriangles(uint32_t chunks, size_t begin, size_t end);
   void cutPending();
   // How many chunks (threads) a pass over `count` items uses: threads_ for big passes, else 1.
   uint32_t chunkCount(size_t count) const {
@@ -486,19 +467,19 @@ class Splitter final : public IMeshSplitter {
     uint32_t triangle;
     uint32_t first[2];
   };
-  // Steps 2 and 3's output per chunk of source triangles; chunk 0's lists are the split's (below).
-  // Aligned to cache lines: chunks write their own lists' ends on every triangle, and a line shared
-  // with another chunk's lists or with what the passes read (side_, ids_) goes back and forth.
+  // Steps 2 and 3's output per chunk of source triangles, beside the side triangles it writes into
+  // the side lists' storage; chunk 0's lists are the split's (below). Aligned to cache lines: chunks
+  // write their own lists' ends, and a line shared with another chunk's lists or with what the
+  // passes read (side_, ids_) goes back and forth.
   struct alignas(64) CutOutput {
-    SideList sideTris[2];                // [0] above, [1] below
     std::vector<uint32_t> planeTris[2];  // per side: the triangles that may have an on-plane edge
     std::vector<uint64_t> crossing, crossingPairs;  // step 2's crossing edges (by id, by vertex)
     std::vector<Pending> pending;                   // the crossing triangles, in source order
-    size_t first[2] = {0, 0};                       // chunks 1, 2, ...: where they start in sideTris_
+    size_t first[2] = {0, 0}, end[2] = {0, 0};      // per side: the storage range it wrote
   };
   CutOutput cutMain_;
   std::vector<CutOutput> cutChunks_;  // chunks 1, 2, ... (cutChunks_[c - 1])
-  SideList* const sideTris_ = cutMain_.sideTris;
+  SideList sideTris_[2];              // [0] above, [1] below
   std::vector<uint32_t>* const planeTris_ = cutMain_.planeTris;
   std::vector<Pending>& pending_ = cutMain_.pending;
   alignas(64) std::vector<uint32_t> cutTris_[2];  // per side: the triangles made by cutting one (not whole ones)
@@ -909,7 +890,11 @@ int Splitter::inPlaneSide(const uint32_t (&g)[3]) const {
 // corners' islands are united on the way (SideWork::parent over the source's position ids;
 // uniteSide adds the rest). A crossing triangle gives its crossing edges and keeps its places in the
 // side lists (as many as it will have parts), to be cut by cutPending once cutVertices has made the
-// edges' new vertices. The chunks' lists are then laid end to end: the same lists as one chunk gives.
+// edges' new vertices. A triangle gives a side at most two parts, so chunk c's triangles fit below
+// twice its end in the side lists' storage: it writes forwards from twice its beginning, except
+// chunk 0 of several, which writes backwards down from twice its end, where chunk 1 begins. The
+// two then meet with nothing to move, and joinChunks moves only chunks 2, 3, ... up to them: the
+// same lists as one chunk gives.
 void Splitter::cutWholeAndCollect(bool unite) {
   const uint32_t triangleCount = static_cast<uint32_t>(mesh_->indices.size() / 3);
   const uint32_t chunks = chunkCount(triangleCount);
@@ -920,10 +905,13 @@ void Splitter::cutWholeAndCollect(bool unite) {
     std::iota(work_[side].parent.begin(), work_[side].parent.end(), 0u);
   }
   united_ = unite;
+  SideTriangle* const lists[2] = {sideTris_[0].place(2 * size_t(triangleCount)),
+                                  sideTris_[1].place(2 * size_t(triangleCount))};
   inChunks(chunks, triangleCount, [&](uint32_t chunk, uint32_t begin, uint32_t end) {
-    collectRange(begin, end, unite, chunk == 0 ? cutMain_ : cutChunks_[chunk - 1]);
+    if (chunk == 0 && chunks > 1) collectRange<true>(begin, end, unite, lists, cutMain_);
+    else collectRange<false>(begin, end, unite, lists, chunk == 0 ? cutMain_ : cutChunks_[chunk - 1]);
   });
-  if (chunks > 1) joinChunks(chunks);
+  joinChunks(chunks);
 }
 
 // The crossing edges sorted and made unique, their cut points, the new vertices and the output run
@@ -938,18 +926,22 @@ void Splitter::cutVertices(const SplitOptions& options) {
   assignSlots(options);
 }
 
-// cutWholeAndCollect over the source triangles [begin, end), into out's lists (cleared first; its
-// indices count from the start of its own lists).
-void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput& out) {
+// cutWholeAndCollect over the source triangles [begin, end): side triangles into `lists` (the side
+// lists' storage) forwards from 2 begin, or with kBackwards, last triangle first, backwards down from
+// 2 end; the rest into out's lists (cleared first), with storage positions. out.first and out.end get
+// the range written per side.
+template <bool kBackwards>
+void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, SideTriangle* const (&lists)[2],
+                            CutOutput& out) {
   const MeshData& mesh = *mesh_;
   out.crossing.clear();
   out.crossingPairs.clear();
   out.pending.clear();
-  for (int side = 0; side < 2; ++side) {
-    out.sideTris[side].clear();
-    out.planeTris[side].clear();
-  }
-  for (uint32_t t = begin; t < end; ++t) {
+  out.planeTris[0].clear();
+  out.planeTris[1].clear();
+  uint32_t at[2] = {2 * (kBackwards ? end : begin), 2 * (kBackwards ? end : begin)};
+  for (uint32_t k = begin; k < end; ++k) {
+    const uint32_t t = kBackwards ? end - 1 - (k - begin) : k;
     uint32_t g[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
     if (mirrored_) std::swap(g[1], g[2]);  // cut-space outward winding
     const uint32_t id[3] = {ids_[g[0]], ids_[g[1]], ids_[g[2]]};
@@ -957,9 +949,9 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput&
     int index = 0;
     bool planar = false;
     if (wholeSide(g, s, index, planar)) {
-      SideList& tris = out.sideTris[index];
-      if (planar) out.planeTris[index].push_back(static_cast<uint32_t>(tris.size()));
-      tris.push_back({{g[0], g[1], g[2]}, planar ? t | kReachedBit : t});
+      const uint32_t place = kBackwards ? --at[index] : at[index]++;
+      if (planar) out.planeTris[index].push_back(place);
+      lists[index][place] = {{g[0], g[1], g[2]}, planar ? t | kReachedBit : t};
       if (unite) uniteCorners(work_[index], id[0], id[1], id[2]);
       continue;
     }
@@ -977,57 +969,52 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, CutOutput&
       const int lone = s[0] != s[1] && s[0] != s[2] ? 0 : (s[1] != s[0] && s[1] != s[2] ? 1 : 2);
       count[s[lone] > 0 ? 1 : 0] = 2;
     }
-    SideList* tris = out.sideTris;
-    out.pending.push_back({t, {static_cast<uint32_t>(tris[0].size()), static_cast<uint32_t>(tris[1].size())}});
-    tris[0].resize(tris[0].size() + count[0]);
-    tris[1].resize(tris[1].size() + count[1]);
+    if (kBackwards) at[0] -= count[0], at[1] -= count[1];
+    out.pending.push_back({t, {at[0], at[1]}});
+    if (!kBackwards) at[0] += count[0], at[1] += count[1];
+  }
+  for (int side = 0; side < 2; ++side) {
+    out.first[side] = kBackwards ? at[side] : 2 * size_t(begin);
+    out.end[side] = kBackwards ? 2 * size_t(end) : at[side];
   }
 }
 
-// The lists of chunks 1, 2, ... after chunk 0's (the split's): the side triangles copied on threads,
-// the indices into them (plane triangles, pending places) moved by where the chunk starts.
+// The chunks' side triangles made one list per side, and their other lists joined into chunk 0's,
+// with storage positions made list indices. Chunk 0 of several wrote last to first: its lists are
+// turned round. Chunk 1 begins where chunk 0 ends; chunks 2, 3, ... are moved down to the end of the
+// one before (std::copy: the target starts below the source).
 void Splitter::joinChunks(uint32_t chunks) {
-  size_t total[2] = {sideTris_[0].size(), sideTris_[1].size()};
+  const size_t offset[2] = {cutMain_.first[0], cutMain_.first[1]};
+  size_t total[2] = {cutMain_.end[0] - offset[0], cutMain_.end[1] - offset[1]};
+  if (chunks > 1) {
+    std::reverse(pending_.begin(), pending_.end());
+    for (Pending& p : pending_) p.first[0] -= uint32_t(offset[0]), p.first[1] -= uint32_t(offset[1]);
+    for (int side = 0; side < 2; ++side) {
+      std::reverse(planeTris_[side].begin(), planeTris_[side].end());
+      for (uint32_t& index : planeTris_[side]) index -= uint32_t(offset[side]);
+    }
+  }
   for (uint32_t chunk = 1; chunk < chunks; ++chunk) {
     CutOutput& part = cutChunks_[chunk - 1];
+    uint32_t shift[2];  // from a storage position of the chunk's to a list index
     for (int side = 0; side < 2; ++side) {
-      part.first[side] = total[side];
-      total[side] += part.sideTris[side].size();
-      const uint32_t shift = static_cast<uint32_t>(part.first[side]);
-      for (uint32_t index : part.planeTris[side]) planeTris_[side].push_back(index + shift);
+      SideTriangle* const storage = sideTris_[side].data();  // the list starts there until adopt()
+      const size_t target = offset[side] + total[side];
+      if (target != part.first[side]) std::copy(storage + part.first[side], storage + part.end[side], storage + target);
+      shift[side] = uint32_t(part.first[side] - total[side]);
+      total[side] += part.end[side] - part.first[side];
+      for (uint32_t index : part.planeTris[side]) planeTris_[side].push_back(index - shift[side]);
     }
     for (Pending p : part.pending) {
-      p.first[0] += static_cast<uint32_t>(part.first[0]);
-      p.first[1] += static_cast<uint32_t>(part.first[1]);
+      p.first[0] -= shift[0];
+      p.first[1] -= shift[1];
       pending_.push_back(p);
     }
     weldedEdges_.insert(weldedEdges_.end(), part.crossing.begin(), part.crossing.end());
     pairs_.insert(pairs_.end(), part.crossingPairs.begin(), part.crossingPairs.end());
   }
-  const size_t copied = total[0] + total[1] - sideTris_[0].size() - sideTris_[1].size();
-  sideTris_[0].resize(total[0]);
-  sideTris_[1].resize(total[1]);
-  inChunks(chunks, static_cast<uint32_t>(copied), [&](uint32_t, uint32_t begin, uint32_t end) {
-    copyChunkTriangles(chunks, begin, end);
-  });
-}
-
-// Items [begin, end) of the chunks' side triangles taken as one sequence (chunk 1 above, chunk 1
-// below, chunk 2 above, ...), copied to their places in sideTris_.
-void Splitter::copyChunkTriangles(uint32_t chunks, size_t begin, size_t end) {
-  size_t at = 0;  // where the current list starts in the sequence
-  for (uint32_t chunk = 1; chunk < chunks; ++chunk) {
-    const CutOutput& part = cutChunks_[chunk - 1];
-    for (int side = 0; side < 2; ++side) {
-      const SideList& from = part.sideTris[side];
-      const size_t lo = std::max(begin, at), hi = std::min(end, at + from.size());
-      if (lo < hi) {
-        std::copy(from.begin() + static_cast<std::ptrdiff_t>(lo - at), from.begin() + static_cast<std::ptrdiff_t>(hi - at),
-                  sideTris_[side].begin() + static_cast<std::ptrdiff_t>(part.first[side] + lo - at));
-      }
-      at += from.size();
-    }
-  }
+  sideTris_[0].adopt(offset[0], total[0]);
+  sideTris_[1].adopt(offset[1], total[1]);
 }
 
 // The crossing triangles cutWholeAndCollect kept places for, cut into them; the plane and cut lists
@@ -1411,8 +1398,7 @@ void Splitter::dropCollapsedTriangles() {
     for (size_t index = capStart_[side]; index < tris.size(); ++index) check(tris[index]);
     dropped_[side] = dropped;
     if (dropped) {
-      tris.erase(std::remove_if(tris.begin(), tris.end(), [](const SideTriangle& t) { return t.source == kDroppedSource; }),
-                 tris.end());
+      tris.truncate(std::remove_if(tris.begin(), tris.end(), [](const SideTriangle& t) { return t.source == kDroppedSource; }));
     }
   }
 }
