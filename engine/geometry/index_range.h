@@ -19,11 +19,87 @@
 
 namespace cleave::geometry::detail {
 
+// Whether the processor runs AVX2 (asked once). The checks below then take twice the values per
+// instruction: the same loops compiled for it, the same answers.
+inline bool runsAvx2() {
+  static const bool yes = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
+  return yes;
+}
+
+namespace loops {
+// SSE2 has no unsigned maximum: a comparison ORed into a flag. AVX2 has one: a running maximum.
+[[gnu::always_inline]] inline bool anyAtOrAbove(const uint32_t* values, size_t count, uint32_t limit) {
+  uint32_t over = 0;
+  for (size_t i = 0; i < count; ++i) over |= uint32_t(values[i] >= limit);
+  return over != 0;
+}
+[[gnu::always_inline]] inline bool copyBelow(const uint32_t* from, uint32_t* to, size_t count, uint32_t limit) {
+  uint32_t over = 0;
+  for (size_t i = 0; i < count; ++i) {
+    over |= uint32_t(from[i] >= limit);
+    to[i] = from[i];
+  }
+  return over == 0;
+}
+[[gnu::always_inline]] inline uint32_t largest(const uint32_t* values, size_t count) {
+  uint32_t most = 0;
+  for (size_t i = 0; i < count; ++i) most = std::max(most, values[i]);
+  return most;
+}
+[[gnu::always_inline]] inline uint32_t copyLargest(const uint32_t* from, uint32_t* to, size_t count) {
+  uint32_t most = 0;
+  for (size_t i = 0; i < count; ++i) {
+    most = std::max(most, from[i]);
+    to[i] = from[i];
+  }
+  return most;
+}
+[[gnu::always_inline]] inline bool ascending(const uint32_t* values, size_t count) {
+  uint32_t wrong = 0;
+  for (size_t i = 1; i < count; ++i) wrong |= uint32_t(values[i] <= values[i - 1]);
+  return wrong == 0;
+}
+// Differences ORed together: no flag to make per entry.
+[[gnu::always_inline]] inline bool pointBack(const uint32_t* from, size_t count, const uint32_t* to) {
+  uint32_t wrong = 0;
+  for (size_t k = 0; k < count; ++k) wrong |= to[from[k]] ^ static_cast<uint32_t>(k);
+  return wrong == 0;
+}
+[[gnu::target("avx2")]] inline bool anyAtOrAboveAvx2(const uint32_t* values, size_t count, uint32_t limit) {
+  return count > 0 && largest(values, count) >= limit;
+}
+[[gnu::target("avx2")]] inline bool copyBelowAvx2(const uint32_t* from, uint32_t* to, size_t count, uint32_t limit) {
+  return count == 0 || copyLargest(from, to, count) < limit;
+}
+[[gnu::target("avx2")]] inline bool ascendingAvx2(const uint32_t* values, size_t count) { return ascending(values, count); }
+[[gnu::target("avx2")]] inline bool pointBackAvx2(const uint32_t* from, size_t count, const uint32_t* to) {
+  return pointBack(from, count, to);
+}
+}  // namespace loops
+
 // Whether some value is >= limit.
 inline bool anyAtOrAbove(std::span<const uint32_t> values, uint32_t limit) {
-  uint32_t over = 0;
-  for (uint32_t v : values) over |= uint32_t(v >= limit);
-  return over != 0;
+  return runsAvx2() ? loops::anyAtOrAboveAvx2(values.data(), values.size(), limit)
+                    : loops::anyAtOrAbove(values.data(), values.size(), limit);
+}
+
+// Copies `from` to `to` (as many values; the arrays do not overlap); whether every value was below
+// limit (all are copied either way).
+inline bool copyBelow(std::span<const uint32_t> from, uint32_t* to, uint32_t limit) {
+  return runsAvx2() ? loops::copyBelowAvx2(from.data(), to, from.size(), limit)
+                    : loops::copyBelow(from.data(), to, from.size(), limit);
+}
+
+// Whether the values rise strictly (true for none or one).
+inline bool strictlyAscending(std::span<const uint32_t> values) {
+  return runsAvx2() ? loops::ascendingAvx2(values.data(), values.size())
+                    : loops::ascending(values.data(), values.size());
+}
+
+// Whether to[from[k]] == k for every k: `from` picks, for each k, an entry of `to` that names k
+// back. Every from[k] must be an index into `to` (checked by the caller).
+inline bool pointBack(std::span<const uint32_t> from, const uint32_t* to) {
+  return runsAvx2() ? loops::pointBackAvx2(from.data(), from.size(), to) : loops::pointBack(from.data(), from.size(), to);
 }
 
 // Whether every coordinate is finite (exponent bits not all set: no infinity, no NaN), and the

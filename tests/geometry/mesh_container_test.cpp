@@ -131,10 +131,32 @@ TEST(MeshContainer, RejectsAWeldOfAnotherMesh) {
   outOfRange.positionIds[5] = 8;
   set = c.setMesh(seamCube(), outOfRange);
   EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  // One past the ids on a vertex no representative names: only the range check sees it.
+  const uint32_t last = static_cast<uint32_t>(weld.positionIds.size() - 1);
+  ASSERT_EQ(std::count(weld.representatives.begin(), weld.representatives.end(), last), 0);
+  outOfRange = weld;
+  outOfRange.positionIds[last] = static_cast<uint32_t>(weld.representatives.size());
+  set = c.setMesh(seamCube(), outOfRange);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
   MeshWeld wrongRepresentative = weld;
   std::swap(wrongRepresentative.representatives[1], wrongRepresentative.representatives[2]);
   set = c.setMesh(seamCube(), wrongRepresentative);
   EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  MeshWeld notItsOwn = weld;  // representative 3 carries id 2: ids in range, representatives ascending
+  notItsOwn.positionIds[notItsOwn.representatives[3]] = 2;
+  set = c.setMesh(seamCube(), notItsOwn);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  MeshWeld pastTheEnd = weld;  // ascending still, the last one past the vertices
+  pastTheEnd.representatives.back() = static_cast<uint32_t>(pastTheEnd.positionIds.size());
+  set = c.setMesh(seamCube(), pastTheEnd);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  MeshWeld none = weld;
+  none.representatives.clear();
+  set = c.setMesh(seamCube(), none);
+  EXPECT_EQ(set.code, SplitStatus::InvalidInput) << set.message;
+  ASSERT_EQ(c.setMesh(seamCube(), weld).code, SplitStatus::Ok);  // the weld itself is taken
+  EXPECT_EQ(c.positionIdCount(), 8u);
+  set = c.setMesh(seamCube(), notItsOwn);
   EXPECT_EQ(c.positionIdCount(), 0u);  // nothing half set
   EXPECT_TRUE(c.cutPositions().empty());
 }
