@@ -375,6 +375,7 @@ class Splitter final : public IMeshSplitter {
   // (Aligned to cache lines so that one side's writes never share a line with the other's.)
   struct alignas(64) SideWork {
     std::vector<uint32_t> parent, label, pieceOf, pieceMap, order, bucket, pieceSize;
+    RawBuffer<SideTriangle> ordered;  // orderSide: the side's triangles in output order (unless identity)
     std::vector<uint32_t> partsOf;  // per piece: the islands it is made of (0: not known)
     uint32_t islands = 0;           // labelSide: the islands found (0 when not searched)
     bool searched = false;          // labelSide searched for islands
@@ -382,7 +383,7 @@ class Splitter final : public IMeshSplitter {
     bool joinAfterWrite = false;    // touching parts are joined once the pieces are written
     RawBuffer<uint32_t> vertexRefs;  // the piece being written: its vertices' references, in order
     size_t vertexCount = 0;          // how many of vertexRefs
-    bool identity = false;  // orderSide: the output order is the side list's
+    bool identity = false;  // orderSide: the output order is the side list's (ordered is not filled)
     // Per vertex reference: its index in the piece being written, or kNone (every entry, between
     // pieces: gatherVertices sets back those writeTriangles set).
     std::vector<uint32_t> localOf;
@@ -947,12 +948,17 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, SideTriang
   out.planeTris[0].clear();
   out.planeTris[1].clear();
   uint32_t at[2] = {2 * (kBackwards ? end : begin), 2 * (kBackwards ? end : begin)};
+  // Local copies: the stores into the lists could alias the members, which were read again each time.
+  const uint32_t* const indices = mesh.indices.data();
+  const uint32_t* const ids = ids_.data();
+  const int8_t* const sides = side_.data();
+  const bool mirrored = mirrored_;
   for (uint32_t k = begin; k < end; ++k) {
     const uint32_t t = kBackwards ? end - 1 - (k - begin) : k;
-    uint32_t g[3] = {mesh.indices[3 * t], mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]};
-    if (mirrored_) std::swap(g[1], g[2]);  // cut-space outward winding
-    const uint32_t id[3] = {ids_[g[0]], ids_[g[1]], ids_[g[2]]};
-    const int s[3] = {side_[id[0]], side_[id[1]], side_[id[2]]};
+    uint32_t g[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+    if (mirrored) std::swap(g[1], g[2]);  // cut-space outward winding
+    const uint32_t id[3] = {ids[g[0]], ids[g[1]], ids[g[2]]};
+    const int s[3] = {sides[id[0]], sides[id[1]], sides[id[2]]};
     int index = 0;
     bool planar = false;
     if (wholeSide(g, s, index, planar)) {
@@ -2173,17 +2179,19 @@ void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
   }
   w.identity = sorted;
   if (sorted) return;
-  w.order.resize(tris.size());
-  if (counting) {
+  SideTriangle* const ordered = w.ordered.reserve(tris.size());
+  if (counting) {  // the triangles themselves distributed: the writer then reads them in a row
     for (size_t b = 0; b < buckets; ++b) w.bucket[b + 1] += w.bucket[b];
-    for (size_t k = 0; k < tris.size(); ++k) w.order[w.bucket[keyOf(k)]++] = static_cast<uint32_t>(k);
-  } else {
-    std::iota(w.order.begin(), w.order.end(), 0u);
-    std::sort(w.order.begin(), w.order.end(), [&](uint32_t a, uint32_t b) {
-      const size_t keyA = keyOf(a), keyB = keyOf(b);
-      return keyA != keyB ? keyA < keyB : a < b;
-    });
+    for (size_t k = 0; k < tris.size(); ++k) ordered[w.bucket[keyOf(k)]++] = tris[k];
+    return;
   }
+  w.order.resize(tris.size());
+  std::iota(w.order.begin(), w.order.end(), 0u);
+  std::sort(w.order.begin(), w.order.end(), [&](uint32_t a, uint32_t b) {
+    const size_t keyA = keyOf(a), keyB = keyOf(b);
+    return keyA != keyB ? keyA < keyB : a < b;
+  });
+  for (size_t k = 0; k < tris.size(); ++k) ordered[k] = tris[w.order[k]];
 }
 
 // The pieceSize[p] triangles of piece p from output position k on: indices through a vertex remap
@@ -2198,7 +2206,7 @@ size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, con
   uint32_t* const indices = m.indices.data();
   uint32_t* index = indices;
   uint32_t* provenance = out.sourceTriangles.data();
-  const uint32_t* order = w.identity ? nullptr : w.order.data();
+  const SideTriangle* const list = w.identity ? tris.data() : w.ordered.data();
   uint32_t* const remap = w.localOf.data();
   uint32_t* const refs = w.vertexRefs.reserve(3 * (end - k));
   uint32_t vertices = 0;
@@ -2212,7 +2220,7 @@ size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, con
     if (slot == capSlot_) out.capTriangles += count / 3;
   };
   for (; k < end; ++k) {
-    const SideTriangle& tri = tris[order ? order[k] : k];
+    const SideTriangle& tri = list[k];
     if (const uint32_t triSlot = slotOf(tri); triSlot != slot) {
       if (slot != kNone) closeRun();
       slot = triSlot;
