@@ -16,14 +16,23 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+// AVX2 variants where the compiler can build them and ask the processor for them (x86-64).
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
+#define CLEAVE_AVX2_VARIANTS 1
+#include <immintrin.h>
+#endif
 
 namespace cleave::geometry::detail {
 
 // Whether the processor runs AVX2 (asked once). The checks below then take twice the values per
 // instruction: the same loops compiled for it, the same answers.
 inline bool runsAvx2() {
+#ifdef CLEAVE_AVX2_VARIANTS
   static const bool yes = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
   return yes;
+#else
+  return false;
+#endif
 }
 
 namespace loops {
@@ -65,6 +74,7 @@ namespace loops {
   for (size_t k = 0; k < count; ++k) wrong |= to[from[k]] ^ static_cast<uint32_t>(k);
   return wrong == 0;
 }
+#ifdef CLEAVE_AVX2_VARIANTS
 [[gnu::target("avx2")]] inline bool anyAtOrAboveAvx2(const uint32_t* values, size_t count, uint32_t limit) {
   return count > 0 && largest(values, count) >= limit;
 }
@@ -75,6 +85,16 @@ namespace loops {
 [[gnu::target("avx2")]] inline bool pointBackAvx2(const uint32_t* from, size_t count, const uint32_t* to) {
   return pointBack(from, count, to);
 }
+#else  // never called (runsAvx2() is false): the plain loops
+inline bool anyAtOrAboveAvx2(const uint32_t* values, size_t count, uint32_t limit) {
+  return anyAtOrAbove(values, count, limit);
+}
+inline bool copyBelowAvx2(const uint32_t* from, uint32_t* to, size_t count, uint32_t limit) {
+  return copyBelow(from, to, count, limit);
+}
+inline bool ascendingAvx2(const uint32_t* values, size_t count) { return ascending(values, count); }
+inline bool pointBackAvx2(const uint32_t* from, size_t count, const uint32_t* to) { return pointBack(from, count, to); }
+#endif
 }  // namespace loops
 
 // Whether some value is >= limit.

@@ -60,31 +60,56 @@ MeshStatus invalid(std::string text) { return MeshStatus::failure(SplitStatus::I
 // sections run clockwise, every loop looks like a hole, and no cap can be made. Triangles are added
 // in index order into four running sums (triangle t into sum t % 4, those past the last multiple
 // of four into sum 0), so that the additions do not wait on each other; the order is fixed, so is
-// the answer. fileEdges adds them on its first pass over the triangles.
+// the answer. fileEdges adds them on its first pass over the triangles, four at a time (addFour).
 class InwardsTest {
+  typedef double Four __attribute__((vector_size(4 * sizeof(double))));   // lanes: the four sums
+  typedef int64_t FourBits __attribute__((vector_size(4 * sizeof(int64_t))));
+
  public:
   InwardsTest(std::span<const glm::vec3> positions, std::span<const uint32_t> indices, const glm::dvec3& centre)
       : positions_(positions), indices_(indices), centre_(centre), whole_(indices.size() / 3 / 4 * 4) {}
+  // Triangles t to t + 3 (t a multiple of four, t + 4 <= the whole groups) at once, each into its
+  // own sum with the operations of add() in its order (a four-double vector; the library is built
+  // without contraction into fused multiply-adds): the same bits.
+  void addFour(size_t t) {
+    Four x[3], y[3], z[3];
+    for (int c = 0; c < 3; ++c) {
+      for (int j = 0; j < 4; ++j) {
+        const glm::vec3& p = positions_[indices_[3 * (t + j) + c]];
+        x[c][j] = double(p.x) - centre_.x;
+        y[c][j] = double(p.y) - centre_.y;
+        z[c][j] = double(p.z) - centre_.z;
+      }
+    }
+    const Four kx = y[1] * z[2] - y[2] * z[1];
+    const Four ky = z[1] * x[2] - z[2] * x[1];
+    const Four kz = x[1] * y[2] - x[2] * y[1];
+    const Four term = (x[0] * kx + y[0] * ky) + z[0] * kz;
+    sums_ += term;
+    magnitudes_ += (Four)((FourBits)term & FourBits{kMagnitude, kMagnitude, kMagnitude, kMagnitude});
+  }
   void add(size_t t) {
     const glm::dvec3 a = glm::dvec3(positions_[indices_[3 * t]]) - centre_;
     const glm::dvec3 b = glm::dvec3(positions_[indices_[3 * t + 1]]) - centre_;
     const glm::dvec3 c = glm::dvec3(positions_[indices_[3 * t + 2]]) - centre_;
     const double term = glm::dot(a, glm::cross(b, c));
     const size_t lane = t < whole_ ? t & 3 : 0;
-    sum_[lane] += term;
-    magnitude_[lane] += std::abs(term);
+    sums_[lane] += term;
+    magnitudes_[lane] += std::abs(term);
   }
+  size_t whole() const { return whole_; }
   bool inwards() const {
-    return (sum_[0] + sum_[1]) + (sum_[2] + sum_[3]) < -1e-9 * ((magnitude_[0] + magnitude_[1]) + (magnitude_[2] + magnitude_[3]));
+    return (sums_[0] + sums_[1]) + (sums_[2] + sums_[3]) < -1e-9 * ((magnitudes_[0] + magnitudes_[1]) + (magnitudes_[2] + magnitudes_[3]));
   }
 
  private:
   std::span<const glm::vec3> positions_;
   std::span<const uint32_t> indices_;
   glm::dvec3 centre_;
+  static constexpr int64_t kMagnitude = INT64_MAX;  // every bit but the sign: std::abs
   size_t whole_;  // triangles in whole groups of four
-  double sum_[4] = {0.0, 0.0, 0.0, 0.0};
-  double magnitude_[4] = {0.0, 0.0, 0.0, 0.0};
+  Four sums_ = {0.0, 0.0, 0.0, 0.0};
+  Four magnitudes_ = {0.0, 0.0, 0.0, 0.0};
 };
 
 uint64_t cellKey(int64_t x, int64_t y, int64_t z) {
@@ -563,7 +588,9 @@ void MeshContainer::computeClosed() {
 // edgeStart[a] to edgeStart[a + 1], the edges whose lower id is a, each as 2 b (a to b) or 2 b + 1
 // (b to a). Returns the number of edges filed; `degenerate` tells whether some triangle was left
 // out for a repeated id; `inwards`, InwardsTest over every triangle (its position gathers share the
-// pass and its misses).
+// pass and its misses). On a big mesh the first pass asks for the corners' positions and ids 64
+// triangles ahead: read behind the indices, they came from memory about one at a time (the 1M
+// sphere's set-up: about 2 ms of 45; four triangles' tests at once, about 1.5 ms more).
 size_t MeshContainer::fileEdges(bool& degenerate, bool& inwards) {
   std::vector<uint32_t>& edgeStart = weldScratch().edgeStart;
   std::vector<uint32_t>& edgeTargets = weldScratch().edgeTargets;
@@ -580,17 +607,32 @@ size_t MeshContainer::fileEdges(bool& degenerate, bool& inwards) {
   };
   InwardsTest winding(source_->positions, source_->indices, 0.5 * (boundsMin_ + boundsMax_));
   size_t edges = 0;
-  for (size_t t = 0; t < indexCount; t += 3) {
-    winding.add(t / 3);
+  auto count = [&](size_t t) {
     uint32_t c[3];
     if (!corners(t, c)) {
       degenerate = true;
-      continue;
+      return;
     }
     const LowestCorner at(c);
     edgeStart[c[at.lowest] + 1] += 2;
     ++edgeStart[std::min(c[at.next], c[at.previous]) + 1];
     edges += 3;
+  };
+  size_t t = 0;
+  const size_t ahead = indexCount >= 3 * (size_t(1) << 18) ? 3 * 64 : 0;
+  for (; t < 3 * winding.whole(); t += 12) {
+    if (ahead != 0 && t + ahead + 12 <= indexCount) {
+      __builtin_prefetch(&source_->positions[index[t + ahead]]);
+      __builtin_prefetch(&source_->positions[index[t + ahead + 11]]);
+      __builtin_prefetch(&positionIds_[index[t + ahead]]);
+      __builtin_prefetch(&positionIds_[index[t + ahead + 11]]);
+    }
+    winding.addFour(t / 3);
+    for (size_t k = t; k < t + 12; k += 3) count(k);
+  }
+  for (; t < indexCount; t += 3) {
+    winding.add(t / 3);
+    count(t);
   }
   inwards = winding.inwards();
   for (uint32_t id = 0; id < ids; ++id) edgeStart[id + 1] += edgeStart[id];
