@@ -1953,22 +1953,27 @@ void Splitter::pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const {
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
   if (w.weldRemap.size() < weldedCount) w.weldRemap.resize(weldedCount, kNone);
   weld.positionIds.resize(count);
-  weld.representatives.clear();
+  weld.representatives.resize(count);  // at most one per vertex; cut to size below
   weld.closed = closed;
   weld.inverted = closed && container_->inverted();  // pieces keep the winding of the mesh
   auto weldedOfPiece = [&](uint32_t i) {
     const uint32_t ref = refs[i];
     return aliasRoot(ref < sourceCount_ ? ids_[ref] : extraWelded_[ref - sourceCount_]);
   };
+  uint32_t* const remap = w.weldRemap.data();
+  uint32_t* const ids = weld.positionIds.data();
+  uint32_t* const representatives = weld.representatives.data();
+  uint32_t found = 0;
   for (uint32_t i = 0; i < count; ++i) {
-    uint32_t& entry = w.weldRemap[weldedOfPiece(i)];
+    uint32_t& entry = remap[weldedOfPiece(i)];
     if (entry == kNone) {
-      entry = static_cast<uint32_t>(weld.representatives.size());
-      weld.representatives.push_back(i);
+      entry = found;
+      representatives[found++] = i;
     }
-    weld.positionIds[i] = entry;
+    ids[i] = entry;
   }
-  for (uint32_t i : weld.representatives) w.weldRemap[weldedOfPiece(i)] = kNone;  // ready for the next piece
+  weld.representatives.resize(found);
+  for (uint32_t r = 0; r < found; ++r) remap[weldedOfPiece(representatives[r])] = kNone;  // ready for the next piece
 }
 
 // The union-find of one side's islands over welded ids: every triangle's corners united, or, after
