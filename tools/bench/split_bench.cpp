@@ -4,9 +4,12 @@
 // alone. Counters: triangles of the input, pieces and cap triangles of the last run.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cleave/components/simulation.h"
 #include "cleave/components/skinned.h"
@@ -75,6 +78,52 @@ void BM_ConcaveSplitSphere(benchmark::State& state) {
   runSplit(state, sphereOf(state.range(0)), tilted(0.1), Kind::Concave);
 }
 BENCHMARK(BM_ConcaveSplitSphere)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMicrosecond);
+
+// SplitOptions::threads against one thread on the 1M sphere (the bar: range(0) = 2 threads
+// at least 1.7 times as fast). One and range(0) threads alternate split by split, so that both see
+// the same load of a noisy machine; the counters give each one's median and their ratio (what is
+// timed is the pair). Run pinned to as many CPUs as threads:
+//   taskset -c 0,1 build/bin/cleave-bench --benchmark_filter=ConcaveSplitSphereThreads
+void BM_ConcaveSplitSphereThreads(benchmark::State& state) {
+  MeshContainer container;
+  if (const MeshStatus set = container.setMesh(sphereOf(1000000)); !set.ok()) {
+    state.SkipWithError(("setMesh failed: " + set.message).c_str());
+    return;
+  }
+  std::unique_ptr<IMeshSplitter> splitter = makeConcaveSplitter();
+  SplitOptions one, many;
+  many.threads = static_cast<uint32_t>(state.range(0));
+  const Plane plane = tilted(0.1);
+  SplitResult result;
+  for (const SplitOptions* options : {&one, &many}) {  // warm-up: threads started, scratch grown
+    if (splitter->split(container, plane, *options, result) != SplitStatus::Ok) {
+      state.SkipWithError(("split failed: " + result.message).c_str());
+      return;
+    }
+  }
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> oneMs, manyMs;
+  for (auto _ : state) {
+    const Clock::time_point a = Clock::now();
+    splitter->split(container, plane, one, result);
+    const Clock::time_point b = Clock::now();
+    splitter->split(container, plane, many, result);
+    const Clock::time_point c = Clock::now();
+    benchmark::DoNotOptimize(result.pieces.data());
+    oneMs.push_back(std::chrono::duration<double, std::milli>(b - a).count());
+    manyMs.push_back(std::chrono::duration<double, std::milli>(c - b).count());
+    state.SetIterationTime(std::chrono::duration<double>(c - a).count());
+  }
+  auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const double oneMedian = median(oneMs), manyMedian = median(manyMs);
+  state.counters["oneThreadMs"] = oneMedian;
+  state.counters["threadsMs"] = manyMedian;
+  state.counters["ratio"] = oneMedian / manyMedian;
+}
+BENCHMARK(BM_ConcaveSplitSphereThreads)->Arg(2)->Iterations(60)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 // Container set-up from nothing (copy, weld by position, closedness, cut-space positions) of a
 // sphere with positions only, as read from a PLY or STL file: the cost of a first cut of a mesh the
