@@ -545,7 +545,6 @@ class Splitter final : public IMeshSplitter {
   std::vector<glm::dvec3> capBounds_;  // makeCapVertices: per cap group, [2 g] = lo, [2 g + 1] = hi
   SideWork work_[2];
   uint32_t threads_ = 1;  // SplitOptions::threads of the call
-  uint32_t chunks_ = 1;   // cutWholeAndCollect's chunks
   detail::PassThreads passThreads_;  // runs the passes' chunks when threads_ > 1
   std::vector<SplitPiece> spare_;
 };
@@ -906,7 +905,7 @@ int Splitter::inPlaneSide(const uint32_t (&g)[3]) const {
 // same lists as one chunk gives.
 void Splitter::cutWholeAndCollect(bool unite) {
   const uint32_t triangleCount = static_cast<uint32_t>(mesh_->indices.size() / 3);
-  const uint32_t chunks = chunks_ = chunkCount(triangleCount);
+  const uint32_t chunks = chunkCount(triangleCount);
   unite = unite && chunks == 1;
   if (cutChunks_.size() < chunks - 1) cutChunks_.resize(chunks - 1);
   for (int side = 0; side < 2 && unite; ++side) {
@@ -923,13 +922,9 @@ void Splitter::cutWholeAndCollect(bool unite) {
   joinChunks(chunks);
 }
 
-// The crossing edges sorted and made unique, their cut points, the new vertices and the output run
-// slots.
+// The crossing edges (sorted already: collectRange sorts each chunk's, joinChunks merges them) made
+// unique, their cut points, the new vertices and the output run slots.
 void Splitter::cutVertices(const SplitOptions& options) {
-  if (chunks_ == 1) {  // on threads, collectRange sorted each chunk's and joinChunks merged them
-    std::sort(weldedEdges_.begin(), weldedEdges_.end());
-    std::sort(pairs_.begin(), pairs_.end());
-  }
   weldedEdges_.erase(std::unique(weldedEdges_.begin(), weldedEdges_.end()), weldedEdges_.end());
   pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
   cutEdges();
@@ -989,10 +984,8 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, SideTriang
     out.pending.push_back({t, {at[0], at[1]}});
     if (!kBackwards) at[0] += count[0], at[1] += count[1];
   }
-  if (chunks_ > 1) {  // on the chunk's thread; joinChunks merges them (cutVertices sorts one chunk's)
-    std::sort(out.crossing.begin(), out.crossing.end());
-    std::sort(out.crossingPairs.begin(), out.crossingPairs.end());
-  }
+  std::sort(out.crossing.begin(), out.crossing.end());  // on the chunk's thread; joinChunks merges them
+  std::sort(out.crossingPairs.begin(), out.crossingPairs.end());
   for (int side = 0; side < 2; ++side) {
     out.first[side] = kBackwards ? at[side] : 2 * size_t(begin);
     out.end[side] = kBackwards ? 2 * size_t(end) : at[side];
