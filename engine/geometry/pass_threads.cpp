@@ -4,12 +4,40 @@
 #include <exception>
 #include <system_error>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
 namespace cleave::geometry::detail {
+
+namespace {
+
+void pause() {
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_pause();
+#endif
+}
+
+// Spins until done() or `limit` has passed; true if done() was seen. The clock is read once per 64
+// pauses (a pause is tens of nanoseconds).
+template <class Done>
+bool spinUntil(Done&& done, std::chrono::microseconds limit) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (done()) return true;
+      pause();
+    }
+    if (std::chrono::steady_clock::now() >= end) return false;
+  }
+}
+
+}  // namespace
 
 PassThreads::~PassThreads() {
   {
     std::lock_guard lock(mutex_);
-    stop_ = true;
+    stop_.store(true);
   }
   wake_.notify_all();
   for (std::thread& thread : threads_) thread.join();
@@ -34,7 +62,7 @@ void PassThreads::runErased(uint32_t count, void* job, Call call) {
       call_ = call;
       count_ = onThreads + 1;
       pending_ = onThreads;
-      ++pass_;
+      pass_.fetch_add(1, std::memory_order_release);
     }
     wake_.notify_all();
   }
@@ -48,6 +76,9 @@ void PassThreads::runErased(uint32_t count, void* job, Call call) {
     failure = std::current_exception();
   }
   if (onThreads > 0) {
+    if (held_.load(std::memory_order_relaxed)) {
+      spinUntil([this] { return pending_.load(std::memory_order_acquire) == 0; }, kSpinLimit);
+    }
     std::unique_lock lock(mutex_);
     done_.wait(lock, [this] { return pending_ == 0; });
     job_ = nullptr;
@@ -60,6 +91,14 @@ void PassThreads::park(uint32_t index, uint64_t seen) {
   for (;;) {
     void* job = nullptr;
     Call call = nullptr;
+    if (held_.load(std::memory_order_relaxed)) {
+      spinUntil(
+          [&] {
+            return pass_.load(std::memory_order_acquire) != seen || !held_.load(std::memory_order_relaxed) ||
+                   stop_.load(std::memory_order_relaxed);
+          },
+          kSpinLimit);
+    }
     {
       std::unique_lock lock(mutex_);
       wake_.wait(lock, [&] { return stop_ || pass_ != seen; });

@@ -6,12 +6,22 @@
 // of a million-triangle split on two threads; PassThreads starts its threads on first use and parks
 // them between passes, so a pass only wakes them.
 //
+// Waking a sleeping thread costs far more on a virtual machine, where the idle core is halted and
+// the wake goes through the host (tens to hundreds of microseconds). So while a caller holds the
+// threads (Hold, for the length of one split), a thread that finished its job spins, briefly
+// pausing, for the next pass instead of sleeping, and the caller spins for the jobs it waits on.
+// Both spins are bounded (kSpinLimit); past it, or once the hold ends, they sleep as before. A
+// held pool burns its threads' cores between passes: hold it only across passes that follow each
+// other closely.
+//
 // Ownership: the threads belong to the PassThreads object and are joined by its destructor. One
 // caller at a time: run() is not re-entrant and must not be called from two threads at once (each
 // splitter owns one, used by the thread that calls split()).
 #pragma once
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
@@ -40,6 +50,22 @@ class PassThreads {
               [](void* stored, uint32_t index) { (*static_cast<Stored*>(stored))(index); });
   }
 
+  // Holds the threads for a run of passes (see the header's comment): constructed before the
+  // first, destroyed after the last. Holds do not nest; the owner of run() makes them.
+  class Hold {
+   public:
+    explicit Hold(PassThreads& threads) : threads_(threads) { threads_.held_.store(true, std::memory_order_relaxed); }
+    ~Hold() { threads_.held_.store(false, std::memory_order_relaxed); }
+    Hold(const Hold&) = delete;
+    Hold& operator=(const Hold&) = delete;
+
+   private:
+    PassThreads& threads_;
+  };
+
+  // How long a spin waits at most before it sleeps.
+  static constexpr std::chrono::microseconds kSpinLimit{2000};
+
   // Threads started so far (for tests).
   size_t started() const { return threads_.size(); }
 
@@ -53,12 +79,14 @@ class PassThreads {
   std::mutex mutex_;
   std::condition_variable wake_;  // a pass started, or stop_
   std::condition_variable done_;  // pending_ reached 0
-  uint64_t pass_ = 0;             // counts passes: a parked thread runs when it changes
+  // Read outside the mutex by spinning threads: atomics. Written under the mutex (but held_).
+  std::atomic<uint64_t> pass_{0};  // counts passes: a parked thread runs when it changes
   uint32_t count_ = 0;            // the current pass's job count
-  uint32_t pending_ = 0;          // parked threads still running the current pass
+  std::atomic<uint32_t> pending_{0};  // parked threads still running the current pass
   void* job_ = nullptr;
   Call call_ = nullptr;
-  bool stop_ = false;
+  std::atomic<bool> stop_{false};
+  std::atomic<bool> held_{false};  // a Hold is alive: spin between passes
 };
 
 }  // namespace cleave::geometry::detail

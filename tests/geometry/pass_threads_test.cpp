@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // PassThreads: every job of a pass runs exactly once, on as many threads as asked, pass after pass;
-// threads are started on first use and kept; the destructor joins them.
+// threads are started on first use and kept, and spin between passes while held; the destructor
+// joins them.
 #include "cleave/geometry/pass_threads.h"
 
 #include <atomic>
@@ -44,6 +45,34 @@ TEST(PassThreads, ManyShortPassesSeeEachOthersWrites) {
     });
   }
   for (uint64_t v : values) EXPECT_EQ(v, 2000u);
+}
+
+TEST(PassThreads, HeldPassesSeeEachOthersWritesSlowJobsIncluded) {
+  // Held, the threads spin between passes and the caller spins for them; a job slower than the spin
+  // limit sends both back to sleeping. Every pass must still see the one before, held or not.
+  PassThreads threads;
+  std::vector<uint64_t> values(3, 0);
+  auto pass = [&](uint64_t n, bool slow) {
+    threads.run(3, [&](uint32_t i) {
+      ASSERT_EQ(values[i], n - 1);
+      if (slow && i == n % 3) std::this_thread::sleep_for(PassThreads::kSpinLimit * 2);
+      values[i] = n;
+    });
+  };
+  uint64_t n = 0;
+  {
+    const PassThreads::Hold hold(threads);
+    for (int k = 0; k < 3000; ++k) pass(++n, k % 1000 == 999);
+    // A pause longer than the spin limit between passes: the threads fall asleep and are woken.
+    std::this_thread::sleep_for(PassThreads::kSpinLimit * 2);
+    for (int k = 0; k < 100; ++k) pass(++n, false);
+  }
+  for (int k = 0; k < 100; ++k) pass(++n, false);  // no longer held: sleeping between passes
+  {
+    const PassThreads::Hold again(threads);
+    for (int k = 0; k < 100; ++k) pass(++n, false);
+  }
+  for (uint64_t v : values) EXPECT_EQ(v, n);
 }
 
 TEST(PassThreads, AThrowOnTheCallingThreadWaitsForTheOthersThenPassesOn) {
