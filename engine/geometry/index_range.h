@@ -85,42 +85,39 @@ namespace loops {
 [[gnu::target("avx2")]] inline bool pointBackAvx2(const uint32_t* from, size_t count, const uint32_t* to) {
   return pointBack(from, count, to);
 }
-#else  // never called (runsAvx2() is false): the plain loops
-inline bool anyAtOrAboveAvx2(const uint32_t* values, size_t count, uint32_t limit) {
-  return anyAtOrAbove(values, count, limit);
-}
-inline bool copyBelowAvx2(const uint32_t* from, uint32_t* to, size_t count, uint32_t limit) {
-  return copyBelow(from, to, count, limit);
-}
-inline bool ascendingAvx2(const uint32_t* values, size_t count) { return ascending(values, count); }
-inline bool pointBackAvx2(const uint32_t* from, size_t count, const uint32_t* to) { return pointBack(from, count, to); }
 #endif
 }  // namespace loops
 
+// The dispatch, written once: loops::name##Avx2(args) where the processor runs AVX2 (x86-64
+// builds only), else the plain loops::name(args).
+#ifdef CLEAVE_AVX2_VARIANTS
+#define CLEAVE_RANGE_LOOP(name, ...) (runsAvx2() ? loops::name##Avx2(__VA_ARGS__) : loops::name(__VA_ARGS__))
+#else
+#define CLEAVE_RANGE_LOOP(name, ...) loops::name(__VA_ARGS__)
+#endif
+
 // Whether some value is >= limit.
 inline bool anyAtOrAbove(std::span<const uint32_t> values, uint32_t limit) {
-  return runsAvx2() ? loops::anyAtOrAboveAvx2(values.data(), values.size(), limit)
-                    : loops::anyAtOrAbove(values.data(), values.size(), limit);
+  return CLEAVE_RANGE_LOOP(anyAtOrAbove, values.data(), values.size(), limit);
 }
 
 // Copies `from` to `to` (as many values; the arrays do not overlap); whether every value was below
 // limit (all are copied either way).
 inline bool copyBelow(std::span<const uint32_t> from, uint32_t* to, uint32_t limit) {
-  return runsAvx2() ? loops::copyBelowAvx2(from.data(), to, from.size(), limit)
-                    : loops::copyBelow(from.data(), to, from.size(), limit);
+  return CLEAVE_RANGE_LOOP(copyBelow, from.data(), to, from.size(), limit);
 }
 
 // Whether the values rise strictly (true for none or one).
 inline bool strictlyAscending(std::span<const uint32_t> values) {
-  return runsAvx2() ? loops::ascendingAvx2(values.data(), values.size())
-                    : loops::ascending(values.data(), values.size());
+  return CLEAVE_RANGE_LOOP(ascending, values.data(), values.size());
 }
 
 // Whether to[from[k]] == k for every k: `from` picks, for each k, an entry of `to` that names k
 // back. Every from[k] must be an index into `to` (checked by the caller).
 inline bool pointBack(std::span<const uint32_t> from, const uint32_t* to) {
-  return runsAvx2() ? loops::pointBackAvx2(from.data(), from.size(), to) : loops::pointBack(from.data(), from.size(), to);
+  return CLEAVE_RANGE_LOOP(pointBack, from.data(), from.size(), to);
 }
+#undef CLEAVE_RANGE_LOOP
 
 // Whether every coordinate is finite (exponent bits not all set: no infinity, no NaN), and the
 // axis-aligned bounds of the points, meaningful only when they are (infinite, lo > hi, for none).

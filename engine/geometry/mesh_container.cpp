@@ -15,6 +15,7 @@
 #include <numeric>
 
 #include "cleave/geometry/index_range.h"
+#include "cleave/geometry/read_ahead.h"
 #include "cleave/geometry/mesh_splitter.h"
 
 namespace cleave::geometry {
@@ -414,10 +415,9 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
   const float wide = static_cast<float>(2.0 * reach);
   uint64_t budget = 64 * uint64_t(n) + 4096;
   // The home slot of the cell a few dozen vertices ahead is asked for early when the table outgrows
-  // the caches (over 2 MB): a new cell's slot is a miss to memory there (1M-triangle sphere: about a
-  // tenth of the set-up saved), while a smaller table gains nothing from it.
+  // the caches (read_ahead.h): a new cell's slot is a miss to memory there.
   constexpr uint32_t kAhead = 32;
-  const bool ahead = n >= (uint32_t(1) << 18);
+  const bool ahead = n >= detail::kFarCount;
   auto cellOf = [&](uint32_t v) {
     const glm::dvec3 q(positions[v]);
     return cellKey(static_cast<int64_t>((q.x - lo.x) * inverseCell), static_cast<int64_t>((q.y - lo.y) * inverseCell),
@@ -619,7 +619,7 @@ size_t MeshContainer::fileEdges(bool& degenerate, bool& inwards) {
     edges += 3;
   };
   size_t t = 0;
-  const size_t ahead = indexCount >= 3 * (size_t(1) << 18) ? 3 * 64 : 0;
+  const size_t ahead = indexCount >= 3 * detail::kFarCount ? 3 * 64 : 0;  // read_ahead.h
   for (; t < 3 * winding.whole(); t += 12) {
     if (ahead != 0 && t + ahead + 12 <= indexCount) {
       __builtin_prefetch(&source_->positions[index[t + ahead]]);

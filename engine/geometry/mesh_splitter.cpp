@@ -59,6 +59,7 @@
 #include "cleave/geometry/mass_kernel.h"
 #include "cleave/geometry/offset_list.h"
 #include "cleave/geometry/pass_threads.h"
+#include "cleave/geometry/read_ahead.h"
 
 namespace cleave::geometry {
 
@@ -92,12 +93,8 @@ constexpr uint32_t kCapBit = 0x40000000u;      // SideTriangle::source of a cap 
 constexpr uint32_t kSourceMask = kCapBit - 1;   // the source triangle (or loop) of SideTriangle::source
 // SplitOptions::threads: below this many side triangles a second thread costs more than it saves.
 constexpr size_t kParallelTriangles = 50000;
-// From this many position ids, the classification asks for the positions of the representatives
-// kIdsAhead ids early (CutPositions::prefetch): past the caches (3 MB of floats), read one behind the
-// other they came from memory about a line at a time (the 1M sphere's pass: about 2.8 -> 1 ms). A
-// smaller mesh gains nothing; nor did the other passes (the cut pass, the piece gathers, the mass
-// sums) when tried.
-constexpr uint32_t kFarIds = uint32_t(1) << 18;
+// From detail::kFarCount position ids on (read_ahead.h), the classification asks for the positions
+// of the representatives kIdsAhead ids early (CutPositions::prefetch).
 constexpr uint32_t kIdsAhead = 64;
 constexpr double kPi = 3.14159265358979323846;
 
@@ -1085,7 +1082,7 @@ void Splitter::unite(uint32_t* parent, uint32_t x, uint32_t y) {
 // kept: cutEdges works out again the few it needs (distanceOf, the same bits).
 void Splitter::classify(double tolerance) {
   side_.resize(idCount_);
-  const uint32_t ahead = idCount_ >= kFarIds ? kIdsAhead : 0;
+  const uint32_t ahead = idCount_ >= detail::kFarCount ? kIdsAhead : 0;
   inChunks(chunkCount(idCount_), idCount_, [&](uint32_t, uint32_t begin, uint32_t end) {
     int8_t* const sides = side_.data();  // a local pointer: a byte store would make every load again
     for (uint32_t id = begin; id < end; ++id) {

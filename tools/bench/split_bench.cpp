@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,20 +30,33 @@ namespace prim = primitives;
 
 enum class Kind { Concave, Convex };
 
-void runSplit(benchmark::State& state, const MeshData& mesh, const Plane& plane, Kind kind) {
-  MeshContainer container;
+// The container set up with `mesh` (the cut space its source space) and a splitter warmed up by one
+// split with each of `options` (threads started, scratch grown), as every split benchmark begins.
+// False, with the benchmark skipped and told why, when the mesh or a split fails.
+bool warmedUp(benchmark::State& state, const MeshData& mesh, const Plane& plane, Kind kind,
+              std::initializer_list<const SplitOptions*> options, MeshContainer& container,
+              std::unique_ptr<IMeshSplitter>& splitter, SplitResult& result) {
   if (const MeshStatus set = container.setMesh(mesh); !set.ok()) {
     state.SkipWithError(("setMesh failed: " + set.message).c_str());
-    return;
+    return false;
   }
   container.setTransform(glm::mat4(1.f));
-  std::unique_ptr<IMeshSplitter> splitter = kind == Kind::Concave ? makeConcaveSplitter() : makeConvexSplitter();
+  splitter = kind == Kind::Concave ? makeConcaveSplitter() : makeConvexSplitter();
+  for (const SplitOptions* o : options) {
+    if (splitter->split(container, plane, *o, result) != SplitStatus::Ok) {
+      state.SkipWithError(("split failed: " + result.message).c_str());
+      return false;
+    }
+  }
+  return true;
+}
+
+void runSplit(benchmark::State& state, const MeshData& mesh, const Plane& plane, Kind kind) {
+  MeshContainer container;
+  std::unique_ptr<IMeshSplitter> splitter;
   SplitOptions options;
   SplitResult result;
-  if (splitter->split(container, plane, options, result) != SplitStatus::Ok) {  // warm-up
-    state.SkipWithError(("split failed: " + result.message).c_str());
-    return;
-  }
+  if (!warmedUp(state, mesh, plane, kind, {&options}, container, splitter, result)) return;
   for (auto _ : state) {
     splitter->split(container, plane, options, result);
     benchmark::DoNotOptimize(result.pieces.data());
@@ -86,21 +100,12 @@ BENCHMARK(BM_ConcaveSplitSphere)->Arg(1000)->Arg(10000)->Arg(100000)->Arg(100000
 //   taskset -c 0,1 build/bin/cleave-bench --benchmark_filter=ConcaveSplitSphereThreads
 void BM_ConcaveSplitSphereThreads(benchmark::State& state) {
   MeshContainer container;
-  if (const MeshStatus set = container.setMesh(sphereOf(1000000)); !set.ok()) {
-    state.SkipWithError(("setMesh failed: " + set.message).c_str());
-    return;
-  }
-  std::unique_ptr<IMeshSplitter> splitter = makeConcaveSplitter();
+  std::unique_ptr<IMeshSplitter> splitter;
   SplitOptions one, many;
   many.threads = static_cast<uint32_t>(state.range(0));
   const Plane plane = tilted(0.1);
   SplitResult result;
-  for (const SplitOptions* options : {&one, &many}) {  // warm-up: threads started, scratch grown
-    if (splitter->split(container, plane, *options, result) != SplitStatus::Ok) {
-      state.SkipWithError(("split failed: " + result.message).c_str());
-      return;
-    }
-  }
+  if (!warmedUp(state, sphereOf(1000000), plane, Kind::Concave, {&one, &many}, container, splitter, result)) return;
   using Clock = std::chrono::steady_clock;
   std::vector<double> oneMs, manyMs;
   for (auto _ : state) {
