@@ -324,6 +324,7 @@ class Splitter final : public IMeshSplitter {
   }
   void collectBoundary(int side, std::vector<uint64_t>& boundary);
   void buildLoops();
+  void measureLoops();
   void sortSegmentEnds();
   bool startsChain(uint64_t segment) const {
     return !std::binary_search(segmentEnds_.begin(), segmentEnds_.end(), keyFrom(segment));
@@ -1194,6 +1195,12 @@ void Splitter::buildLoops() {
     openChains_ = std::max<uint32_t>(openChains_, 1);
   }
   if (bridge_) bridgeChains();
+  measureLoops();
+}
+
+// The loops as traced, made ready for the caps: the cap and merge tolerances, near points merged,
+// the points projected into the cap plane, each loop's area and bounds there.
+void Splitter::measureLoops() {
   // The scale of float rounding at the section: cut points are computed from float source positions,
   // so re-cut sections carry zig-zag runs and near-coincident points a few ulps of the coordinates
   // apart. Four ulps of the largest coordinate on the section is the cap tolerance: points that
