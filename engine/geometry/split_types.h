@@ -79,9 +79,12 @@ struct SplitOptions {
   bool computeMass = true;              // mass properties per piece (cut space)
   int keepSide = 0;                     // 0: the pieces of both sides; -1: only those below the plane,
                                         // +1: only those above (a clip; fracture keeps the inside)
-  // Threads the split may use, the calling one included: with 2 or more, a mesh of 50,000 triangles
-  // or more has the islands, pieces and mass properties of its two sides worked out at once (one
-  // std::thread for the call). The output is the same bytes for any count; 1 (default) or 0: none.
+  // Threads the split may use, the calling one included (at most 8): with 2 or more, a mesh of
+  // 50,000 triangles or more is classified and cut in chunks on threads, and the islands, pieces
+  // and mass properties of its two sides are worked out at once. The splitter starts the threads on
+  // first use and keeps them: they sleep between splits and, while a split runs, spin between its
+  // passes (at most 2 ms at a time), so the cores they use are busy for the whole split. The output
+  // is the same bytes for any count; 1 (default) or 0: the calling thread only.
   uint32_t threads = 1;
 };
 
