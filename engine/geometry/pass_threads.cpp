@@ -12,7 +12,7 @@ namespace cleave::geometry::detail {
 
 namespace {
 
-void pause() {
+void cpuPause() {  // a hint to the core that this is a wait loop
 #if defined(__x86_64__) || defined(__i386__)
   _mm_pause();
 #endif
@@ -26,7 +26,7 @@ bool spinUntil(Done&& done, std::chrono::microseconds limit) {
   for (;;) {
     for (int i = 0; i < 64; ++i) {
       if (done()) return true;
-      pause();
+      cpuPause();
     }
     if (std::chrono::steady_clock::now() >= end) return false;
   }
