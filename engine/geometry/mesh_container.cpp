@@ -15,8 +15,8 @@
 #include <numeric>
 
 #include "cleave/geometry/index_range.h"
-#include "cleave/geometry/read_ahead.h"
 #include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/read_ahead.h"
 
 namespace cleave::geometry {
 
