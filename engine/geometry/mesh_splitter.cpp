@@ -597,7 +597,8 @@ uint32_t Splitter::pairVertex(uint32_t a, uint32_t b) const {
 // pieces. Each stage that can refuse the split returns its status (result has the message).
 SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, const SplitOptions& options,
                             SplitResult& result) {
-  // The passes of one split follow each other within a millisecond: the pass threads spin between
+  // The passes of one split follow each other closely (the longest stretch between two, the section
+  // and caps of the 1M-triangle sphere, takes about a millisecond): the pass threads spin between
   // them rather than sleep (a wake costs tens of microseconds or more), and sleep once it returns.
   const detail::PassThreads::Hold hold(passThreads_);
   const SplitStatus checked = begin(container, plane, options, result);

@@ -3,6 +3,7 @@
 
 #include <exception>
 #include <system_error>
+#include <thread>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -15,21 +16,32 @@ namespace {
 void cpuPause() {  // a hint to the core that this is a wait loop
 #if defined(__x86_64__) || defined(__i386__)
   _mm_pause();
+#elif defined(__aarch64__)
+  asm volatile("yield");
 #endif
 }
 
-// Spins until done() or `limit` has passed; true if done() was seen. The clock is read once per 64
-// pauses (a pause is tens of nanoseconds).
+// Spins until done() or `limit` has passed. The clock is read once per 64 pauses (a pause is a few
+// to tens of nanoseconds), and the thread then offers its core to any other thread waiting for one
+// (a yield returns at once when none is): with more threads than cores, the thread a spin waits
+// for may be the one waiting.
 template <class Done>
-bool spinUntil(Done&& done, std::chrono::microseconds limit) {
+void spinUntil(Done&& done, std::chrono::microseconds limit) {
   const auto end = std::chrono::steady_clock::now() + limit;
   for (;;) {
     for (int i = 0; i < 64; ++i) {
-      if (done()) return true;
+      if (done()) return;
       cpuPause();
     }
-    if (std::chrono::steady_clock::now() >= end) return false;
+    if (std::chrono::steady_clock::now() >= end) return;
+    std::this_thread::yield();
   }
+}
+
+// How many parked threads may spin at once: one per core beside the caller's.
+uint32_t spinningThreads() {
+  static const uint32_t cores = std::thread::hardware_concurrency();
+  return cores > 1 ? cores - 1 : 0;
 }
 
 }  // namespace
@@ -76,7 +88,7 @@ void PassThreads::runErased(uint32_t count, void* job, Call call) {
     failure = std::current_exception();
   }
   if (onThreads > 0) {
-    if (held_.load(std::memory_order_relaxed)) {
+    if (holds_.load(std::memory_order_relaxed) != 0) {
       spinUntil([this] { return pending_.load(std::memory_order_acquire) == 0; }, kSpinLimit);
     }
     std::unique_lock lock(mutex_);
@@ -87,14 +99,17 @@ void PassThreads::runErased(uint32_t count, void* job, Call call) {
   if (failure) std::rethrow_exception(failure);
 }
 
+// Held, a thread that ran a job in the pass before spins for the next one, if it is among the first
+// spinningThreads(); one without a job (a pass of fewer chunks) or past them sleeps at once.
 void PassThreads::park(uint32_t index, uint64_t seen) {
+  bool ran = false;
   for (;;) {
     void* job = nullptr;
     Call call = nullptr;
-    if (held_.load(std::memory_order_relaxed)) {
+    if (ran && index <= spinningThreads() && holds_.load(std::memory_order_relaxed) != 0) {
       spinUntil(
           [&] {
-            return pass_.load(std::memory_order_acquire) != seen || !held_.load(std::memory_order_relaxed) ||
+            return pass_.load(std::memory_order_acquire) != seen || holds_.load(std::memory_order_relaxed) == 0 ||
                    stop_.load(std::memory_order_relaxed);
           },
           kSpinLimit);
@@ -104,7 +119,8 @@ void PassThreads::park(uint32_t index, uint64_t seen) {
       wake_.wait(lock, [&] { return stop_ || pass_ != seen; });
       if (stop_) return;
       seen = pass_;
-      if (index >= count_) continue;
+      ran = index < count_;
+      if (!ran) continue;
       job = job_;
       call = call_;
     }

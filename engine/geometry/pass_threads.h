@@ -8,11 +8,12 @@
 //
 // Waking a sleeping thread costs far more on a virtual machine, where the idle core is halted and
 // the wake goes through the host (tens to hundreds of microseconds). So while a caller holds the
-// threads (Hold, for the length of one split), a thread that finished its job spins, briefly
+// threads (Hold, for the length of one split), a thread that finished a job spins, briefly
 // pausing, for the next pass instead of sleeping, and the caller spins for the jobs it waits on.
-// Both spins are bounded (kSpinLimit); past it, or once the hold ends, they sleep as before. A
-// held pool burns its threads' cores between passes: hold it only across passes that follow each
-// other closely.
+// Only as many threads spin as there are cores beside the caller's; a thread that had no job in a
+// pass sleeps; a spin offers its core to other threads now and then. Both spins are bounded
+// (kSpinLimit); past it, or once the hold ends, they sleep as before. A held pool keeps its
+// threads' cores busy between passes: hold it only across passes that follow each other closely.
 //
 // Ownership: the threads belong to the PassThreads object and are joined by its destructor. One
 // caller at a time: run() is not re-entrant and must not be called from two threads at once (each
@@ -51,11 +52,12 @@ class PassThreads {
   }
 
   // Holds the threads for a run of passes (see the header's comment): constructed before the
-  // first, destroyed after the last. Holds do not nest; the owner of run() makes them.
+  // first, destroyed after the last; the threads are held while any Hold lives. Made by the owner
+  // of run(), on its thread.
   class Hold {
    public:
-    explicit Hold(PassThreads& threads) : threads_(threads) { threads_.held_.store(true, std::memory_order_relaxed); }
-    ~Hold() { threads_.held_.store(false, std::memory_order_relaxed); }
+    explicit Hold(PassThreads& threads) : threads_(threads) { threads_.holds_.fetch_add(1, std::memory_order_relaxed); }
+    ~Hold() { threads_.holds_.fetch_sub(1, std::memory_order_relaxed); }
     Hold(const Hold&) = delete;
     Hold& operator=(const Hold&) = delete;
 
@@ -79,14 +81,14 @@ class PassThreads {
   std::mutex mutex_;
   std::condition_variable wake_;  // a pass started, or stop_
   std::condition_variable done_;  // pending_ reached 0
-  // Read outside the mutex by spinning threads: atomics. Written under the mutex (but held_).
+  // Read outside the mutex by spinning threads: atomics. Written under the mutex (but holds_).
   std::atomic<uint64_t> pass_{0};  // counts passes: a parked thread runs when it changes
   uint32_t count_ = 0;            // the current pass's job count
   std::atomic<uint32_t> pending_{0};  // parked threads still running the current pass
   void* job_ = nullptr;
   Call call_ = nullptr;
   std::atomic<bool> stop_{false};
-  std::atomic<bool> held_{false};  // a Hold is alive: spin between passes
+  std::atomic<uint32_t> holds_{0};  // Holds alive: spin between passes while not 0
 };
 
 }  // namespace cleave::geometry::detail

@@ -33,45 +33,59 @@ TEST(PassThreads, EveryJobRunsOnceAndTheCallerRunsJobZero) {
   EXPECT_EQ(threads.started(), 7u) << "threads are kept: the most any pass asked for, less the caller";
 }
 
+// Runs one pass of `jobs` jobs in which job i checks and moves on the value that job i - 1 (mod
+// jobs) moved on in the pass before, so that every pass reads what other threads wrote in the one
+// before (run() returns only when every job has; a parked thread sees what was written before the
+// pass started). A job slower than `slowFor` now and then when asked. Counts wrong reads in `wrong`
+// (no assertion inside a job: a parked thread must not throw).
+void rotatingPass(PassThreads& threads, std::vector<uint64_t>& values, uint64_t n, std::atomic<int>& wrong,
+                  std::chrono::microseconds slowFor = {}) {
+  const uint32_t jobs = static_cast<uint32_t>(values.size());
+  threads.run(jobs, [&](uint32_t i) {
+    uint64_t& value = values[(i + n) % jobs];
+    if (value != n - 1) wrong.fetch_add(1);
+    if (slowFor.count() > 0 && i == n % jobs) std::this_thread::sleep_for(slowFor);
+    value = n;
+  });
+}
+
 TEST(PassThreads, ManyShortPassesSeeEachOthersWrites) {
-  // Each pass reads what the pass before wrote on other threads: run() returns only when every job
-  // has, and a parked thread sees what the caller wrote before the pass.
   PassThreads threads;
   std::vector<uint64_t> values(4, 0);
-  for (uint64_t pass = 1; pass <= 2000; ++pass) {
-    threads.run(4, [&](uint32_t i) {
-      ASSERT_EQ(values[i], pass - 1);
-      values[i] = pass;
-    });
-  }
+  std::atomic<int> wrong{0};
+  for (uint64_t pass = 1; pass <= 2000; ++pass) rotatingPass(threads, values, pass, wrong);
+  EXPECT_EQ(wrong.load(), 0);
   for (uint64_t v : values) EXPECT_EQ(v, 2000u);
 }
 
 TEST(PassThreads, HeldPassesSeeEachOthersWritesSlowJobsIncluded) {
-  // Held, the threads spin between passes and the caller spins for them; a job slower than the spin
-  // limit sends both back to sleeping. Every pass must still see the one before, held or not.
+  // Held, a thread that ran a job spins for the next pass and the caller spins for the jobs; a job
+  // slower than the spin limit, or a pause between passes longer than it, sends them back to
+  // sleeping on the condition variables. Every pass must still see the one before, held or not.
   PassThreads threads;
   std::vector<uint64_t> values(3, 0);
-  auto pass = [&](uint64_t n, bool slow) {
-    threads.run(3, [&](uint32_t i) {
-      ASSERT_EQ(values[i], n - 1);
-      if (slow && i == n % 3) std::this_thread::sleep_for(PassThreads::kSpinLimit * 2);
-      values[i] = n;
-    });
-  };
+  std::atomic<int> wrong{0};
   uint64_t n = 0;
   {
     const PassThreads::Hold hold(threads);
-    for (int k = 0; k < 3000; ++k) pass(++n, k % 1000 == 999);
-    // A pause longer than the spin limit between passes: the threads fall asleep and are woken.
-    std::this_thread::sleep_for(PassThreads::kSpinLimit * 2);
-    for (int k = 0; k < 100; ++k) pass(++n, false);
+    for (int k = 0; k < 600; ++k) {
+      const bool slow = k % 200 == 199;
+      rotatingPass(threads, values, ++n, wrong, slow ? PassThreads::kSpinLimit * 2 : std::chrono::microseconds{});
+    }
+    std::this_thread::sleep_for(PassThreads::kSpinLimit * 2);  // a pause past the spin limit
+    for (int k = 0; k < 100; ++k) rotatingPass(threads, values, ++n, wrong);
+    {
+      const PassThreads::Hold nested(threads);  // held while any Hold lives
+    }
+    for (int k = 0; k < 100; ++k) rotatingPass(threads, values, ++n, wrong);
   }
-  for (int k = 0; k < 100; ++k) pass(++n, false);  // no longer held: sleeping between passes
+  for (int k = 0; k < 100; ++k) rotatingPass(threads, values, ++n, wrong);  // no longer held
   {
     const PassThreads::Hold again(threads);
-    for (int k = 0; k < 100; ++k) pass(++n, false);
+    rotatingPass(threads, values, ++n, wrong, PassThreads::kSpinLimit * 2);
+    for (int k = 0; k < 100; ++k) rotatingPass(threads, values, ++n, wrong);
   }
+  EXPECT_EQ(wrong.load(), 0);
   for (uint64_t v : values) EXPECT_EQ(v, n);
 }
 
