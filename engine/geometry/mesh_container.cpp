@@ -147,6 +147,23 @@ double weldCellSize(std::span<const glm::vec3> positions, std::span<const uint32
   return cell > 0.0 && std::isfinite(cell) ? cell : 1.0;  // 1: every vertex at one point
 }
 
+// The hashed weld's cell of p (c, per axis) and, per axis, whether p lies within `reach` of the
+// cell's lower face (lowSide -1, unless the cell is the first) or of its upper face (highSide 1).
+// Returns whether it does of any face: then a neighbouring cell may hold a vertex within reach.
+bool cellAndFaces(const glm::dvec3& p, const glm::dvec3& lo, double cell, double inverseCell, double reach,
+                  int64_t (&c)[3], int (&lowSide)[3], int (&highSide)[3]) {
+  bool near = false;
+  for (int a = 0; a < 3; ++a) {
+    // p >= lo, so truncation is the floor; the cell index is at most largest / cell + 1.
+    c[a] = static_cast<int64_t>((p[a] - lo[a]) * inverseCell);
+    const double inCell = p[a] - (lo[a] + double(c[a]) * cell);
+    lowSide[a] = inCell <= reach && c[a] > 0 ? -1 : 0;
+    highSide[a] = cell - inCell <= reach ? 1 : 0;
+    near = near || lowSide[a] != 0 || highSide[a] != 0;
+  }
+  return near;
+}
+
 // The hashed weld's table: open addressing from a cell key to the cell's first and last vertex, one
 // 16-byte slot each ([2 s] the key, [2 s + 1] first | last << 32), doubled when three quarters full.
 class CellTable {
@@ -428,15 +445,7 @@ bool MeshContainer::weldHashed(double tolerance, const glm::dvec3& lo, const glm
     const glm::dvec3 p(positions[v]);
     int64_t c[3];
     int lowSide[3], highSide[3];
-    bool near = false;
-    for (int a = 0; a < 3; ++a) {
-      // p >= lo, so truncation is the floor; the cell index is at most largest / cell + 1.
-      c[a] = static_cast<int64_t>((p[a] - lo[a]) * inverseCell);
-      const double inCell = p[a] - (lo[a] + double(c[a]) * cell);
-      lowSide[a] = inCell <= reach && c[a] > 0 ? -1 : 0;
-      highSide[a] = cell - inCell <= reach ? 1 : 0;
-      near = near || lowSide[a] != 0 || highSide[a] != 0;
-    }
+    const bool near = cellAndFaces(p, lo, cell, inverseCell, reach, c, lowSide, highSide);
     uint32_t best = kNone;
     // The lowest earlier vertex of one cell within the tolerance (into best); false when over budget.
     // A vertex whose x differs by more than `wide` in float arithmetic is farther than the

@@ -177,25 +177,6 @@ glm::vec3 normalizedOr(const glm::dvec3& v, const glm::vec3& fallback) {
   return len > 0.0 && std::isfinite(len) ? glm::vec3(v / len) : fallback;
 }
 
-// Grow-only scratch whose elements are not initialised: for arrays written in full before they are
-// read. Keeps its storage, so a warmed-up split allocates nothing.
-template <typename T>
-class RawBuffer {
- public:
-  T* reserve(size_t n) {
-    if (n > capacity_) {
-      capacity_ = std::max(n, 2 * capacity_);
-      data_ = std::make_unique_for_overwrite<T[]>(capacity_);
-    }
-    return data_.get();
-  }
-  const T* data() const { return data_.get(); }
-
- private:
-  std::unique_ptr<T[]> data_;
-  size_t capacity_ = 0;
-};
-
 // The values f(0), f(1), ... as an iterator with random-access moves (its reference is a value, as
 // for a proxy), so that a vector is assigned them in one pass (resize-then-write would first fill
 // it with zeros).
@@ -373,20 +354,20 @@ class Splitter final : public IMeshSplitter {
   // (Aligned to cache lines so that one side's writes never share a line with the other's.)
   struct alignas(64) SideWork {
     std::vector<uint32_t> parent, label, pieceOf, pieceMap, order, bucket, pieceSize;
-    RawBuffer<SideTriangle> ordered;  // orderSide: the side's triangles in output order (unless identity)
+    detail::OffsetList<SideTriangle> ordered;  // orderSide: the side's triangles in output order (unless identity)
     std::vector<uint32_t> partsOf;  // per piece: the islands it is made of (0: not known)
     uint32_t islands = 0;           // labelSide: the islands found (0 when not searched)
     bool searched = false;          // labelSide searched for islands
     bool oneIsland = false;         // searched, and one island: no labels (w.label, w.pieceOf)
     bool joinAfterWrite = false;    // touching parts are joined once the pieces are written
-    RawBuffer<uint32_t> vertexRefs;  // the piece being written: its vertices' references, in order
+    detail::OffsetList<uint32_t> vertexRefs;  // the piece being written: its vertices' references, in order
     size_t vertexCount = 0;          // how many of vertexRefs
     bool identity = false;  // orderSide: the output order is the side list's (ordered is not filled)
     // Per vertex reference: its index in the piece being written, or kNone (every entry, between
     // pieces: gatherVertices sets back those writeTriangles set).
     std::vector<uint32_t> localOf;
     std::vector<uint32_t> weldRemap;   // per welded id: its position id in the piece, or kNone (all, between pieces)
-    RawBuffer<glm::dvec3> pieceCut;  // cut-space positions of the piece being written (vertexCount)
+    detail::OffsetList<glm::dvec3> pieceCut;  // cut-space positions of the piece being written (vertexCount)
     glm::dvec3 pieceLo{INFINITY}, pieceHi{-INFINITY};  // and their bounds
     std::vector<uint32_t> flipped;
     std::vector<double> volume;
@@ -1939,7 +1920,7 @@ void Splitter::gatherPositions(SideWork& w, std::vector<glm::vec3>& positions) c
   const glm::vec3* extra = extra_.positions.data();
   const bool sourceSpace = cut_.isSource();
   uint32_t* const localOf = w.localOf.data();
-  glm::dvec3* const cut = w.pieceCut.reserve(count);
+  glm::dvec3* const cut = w.pieceCut.place(count);
   glm::dvec3 lo(INFINITY), hi(-INFINITY);
   assignMapped(positions, count, [&](size_t i) {
     const uint32_t ref = refs[i];
@@ -1964,7 +1945,8 @@ void Splitter::pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const {
   const uint32_t weldedCount = idCount_ + static_cast<uint32_t>(weldedEdges_.size());
   if (w.weldRemap.size() < weldedCount) w.weldRemap.resize(weldedCount, kNone);
   weld.positionIds.resize(count);
-  weld.representatives.resize(count);  // at most one per vertex; cut to size below
+  weld.representatives.clear();
+  weld.representatives.reserve(count);  // at most one per vertex
   weld.closed = closed;
   weld.inverted = closed && container_->inverted();  // pieces keep the winding of the mesh
   auto weldedOfPiece = [&](uint32_t i) {
@@ -1973,18 +1955,16 @@ void Splitter::pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const {
   };
   uint32_t* const remap = w.weldRemap.data();
   uint32_t* const ids = weld.positionIds.data();
-  uint32_t* const representatives = weld.representatives.data();
-  uint32_t found = 0;
+  std::vector<uint32_t>& representatives = weld.representatives;
   for (uint32_t i = 0; i < count; ++i) {
     uint32_t& entry = remap[weldedOfPiece(i)];
     if (entry == kNone) {
-      entry = found;
-      representatives[found++] = i;
+      entry = static_cast<uint32_t>(representatives.size());
+      representatives.push_back(i);
     }
     ids[i] = entry;
   }
-  weld.representatives.resize(found);
-  for (uint32_t r = 0; r < found; ++r) remap[weldedOfPiece(representatives[r])] = kNone;  // ready for the next piece
+  for (const uint32_t r : representatives) remap[weldedOfPiece(r)] = kNone;  // ready for the next piece
 }
 
 // The union-find of one side's islands over welded ids: every triangle's corners united, or, after
@@ -2195,7 +2175,7 @@ void Splitter::orderSide(int side, SideWork& w, uint32_t pieces) const {
   }
   w.identity = sorted;
   if (sorted) return;
-  SideTriangle* const ordered = w.ordered.reserve(tris.size());
+  SideTriangle* const ordered = w.ordered.place(tris.size());
   if (counting) {  // the triangles themselves distributed: the writer then reads them in a row
     for (size_t b = 0; b < buckets; ++b) w.bucket[b + 1] += w.bucket[b];
     for (size_t k = 0; k < tris.size(); ++k) ordered[w.bucket[keyOf(k)]++] = tris[k];
@@ -2224,7 +2204,7 @@ size_t Splitter::writeTriangles(int side, SideWork& w, size_t k, uint32_t p, con
   uint32_t* provenance = out.sourceTriangles.data();
   const SideTriangle* const list = w.identity ? tris.data() : w.ordered.data();
   uint32_t* const remap = w.localOf.data();
-  uint32_t* const refs = w.vertexRefs.reserve(3 * (end - k));
+  uint32_t* const refs = w.vertexRefs.place(3 * (end - k));
   uint32_t vertices = 0;
   const int second = mirrored_ ? 2 : 1, third = mirrored_ ? 1 : 2;
   uint32_t slot = kNone, runFirst = 0, reached = 0;

@@ -10,6 +10,9 @@
 // behaves as a vector of items that are only read after they are written: resize() leaves new
 // items unwritten, and indices count from the first item.
 //
+// place() alone is also the splitter's grow-only scratch: storage written in full before it is
+// read, kept from one split to the next, so a warmed-up split allocates nothing.
+//
 // Ownership: the list owns its storage. Growing moves the items to new storage, first item at its
 // start: pointers into the list and into place()'s storage are then invalid (as for std::vector).
 #pragma once
