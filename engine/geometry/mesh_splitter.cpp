@@ -60,6 +60,7 @@
 #include "cleave/geometry/offset_list.h"
 #include "cleave/geometry/pass_threads.h"
 #include "cleave/geometry/read_ahead.h"
+#include "cleave/geometry/whole_blocks.h"
 
 namespace cleave::geometry {
 
@@ -242,6 +243,7 @@ constexpr uint32_t kDroppedSource = kNone;  // SideTriangle::source of a triangl
 // A side's triangles: filled by up to two threads with nothing to copy after (OffsetList), grown by
 // places that are filled before they are read (a crossing triangle's parts).
 using SideList = detail::OffsetList<SideTriangle>;
+
 
 struct LoopInfo {
   uint32_t begin = 0, end = 0;  // into loopIds_ / points_
@@ -449,7 +451,11 @@ class Splitter final : public IMeshSplitter {
   double onPlaneTolerance_ = 0.0;
   double diagonal_ = 0.0;  // the container's cut-space bounds diagonal
 
-  std::vector<int8_t> side_;       // per position id: +1, -1, 0
+  std::vector<int8_t> side_;       // per position id: +1, -1, 0; then detail::kSidePadding bytes
+  // Whether cutWholeAndCollect takes whole triangles eight at a time (whole_blocks.h), and then per
+  // source vertex its position id's side (then detail::kSidePadding bytes).
+  bool wholeBlocks_ = false;
+  std::vector<int8_t> vertexSide_;
   struct Pending {  // cutWholeAndCollect: a crossing triangle and where its parts go
     uint32_t triangle;
     uint32_t first[2];
@@ -592,8 +598,8 @@ SplitStatus Splitter::split(const MeshContainer& container, const Plane& plane, 
   onPlaneIds_.clear();
   if (islandCandidate_) {  // memchr: a vector search over the bytes, where std::find goes one by one
     const int8_t* sides = side_.data();
-    for (size_t from = 0; from < side_.size();) {
-      const void* hit = std::memchr(sides + from, 0, side_.size() - from);
+    for (size_t from = 0; from < idCount_;) {
+      const void* hit = std::memchr(sides + from, 0, idCount_ - from);
       if (hit == nullptr) break;
       const size_t at = static_cast<size_t>(static_cast<const int8_t*>(hit) - sides);
       onPlaneIds_.push_back(static_cast<uint32_t>(at));
@@ -652,6 +658,7 @@ SplitStatus Splitter::begin(const MeshContainer& container, const Plane& plane, 
   idCount_ = container.positionIdCount();
   sourceCount_ = static_cast<uint32_t>(mesh.positions.size());
   mirrored_ = container.mirrored();
+  wholeBlocks_ = detail::wholeBlocksRun(sourceCount_, idCount_);
   if (mesh.indices.empty() || mesh.positions.empty() || cut_.size() != mesh.positions.size() ||
       ids_.size() != mesh.positions.size()) {
     return fail(result, SplitStatus::InvalidInput, "the container holds no valid mesh (setMesh failed or was not called)");
@@ -896,6 +903,14 @@ void Splitter::cutWholeAndCollect(bool unite) {
     std::iota(work_[side].parent.begin(), work_[side].parent.end(), 0u);
   }
   united_ = unite;
+#ifdef CLEAVE_AVX2_VARIANTS
+  if (wholeBlocks_ && !unite) {
+    vertexSide_.resize(size_t(sourceCount_) + detail::kSidePadding);
+    inChunks(chunkCount(sourceCount_), sourceCount_, [&](uint32_t, uint32_t begin, uint32_t end) {
+      detail::vertexSidesAvx2(ids_.data(), side_.data(), begin, end, vertexSide_.data());
+    });
+  }
+#endif
   SideTriangle* const lists[2] = {sideTris_[0].place(2 * size_t(triangleCount)),
                                   sideTris_[1].place(2 * size_t(triangleCount))};
   inChunks(chunks, triangleCount, [&](uint32_t chunk, uint32_t begin, uint32_t end) {
@@ -934,7 +949,18 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, SideTriang
   const uint32_t* const ids = ids_.data();
   const int8_t* const sides = side_.data();
   const bool mirrored = mirrored_;
+  [[maybe_unused]] const bool blocks = wholeBlocks_ && !unite;
   for (uint32_t k = begin; k < end; ++k) {
+#ifdef CLEAVE_AVX2_VARIANTS
+    // Every eighth triangle, the whole ones from there on eight at a time (whole_blocks.h); the
+    // triangles of a block they stop at go through the loop here.
+    if (blocks && (k - begin) % 8 == 0) {
+      const int8_t* const vertexSides = vertexSide_.data();
+      if (kBackwards) k = begin + (end - detail::wholeBlocksAvx2<true>(indices, vertexSides, mirrored, begin, end - (k - begin), lists, at));
+      else k = detail::wholeBlocksAvx2<false>(indices, vertexSides, mirrored, k, end, lists, at);
+      if (k == end) break;
+    }
+#endif
     const uint32_t t = kBackwards ? end - 1 - (k - begin) : k;
     uint32_t g[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
     if (mirrored) std::swap(g[1], g[2]);  // cut-space outward winding
@@ -1064,7 +1090,7 @@ void Splitter::unite(uint32_t* parent, uint32_t x, uint32_t y) {
 // Step 1: the side of every position id (in chunks on threads when big). The distances are not
 // kept: cutEdges works out again the few it needs (distanceOf, the same bits).
 void Splitter::classify(double tolerance) {
-  side_.resize(idCount_);
+  side_.resize(size_t(idCount_) + detail::kSidePadding);  // the padding is never read as a side
   const uint32_t ahead = idCount_ >= detail::kFarCount ? kIdsAhead : 0;
   inChunks(chunkCount(idCount_), idCount_, [&](uint32_t, uint32_t begin, uint32_t end) {
     int8_t* const sides = side_.data();  // a local pointer: a byte store would make every load again
