@@ -665,6 +665,28 @@ size_t MeshContainer::fileEdges(bool& degenerate, bool& inwards) {
   return edges;
 }
 
+#ifdef CLEAVE_AVX2_VARIANTS  // index_range.h
+// pairedLists for a list of 1 to 8 entries, in one register: each entry must meet its reverse
+// (entry ^ 1) exactly once among the others. (An entry twice would give its reverse two, or itself
+// none.) Seven rotations compare every entry with every other; the lanes past the list hold ~0,
+// which no entry or reverse equals (ids are below 2^31).
+[[gnu::target("avx2")]] bool pairedShortAvx2(const uint32_t* entries, uint32_t count) {
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i inList = _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(count)), lane);
+  const __m256i none = _mm256_set1_epi32(-1);
+  const __m256i v = _mm256_blendv_epi8(none, _mm256_maskload_epi32(reinterpret_cast<const int*>(entries), inList), inList);
+  const __m256i reverse = _mm256_xor_si256(v, _mm256_set1_epi32(1));
+  __m256i reverses = _mm256_setzero_si256();
+  for (int r = 1; r < 8; ++r) {
+    const __m256i other = _mm256_permutevar8x32_epi32(v, _mm256_and_si256(_mm256_add_epi32(lane, _mm256_set1_epi32(r)),
+                                                                         _mm256_set1_epi32(7)));
+    reverses = _mm256_sub_epi32(reverses, _mm256_cmpeq_epi32(other, reverse));
+  }
+  const __m256i bad = _mm256_andnot_si256(_mm256_cmpeq_epi32(reverses, _mm256_set1_epi32(1)), inList);
+  return _mm256_testz_si256(bad, bad) != 0;
+}
+#endif
+
 // Whether every list of fileEdges holds each higher id once in each direction: per list, a tally
 // per higher id (one for a forward entry, 1 << 16 for a reverse one) must read exactly 0x10001 at
 // its first entry (then it is cleared); no branch depends on the entries until the list's verdict. A list of 65536 entries
@@ -678,6 +700,7 @@ bool MeshContainer::pairedLists(uint32_t* parts) {
   const uint32_t ids = positionIdCount_;
   tally.assign(ids, 0u);
   if (parts) parent.assign(ids, kNone);
+  [[maybe_unused]] const bool shortLists = detail::runsAvx2();
   auto find = [&](uint32_t x) {
     if (parent[x] == kNone) return parent[x] = x;
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
@@ -687,6 +710,11 @@ bool MeshContainer::pairedLists(uint32_t* parts) {
     uint32_t* first = edgeTargets.data() + edgeStart[a];
     uint32_t* last = edgeTargets.data() + edgeStart[a + 1];
     if (first == last) continue;
+#ifdef CLEAVE_AVX2_VARIANTS
+    if (last - first <= 8 && shortLists) {
+      if (!pairedShortAvx2(first, static_cast<uint32_t>(last - first))) return false;
+    } else
+#endif
     if (last - first >= 0x10000) {
       std::sort(first, last);
       for (uint32_t* i = first; i < last; i += 2) {

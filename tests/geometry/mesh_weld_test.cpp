@@ -268,5 +268,34 @@ TEST(MeshWeld, ClosednessAndPartsMatchTheReferenceOnDefects) {
   expectLikeReference(joined, "two spheres and a degenerate triangle");
 }
 
+// Vertices of low valence: every edge list holds at most eight entries (pairedLists then checks a
+// list in one register where the processor runs AVX2), with the same defects as above.
+TEST(MeshWeld, ClosednessOfShortEdgeListsMatchesTheReference) {
+  MeshData tetrahedron;
+  tetrahedron.positions = {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)};
+  tetrahedron.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  expectLikeReference(tetrahedron, "tetrahedron");
+  MeshContainer container;
+  ASSERT_TRUE(container.setMesh(tetrahedron).ok());
+  EXPECT_TRUE(container.closed());
+  const std::vector<uint32_t> face = {1, 2, 3}, reversed = {1, 3, 2};
+  MeshData flipped = tetrahedron;
+  flipped.indices.resize(9);
+  flipped.indices.insert(flipped.indices.end(), reversed.begin(), reversed.end());
+  expectLikeReference(flipped, "tetrahedron with a flipped face");
+  MeshData missing = tetrahedron;
+  missing.indices.resize(9);
+  expectLikeReference(missing, "tetrahedron with a missing face");
+  MeshData doubled = tetrahedron;
+  doubled.indices.insert(doubled.indices.end(), face.begin(), face.end());
+  expectLikeReference(doubled, "tetrahedron with a doubled face");
+  MeshData doubledBothWays = doubled;  // the face's edges used twice each way: four times in all
+  doubledBothWays.indices.insert(doubledBothWays.indices.end(), reversed.begin(), reversed.end());
+  expectLikeReference(doubledBothWays, "tetrahedron with a face doubled both ways");
+  MeshData twice = primitives::merge(tetrahedron, tetrahedron);  // two closed copies at one place
+  expectLikeReference(twice, "tetrahedron twice");
+  expectLikeReference(primitives::box(glm::vec3(0.5f)), "box");
+}
+
 }  // namespace
 }  // namespace cleave::geometry
