@@ -21,6 +21,7 @@
 #include <utility>
 
 #include "cleave/geometry/index_range.h"  // CLEAVE_AVX2_VARIANTS, runsAvx2
+#include "cleave/geometry/triangle_lanes.h"
 
 namespace cleave::geometry::detail {
 
@@ -59,27 +60,11 @@ inline bool wholeBlocksRun(size_t vertices, size_t ids) {
   for (; v < end; ++v) out[v] = sides[ids[v]];
 }
 
-namespace blocks {
 // The sides (+1, -1, 0) of eight vertices, from their bytes.
-[[gnu::target("avx2"), gnu::always_inline]] inline __m256i sidesOf(const int8_t* vertexSides, __m256i vertices) {
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256i sidesOfAvx2(const int8_t* vertexSides, __m256i vertices) {
   const __m256i words = _mm256_i32gather_epi32(reinterpret_cast<const int*>(vertexSides), vertices, 1);
   return _mm256_srai_epi32(_mm256_slli_epi32(words, 24), 24);
 }
-
-// Corner c (0, 1, 2) of triangles first .. first + 7: three loads of 24 indices blended so that each
-// lane holds the corner of one triangle, then put in triangle order.
-[[gnu::target("avx2"), gnu::always_inline]] inline void corners(const uint32_t* indices, size_t first, __m256i& g0,
-                                                              __m256i& g1, __m256i& g2) {
-  const __m256i* from = reinterpret_cast<const __m256i*>(indices + 3 * first);
-  const __m256i l0 = _mm256_loadu_si256(from), l1 = _mm256_loadu_si256(from + 1), l2 = _mm256_loadu_si256(from + 2);
-  g0 = _mm256_permutevar8x32_epi32(_mm256_blend_epi32(_mm256_blend_epi32(l0, l1, 0b10010010), l2, 0b00100100),
-                                   _mm256_setr_epi32(0, 3, 6, 1, 4, 7, 2, 5));
-  g1 = _mm256_permutevar8x32_epi32(_mm256_blend_epi32(_mm256_blend_epi32(l0, l1, 0b00100100), l2, 0b01001001),
-                                   _mm256_setr_epi32(1, 4, 7, 2, 5, 0, 3, 6));
-  g2 = _mm256_permutevar8x32_epi32(_mm256_blend_epi32(_mm256_blend_epi32(l0, l1, 0b01001001), l2, 0b10010010),
-                                   _mm256_setr_epi32(2, 5, 0, 3, 6, 1, 4, 7));
-}
-}  // namespace blocks
 
 // The whole triangles of [lo, hi) eight at a time, forwards from lo (each to at[side]++) or, with
 // kBackwards, last triangle first down from hi (each to --at[side]), as the scalar loop files them:
@@ -101,10 +86,10 @@ template <bool kBackwards, class Row>
   while (hi - lo >= 8) {
     const uint32_t first = kBackwards ? hi - 8 : lo;
     __m256i g0, g1, g2;
-    blocks::corners(indices, first, g0, g1, g2);
+    triangleCornersAvx2(indices, first, g0, g1, g2);
     const __m256i sum = _mm256_add_epi32(
-        _mm256_add_epi32(blocks::sidesOf(vertexSides, g0), blocks::sidesOf(vertexSides, g1)),
-        blocks::sidesOf(vertexSides, g2));
+        _mm256_add_epi32(sidesOfAvx2(vertexSides, g0), sidesOfAvx2(vertexSides, g1)),
+        sidesOfAvx2(vertexSides, g2));
     // Sides are -1, 0 or +1: a sum of 2 or 3 is no corner below and at most one on the plane, a
     // whole triangle above that is not in the plane; -2 or -3 the same below.
     const __m256i up = _mm256_cmpgt_epi32(sum, _mm256_set1_epi32(1));

@@ -266,6 +266,12 @@ TEST(MeshWeld, ClosednessAndPartsMatchTheReferenceOnDefects) {
   const uint32_t a = joined.indices[0], b = joined.indices[joined.indices.size() - 1];
   joined.indices.insert(joined.indices.end(), {a, a, b});
   expectLikeReference(joined, "two spheres and a degenerate triangle");
+  MeshData joinedFirst = spheres;  // the same triangle first, among the first eight
+  joinedFirst.indices.insert(joinedFirst.indices.begin(), {a, a, b});
+  expectLikeReference(joinedFirst, "two spheres and a degenerate triangle first");
+  MeshData degenerateInside = sphere;  // a closed sphere with a degenerate triangle in its list
+  degenerateInside.indices.insert(degenerateInside.indices.begin() + 12, {sphere.indices[0], sphere.indices[0], sphere.indices[1]});
+  expectLikeReference(degenerateInside, "sphere with a degenerate triangle");
 }
 
 // Vertices of low valence: every edge list holds at most eight entries (pairedLists then checks a
