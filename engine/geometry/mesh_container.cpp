@@ -36,8 +36,10 @@ struct WeldScratch {
   std::vector<uint32_t> cellNext;     // per vertex: the next vertex of its cell, ascending
   std::vector<uint64_t> sortKeys;     // sorted weld: cell key per vertex
   std::vector<uint32_t> sortOrder;    // sorted weld: vertices by (cell, index)
-  std::vector<uint32_t> edgeStart;    // closedness: edges filed per position id (offsets)
-  std::vector<uint32_t> edgeTargets;  // closedness: edges filed per position id
+  std::vector<uint32_t> rowCount;     // closedness: per position id, the edges filed under it
+  std::vector<uint32_t> rows;         // closedness: per position id, a row of the first kRow of them
+  std::vector<uint64_t> overflow;     // closedness: id << 32 | edge, the edges past a full row
+  std::vector<uint32_t> longList;     // closedness: the edges of one id whose row is full
   std::vector<uint32_t> tally;        // closedness: per position id, entries of one list
   std::vector<uint32_t> parent;       // connectivity: union-find over position ids
 };
@@ -62,7 +64,7 @@ MeshStatus invalid(std::string text) { return MeshStatus::failure(SplitStatus::I
 // sections run clockwise, every loop looks like a hole, and no cap can be made. Triangles are added
 // in index order into four running sums (triangle t into sum t % 4, those past the last multiple
 // of four into sum 0), so that the additions do not wait on each other; the order is fixed, so is
-// the answer. fileEdges adds them on its first pass over the triangles, four at a time (addFour),
+// the answer. fileRows adds them on its pass over the triangles, four at a time (addFour),
 // or eight (addEightAvx2: two fours, the same sums) where the processor runs AVX2.
 class InwardsTest {
   typedef double Four __attribute__((vector_size(4 * sizeof(double))));   // lanes: the four sums
@@ -595,15 +597,54 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
   }
 }
 
+namespace {
+constexpr uint32_t kRow = 8;  // edges kept per position id in its row; the rest overflow
+
+// Where computeClosed files edges: per position id a row of kRow entries, then the overflow.
+struct EdgeRows {
+  uint32_t* count;
+  uint32_t* rows;
+  std::vector<uint64_t>* overflow;
+
+  void put(uint32_t a, uint32_t slot, uint32_t edge) {
+    if (slot < kRow) rows[size_t(kRow) * a + slot] = edge;
+    else overflow->push_back(uint64_t(a) << 32 | edge);
+  }
+  // The edges of a triangle of three distinct ids c (winding order). Its two edges at its lowest id
+  // go under that id at once (one count update, not two that wait on each other), as 2 b for the
+  // one leaving it (to b) and 2 b + 1 for the one arriving (from b); the opposite edge goes under
+  // the lower of the other two ids.
+  [[gnu::always_inline]] void triangle(const uint32_t (&c)[3]) {
+    const int lowest = c[0] < c[1] ? (c[0] < c[2] ? 0 : 2) : (c[1] < c[2] ? 1 : 2);
+    const uint32_t next = c[lowest == 2 ? 0 : lowest + 1], previous = c[lowest == 0 ? 2 : lowest - 1];
+    lowestTwo(c[lowest], 2 * next, 2 * previous + 1);
+    const uint32_t at = std::min(next, previous);
+    put(at, count[at]++, next < previous ? 2 * previous : 2 * next + 1);
+  }
+  [[gnu::always_inline]] void lowestTwo(uint32_t a, uint32_t leaving, uint32_t arriving) {
+    const uint32_t slot = count[a];
+    count[a] = slot + 2;
+    if (slot + 2 <= kRow) {
+      uint32_t* row = rows + size_t(kRow) * a + slot;
+      row[0] = leaving;
+      row[1] = arriving;
+    } else {
+      put(a, slot, leaving);
+      put(a, slot + 1, arriving);
+    }
+  }
+};
+
 #ifdef CLEAVE_AVX2_VARIANTS
-// fileEdges' first pass eight triangles at a time over the whole groups of eight below `triangles`
-// (the first `triangles` of the index list): the winding test's sums, and per triangle of three
-// distinct position ids two filed edges counted under its lowest id and one under its middle one
-// (the scalar pass's counts; `degenerate` set for any other). Returns the triangles done. With
-// `ahead`, the corners 64 triangles on are asked for early (read_ahead.h). Vertex indices below 2^29.
-[[gnu::target("avx2")]] size_t countEightsAvx2(const uint32_t* index, const uint32_t* ids, const glm::vec3* positions,
-                                               size_t triangles, bool ahead, InwardsTest& winding,
-                                               uint32_t* edgeStart, size_t& edges, bool& degenerate) {
+// fileRows' pass eight triangles at a time over the whole groups of eight below `triangles`: the
+// winding test's sums (two fours, the same bits), and each triangle of three distinct position ids
+// filed as EdgeRows::triangle files it (`degenerate` set for any other). Returns the triangles done.
+// With `ahead`, the corners 64 triangles on are asked for early (read_ahead.h). Vertex indices
+// below 2^29.
+[[gnu::target("avx2")]] size_t fileEightsAvx2(const uint32_t* index, const uint32_t* ids, const glm::vec3* positions,
+                                              size_t triangles, bool ahead, InwardsTest& winding, EdgeRows& rows,
+                                              size_t& edges, bool& degenerate) {
+  const __m256i one = _mm256_set1_epi32(1);
   size_t t = 0;
   for (; t + 8 <= triangles; t += 8) {
     if (ahead && t + 72 <= triangles) {
@@ -620,99 +661,89 @@ void MeshContainer::weldSorted(double tolerance, const glm::dvec3& lo) {
     const __m256i c2 = _mm256_i32gather_epi32(reinterpret_cast<const int*>(ids), g[2], 4);
     const __m256i repeated = _mm256_or_si256(_mm256_or_si256(_mm256_cmpeq_epi32(c0, c1), _mm256_cmpeq_epi32(c1, c2)),
                                              _mm256_cmpeq_epi32(c2, c0));
-    const __m256i low01 = _mm256_min_epu32(c0, c1), high01 = _mm256_max_epu32(c0, c1);
-    alignas(32) uint32_t lowest[8], middle[8];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(lowest), _mm256_min_epu32(low01, c2));
-    _mm256_store_si256(reinterpret_cast<__m256i*>(middle), _mm256_max_epu32(low01, _mm256_min_epu32(high01, c2)));
+    // EdgeRows::triangle in lanes: the lowest corner, the corners after and before it.
+    const __m256i lowest = _mm256_min_epu32(_mm256_min_epu32(c0, c1), c2);
+    const __m256i atFirst = _mm256_cmpeq_epi32(lowest, c0), atSecond = _mm256_cmpeq_epi32(lowest, c1);
+    const __m256i next = _mm256_blendv_epi8(_mm256_blendv_epi8(c0, c2, atSecond), c1, atFirst);
+    const __m256i previous = _mm256_blendv_epi8(_mm256_blendv_epi8(c1, c0, atSecond), c2, atFirst);
+    const __m256i twiceNext = _mm256_add_epi32(next, next), twicePrevious = _mm256_add_epi32(previous, previous);
+    const __m256i nextLower = _mm256_cmpeq_epi32(_mm256_min_epu32(next, previous), next);
+    alignas(32) uint32_t at[8], leaving[8], arriving[8], oppositeAt[8], opposite[8];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(at), lowest);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(leaving), twiceNext);
+    _mm256_store_si256(reinterpret_cast<__m256i*>(arriving), _mm256_add_epi32(twicePrevious, one));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(oppositeAt), _mm256_min_epu32(next, previous));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(opposite),
+                       _mm256_blendv_epi8(_mm256_add_epi32(twiceNext, one), twicePrevious, nextLower));
     const uint32_t skip = static_cast<uint32_t>(_mm256_movemask_ps(_mm256_castsi256_ps(repeated)));
     for (int j = 0; j < 8; ++j) {
       if ((skip >> j) & 1u) {
         degenerate = true;
         continue;
       }
-      edgeStart[lowest[j] + 1] += 2;
-      ++edgeStart[middle[j] + 1];
+      rows.lowestTwo(at[j], leaving[j], arriving[j]);
+      rows.put(oppositeAt[j], rows.count[oppositeAt[j]]++, opposite[j]);
       edges += 3;
     }
   }
   return t;
 }
 #endif
-
-// The corners of a triangle (three distinct ids, in winding order) around its lowest id: two of its
-// edges meet there, so fileEdges files both under that id at once (one counter update, not two
-// that wait on each other) and the third, opposite edge under the lower of the other two.
-namespace {
-struct LowestCorner {
-  explicit LowestCorner(const uint32_t (&c)[3])
-      : lowest(c[0] < c[1] ? (c[0] < c[2] ? 0 : 2) : (c[1] < c[2] ? 1 : 2)),
-        next(lowest == 2 ? 0 : lowest + 1),
-        previous(lowest == 0 ? 2 : lowest - 1) {}
-  int lowest, next, previous;
-};
 }  // namespace
 
 // Closedness on position ids: every directed edge of a non-degenerate triangle used once, and its
-// reverse used once. Each edge is filed (counting sort) under the lower of its two ids, as the
-// higher id and a direction bit (fileEdges); the surface is closed when every list holds each
-// higher id exactly once in each direction (pairedLists). The connectivity of a closed mesh comes
-// from the same lists, unless degenerate triangles (which the lists leave out) join ids too.
+// reverse used once. Each edge is filed under the lower of its two ids, as the higher id and a
+// direction bit, in a row per id (fileRows); the surface is closed when every id's edges hold each
+// higher id exactly once in each direction (pairedRows). The connectivity of a closed mesh comes
+// from the same edges, unless degenerate triangles (which are not filed) join ids too.
 void MeshContainer::computeClosed() {
   bool degenerate = false, inwards = false;
-  const size_t edges = fileEdges(degenerate, inwards);
+  const size_t edges = fileRows(degenerate, inwards);
   closed_ = edges > 0 && edges % 2 == 0 && positionIdCount_ < 0x80000000u;
   connected_ = false;
   inverted_ = false;
   if (!closed_) return;
   uint32_t parts = 0;
-  closed_ = pairedLists(degenerate ? nullptr : &parts);
+  closed_ = pairedRows(degenerate ? nullptr : &parts);
   if (closed_ && degenerate) computeConnected();
   else connected_ = closed_ && parts == 1;
   inverted_ = closed_ && inwards;
 }
 
-// The counting sort of computeClosed: per position id a, in weldScratch().edgeTargets from
-// edgeStart[a] to edgeStart[a + 1], the edges whose lower id is a, each as 2 b (a to b) or 2 b + 1
-// (b to a). Returns the number of edges filed; `degenerate` tells whether some triangle was left
-// out for a repeated id; `inwards`, InwardsTest over every triangle (its position gathers share the
-// pass and its misses). On a big mesh the first pass asks for the corners' positions and ids 64
-// triangles ahead: read behind the indices, they came from memory about one at a time (the 1M
-// sphere's set-up: about 2 ms of 45; four triangles' tests at once, about 1.5 ms more). Where the
-// processor runs AVX2 the first pass takes eight triangles at a time (countEightsAvx2: corners,
-// ids and positions gathered in lanes, about 1 ms of the 1M sphere's 37).
-size_t MeshContainer::fileEdges(bool& degenerate, bool& inwards) {
-  std::vector<uint32_t>& edgeStart = weldScratch().edgeStart;
-  std::vector<uint32_t>& edgeTargets = weldScratch().edgeTargets;
-  std::vector<uint32_t>& cursor = weldScratch().cellNext;  // reused: fill cursor per id
+// The filing of computeClosed, one pass over the triangles: per position id a, in
+// weldScratch().rows from kRow a, the first kRow edges whose lower id is a, each as 2 b (a to b) or
+// 2 b + 1 (b to a), their count in rowCount[a] and the rest in the overflow (an id of high valence:
+// a pole, a cone's tip). Returns the number of edges filed; `degenerate` tells whether some
+// triangle was left out for a repeated id; `inwards`, InwardsTest over every triangle (its position
+// gathers share the pass and its misses). On a big mesh the pass asks for the corners' positions
+// and ids 64 triangles ahead: read behind the indices, they came from memory about one at a time.
+// Where the processor runs AVX2 it takes eight triangles at a time (fileEightsAvx2).
+size_t MeshContainer::fileRows(bool& degenerate, bool& inwards) {
+  WeldScratch& scratch = weldScratch();
   const uint32_t ids = positionIdCount_;
-  edgeStart.assign(size_t(ids) + 1, 0u);
+  scratch.rowCount.assign(ids, 0u);
+  scratch.rows.resize(size_t(kRow) * ids);
+  scratch.overflow.clear();
+  EdgeRows rows{scratch.rowCount.data(), scratch.rows.data(), &scratch.overflow};
   const uint32_t* index = source_->indices.data();
   const size_t indexCount = source_->indices.size() / 3 * 3;
-  auto corners = [&](size_t t, uint32_t (&out)[3]) {
-    out[0] = positionIds_[index[t]];
-    out[1] = positionIds_[index[t + 1]];
-    out[2] = positionIds_[index[t + 2]];
-    return out[0] != out[1] && out[1] != out[2] && out[2] != out[0];
-  };
   InwardsTest winding(source_->positions, source_->indices, 0.5 * (boundsMin_ + boundsMax_));
   size_t edges = 0;
-  auto count = [&](size_t t) {
-    uint32_t c[3];
-    if (!corners(t, c)) {
+  auto file = [&](size_t t) {
+    const uint32_t c[3] = {positionIds_[index[t]], positionIds_[index[t + 1]], positionIds_[index[t + 2]]};
+    if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) {
       degenerate = true;
       return;
     }
-    const LowestCorner at(c);
-    edgeStart[c[at.lowest] + 1] += 2;
-    ++edgeStart[std::min(c[at.next], c[at.previous]) + 1];
+    rows.triangle(c);
     edges += 3;
   };
   size_t t = 0;
   const size_t ahead = indexCount >= 3 * detail::kFarCount ? 3 * 64 : 0;  // read_ahead.h
 #ifdef CLEAVE_AVX2_VARIANTS
   if (detail::runsAvx2() && source_->positions.size() < (size_t(1) << 29)) {
-    t = 3 * countEightsAvx2(index, positionIds_.data(), source_->positions.data(), winding.whole(), ahead != 0,
-                            winding, edgeStart.data(), edges, degenerate);
+    t = 3 * fileEightsAvx2(index, positionIds_.data(), source_->positions.data(), winding.whole(), ahead != 0,
+                           winding, rows, edges, degenerate);
   }
 #endif
   for (; t < 3 * winding.whole(); t += 12) {
@@ -723,102 +754,106 @@ size_t MeshContainer::fileEdges(bool& degenerate, bool& inwards) {
       __builtin_prefetch(&positionIds_[index[t + ahead + 11]]);
     }
     winding.addFour(t / 3);
-    for (size_t k = t; k < t + 12; k += 3) count(k);
+    for (size_t k = t; k < t + 12; k += 3) file(k);
   }
   for (; t < indexCount; t += 3) {
     winding.add(t / 3);
-    count(t);
+    file(t);
   }
   inwards = winding.inwards();
-  for (uint32_t id = 0; id < ids; ++id) edgeStart[id + 1] += edgeStart[id];
-  edgeTargets.resize(edges);
-  cursor.assign(edgeStart.begin(), edgeStart.end() - 1);
-  for (size_t t = 0; t < indexCount; t += 3) {
-    uint32_t c[3];
-    if (!corners(t, c)) continue;
-    const LowestCorner at(c);
-    // The two edges at the lowest corner, in edge order: the one leaving it (to the next corner,
-    // forward) and the one arriving at it (from the previous corner, reverse).
-    const uint32_t leaving = 2 * c[at.next], arriving = 2 * c[at.previous] + 1;
-    uint32_t* pair = edgeTargets.data() + cursor[c[at.lowest]];
-    cursor[c[at.lowest]] += 2;
-    pair[0] = at.lowest == 0 ? leaving : arriving;
-    pair[1] = at.lowest == 0 ? arriving : leaving;
-    // The edge opposite, from the next corner to the previous one.
-    const uint32_t a = c[at.next], b = c[at.previous];
-    edgeTargets[cursor[std::min(a, b)]++] = a < b ? 2 * b : 2 * a + 1;
-  }
+  std::sort(scratch.overflow.begin(), scratch.overflow.end());
   return edges;
 }
 
-#ifdef CLEAVE_AVX2_VARIANTS  // index_range.h
-// pairedLists for a list of 1 to 8 entries, in one register: each entry must meet its reverse
-// (entry ^ 1) exactly once among the others. (An entry twice would give its reverse two, or itself
-// none.) Seven rotations compare every entry with every other; the lanes past the list hold ~0,
-// which no entry or reverse equals (ids are below 2^31).
-[[gnu::target("avx2")]] bool pairedShortAvx2(const uint32_t* entries, uint32_t count) {
-  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  const __m256i inList = _mm256_cmpgt_epi32(_mm256_set1_epi32(static_cast<int>(count)), lane);
-  const __m256i none = _mm256_set1_epi32(-1);
-  const __m256i v = _mm256_blendv_epi8(none, _mm256_maskload_epi32(reinterpret_cast<const int*>(entries), inList), inList);
-  const __m256i reverse = _mm256_xor_si256(v, _mm256_set1_epi32(1));
-  __m256i reverses = _mm256_setzero_si256();
-  for (int r = 1; r < 8; ++r) {
-    const __m256i other = _mm256_permutevar8x32_epi32(v, _mm256_and_si256(_mm256_add_epi32(lane, _mm256_set1_epi32(r)),
-                                                                         _mm256_set1_epi32(7)));
-    reverses = _mm256_sub_epi32(reverses, _mm256_cmpeq_epi32(other, reverse));
-  }
-  const __m256i bad = _mm256_andnot_si256(_mm256_cmpeq_epi32(reverses, _mm256_set1_epi32(1)), inList);
-  return _mm256_testz_si256(bad, bad) != 0;
-}
-#endif
+namespace {
+typedef uint32_t EightIds __attribute__((vector_size(8 * sizeof(uint32_t))));
+typedef int32_t EightFlags __attribute__((vector_size(8 * sizeof(int32_t))));
 
-// Whether every list of fileEdges holds each higher id once in each direction: per list, a tally
-// per higher id (one for a forward entry, 1 << 16 for a reverse one) must read exactly 0x10001 at
-// its first entry (then it is cleared); no branch depends on the entries until the list's verdict. A list of 65536 entries
-// or more (whose tally could carry) is sorted and read in pairs instead. With `parts`, the parts of
-// the id graph the lists make (a union-find over the forward entries; ids in no list are in none).
-bool MeshContainer::pairedLists(uint32_t* parts) {
-  const std::vector<uint32_t>& edgeStart = weldScratch().edgeStart;
-  std::vector<uint32_t>& edgeTargets = weldScratch().edgeTargets;
-  std::vector<uint32_t>& tally = weldScratch().tally;
-  std::vector<uint32_t>& parent = weldScratch().parent;
-  const uint32_t ids = positionIdCount_;
-  tally.assign(ids, 0u);
+// pairedRows for a row of 1 to 8 edges in one vector: each entry must meet its reverse (entry ^ 1)
+// exactly once among the others. (An entry twice would give its reverse two, or itself none.)
+// Seven rotations compare every entry with every other; the lanes past the count are set to ~0,
+// which no entry or reverse equals (ids are below 2^31).
+[[gnu::always_inline]] inline bool pairedEight(const uint32_t* row, uint32_t count) {
+  EightIds loaded;
+  std::memcpy(&loaded, row, sizeof loaded);
+  const EightIds lane = {0, 1, 2, 3, 4, 5, 6, 7};
+  const EightFlags inRow = lane < count - EightIds{};
+  const EightIds v = inRow ? loaded : ~EightIds{};
+  const EightIds reverse = v ^ 1u;
+  EightFlags reverses = {};
+  reverses -= __builtin_shufflevector(v, v, 1, 2, 3, 4, 5, 6, 7, 0) == reverse;
+  reverses -= __builtin_shufflevector(v, v, 2, 3, 4, 5, 6, 7, 0, 1) == reverse;
+  reverses -= __builtin_shufflevector(v, v, 3, 4, 5, 6, 7, 0, 1, 2) == reverse;
+  reverses -= __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3) == reverse;
+  reverses -= __builtin_shufflevector(v, v, 5, 6, 7, 0, 1, 2, 3, 4) == reverse;
+  reverses -= __builtin_shufflevector(v, v, 6, 7, 0, 1, 2, 3, 4, 5) == reverse;
+  reverses -= __builtin_shufflevector(v, v, 7, 0, 1, 2, 3, 4, 5, 6) == reverse;
+  const EightFlags bad = inRow & (reverses != 1);
+  uint64_t words[4];
+  std::memcpy(words, &bad, sizeof words);
+  return (words[0] | words[1] | words[2] | words[3]) == 0;
+}
+
+// pairedRows for one id's edges past a row: a tally per higher id (one for a forward entry, 1 << 16
+// for a reverse one) must read exactly 0x10001 at its first entry (then it is cleared); no branch
+// depends on the entries until the verdict. A list of 65536 entries or more (whose tally could
+// carry) is sorted and read in pairs instead.
+bool pairedLong(uint32_t* first, uint32_t* last, uint32_t* tally) {
+  if (last - first >= 0x10000) {
+    std::sort(first, last);
+    for (uint32_t* i = first; i < last; i += 2) {
+      if (last - i < 2 || (i[0] & 1u) != 0 || i[1] != i[0] + 1 || (i + 2 < last && (i[2] >> 1) == (i[0] >> 1))) {
+        return false;
+      }
+    }
+    return true;
+  }
+  for (const uint32_t* i = first; i < last; ++i) tally[*i >> 1] += (*i & 1u) ? 0x10000u : 1u;
+  // Read and cleared in one pass: the first entry of a higher id finds its whole tally, a later one
+  // finds it cleared (0).
+  uint32_t wrong = 0;
+  for (const uint32_t* i = first; i < last; ++i) {
+    const uint32_t count = tally[*i >> 1];
+    wrong |= uint32_t(count != 0x10001u && count != 0);
+    tally[*i >> 1] = 0;
+  }
+  return wrong == 0;
+}
+
+// The body of pairedRows (see there), written once: compiled for AVX2 and without.
+[[gnu::always_inline]] inline bool pairedRowsIn(WeldScratch& scratch, uint32_t ids, uint32_t* parts) {
+  const uint32_t* count = scratch.rowCount.data();
+  uint32_t* rows = scratch.rows.data();
+  const std::vector<uint64_t>& overflow = scratch.overflow;
+  std::vector<uint32_t>& longList = scratch.longList;
+  std::vector<uint32_t>& parent = scratch.parent;
+  if (!overflow.empty()) scratch.tally.assign(ids, 0u);
   if (parts) parent.assign(ids, kNone);
-  [[maybe_unused]] const bool shortLists = detail::runsAvx2();
   auto find = [&](uint32_t x) {
     if (parent[x] == kNone) return parent[x] = x;
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
+  size_t spilled = 0;  // into the overflow, sorted by id
+  const bool ahead = ids >= detail::kFarCount;
   for (uint32_t a = 0; a < ids; ++a) {
-    uint32_t* first = edgeTargets.data() + edgeStart[a];
-    uint32_t* last = edgeTargets.data() + edgeStart[a + 1];
-    if (first == last) continue;
-#ifdef CLEAVE_AVX2_VARIANTS
-    if (last - first <= 8 && shortLists) {
-      if (!pairedShortAvx2(first, static_cast<uint32_t>(last - first))) return false;
-    } else
-#endif
-    if (last - first >= 0x10000) {
-      std::sort(first, last);
-      for (uint32_t* i = first; i < last; i += 2) {
-        if (last - i < 2 || (i[0] & 1u) != 0 || i[1] != i[0] + 1 || (i + 2 < last && (i[2] >> 1) == (i[0] >> 1))) {
-          return false;
-        }
-      }
+    // Rows written in a scattered order in fileRows are read in order here: on a big mesh, asked for
+    // 64 rows ahead (read_ahead.h; the 1M sphere's set-up 1.5-2 ms less).
+    if (ahead && a + 64 < ids) __builtin_prefetch(rows + size_t(kRow) * (a + 64));
+    const uint32_t n = count[a];
+    if (n == 0) continue;
+    uint32_t* first = rows + size_t(kRow) * a;
+    uint32_t* last = first + n;
+    if (n <= kRow) {
+      if (!pairedEight(first, n)) return false;
     } else {
-      for (const uint32_t* i = first; i < last; ++i) tally[*i >> 1] += (*i & 1u) ? 0x10000u : 1u;
-      // Read and cleared in one pass: the first entry of a higher id finds its whole tally, a later
-      // one finds it cleared (0).
-      uint32_t wrong = 0;
-      for (const uint32_t* i = first; i < last; ++i) {
-        const uint32_t count = tally[*i >> 1];
-        wrong |= uint32_t(count != 0x10001u && count != 0);
-        tally[*i >> 1] = 0;
+      longList.assign(first, first + kRow);
+      for (; spilled < overflow.size() && (overflow[spilled] >> 32) == a; ++spilled) {
+        longList.push_back(static_cast<uint32_t>(overflow[spilled]));
       }
-      if (wrong != 0) return false;
+      first = longList.data();
+      last = first + longList.size();
+      if (!pairedLong(first, last, scratch.tally.data())) return false;
     }
     if (!parts) continue;
     uint32_t root = find(a);
@@ -837,12 +872,31 @@ bool MeshContainer::pairedLists(uint32_t* parts) {
   return true;
 }
 
+bool pairedRowsPlain(WeldScratch& scratch, uint32_t ids, uint32_t* parts) { return pairedRowsIn(scratch, ids, parts); }
+
+#ifdef CLEAVE_AVX2_VARIANTS  // index_range.h
+[[gnu::target("avx2")]] bool pairedRowsAvx2(WeldScratch& scratch, uint32_t ids, uint32_t* parts) {
+  return pairedRowsIn(scratch, ids, parts);
+}
+#endif
+}  // namespace
+
+// Whether every id's filed edges hold each higher id once in each direction: a row of up to kRow in
+// one vector (pairedEight), more with a tally (pairedLong). With `parts`, the parts of the id graph
+// the edges make (a union-find over the forward entries; ids with no edge are in none).
+bool MeshContainer::pairedRows(uint32_t* parts) {
+#ifdef CLEAVE_AVX2_VARIANTS
+  if (detail::runsAvx2()) return pairedRowsAvx2(weldScratch(), positionIdCount_, parts);
+#endif
+  return pairedRowsPlain(weldScratch(), positionIdCount_, parts);
+}
+
 // One part or several: a union-find over the position ids of every triangle's corners (degenerate
 // triangles too: the splitter's islands join them the same way), the lower id always the parent,
 // then the roots among the ids a triangle uses are counted (up to two).
 void MeshContainer::computeConnected() {
   std::vector<uint32_t>& parent = weldScratch().cellNext;  // reused: the union-find
-  std::vector<uint32_t>& used = weldScratch().edgeStart;   // reused: per id, used by a triangle
+  std::vector<uint32_t>& used = weldScratch().rowCount;    // reused: per id, used by a triangle
   const uint32_t ids = positionIdCount_;
   parent.resize(ids);
   std::iota(parent.begin(), parent.end(), 0u);

@@ -114,8 +114,8 @@ class MeshContainer {
   bool weldHashed(double tolerance, const glm::dvec3& lo, const glm::dvec3& hi);
   void weldSorted(double tolerance, const glm::dvec3& lo);
   void computeClosed();
-  size_t fileEdges(bool& degenerate, bool& inwards);
-  bool pairedLists(uint32_t* parts);
+  size_t fileRows(bool& degenerate, bool& inwards);
+  bool pairedRows(uint32_t* parts);
   void computeConnected();
   void updateBounds();
   void sourceBounds();  // updateBounds while the cut space is the source space, from the floats
