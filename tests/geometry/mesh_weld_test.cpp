@@ -274,8 +274,8 @@ TEST(MeshWeld, ClosednessAndPartsMatchTheReferenceOnDefects) {
   expectLikeReference(degenerateInside, "sphere with a degenerate triangle");
 }
 
-// Vertices of low valence: every edge list holds at most eight entries (pairedLists then checks a
-// list in one register where the processor runs AVX2), with the same defects as above.
+// Vertices of low valence: every id files at most eight edges (pairedRows then checks its row in
+// one vector rather than with the tally), with the same defects as above.
 TEST(MeshWeld, ClosednessOfShortEdgeListsMatchesTheReference) {
   MeshData tetrahedron;
   tetrahedron.positions = {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)};
