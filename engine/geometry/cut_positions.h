@@ -65,6 +65,8 @@ class CutPositions {
   Iterator end() const { return {this, size_}; }
   // The source floats; empty unless isSource().
   std::span<const glm::vec3> source() const { return {source_, source_ ? size_ : 0}; }
+  // The positions moved into cut space; empty while isSource().
+  std::span<const glm::dvec3> moved() const { return {moved_, moved_ ? size_ : 0}; }
   // All positions as one array of doubles: the held array, or `scratch` filled from the source
   // floats (its capacity is reused). For callers whose functions take a span of doubles.
   std::span<const glm::dvec3> doubles(std::vector<glm::dvec3>& scratch) const {

@@ -60,6 +60,7 @@
 #include "cleave/geometry/offset_list.h"
 #include "cleave/geometry/pass_threads.h"
 #include "cleave/geometry/read_ahead.h"
+#include "cleave/geometry/side_lanes.h"
 #include "cleave/geometry/whole_blocks.h"
 
 namespace cleave::geometry {
@@ -455,6 +456,7 @@ class Splitter final : public IMeshSplitter {
   // Whether cutWholeAndCollect takes whole triangles eight at a time (whole_blocks.h), and then per
   // source vertex its position id's side (then detail::kSidePadding bytes).
   bool wholeBlocks_ = false;
+  bool laneSides_ = false;  // classify takes ids four at a time (side_lanes.h)
   std::vector<int8_t> vertexSide_;
   struct Pending {  // cutWholeAndCollect: a crossing triangle and where its parts go
     uint32_t triangle;
@@ -659,6 +661,8 @@ SplitStatus Splitter::begin(const MeshContainer& container, const Plane& plane, 
   sourceCount_ = static_cast<uint32_t>(mesh.positions.size());
   mirrored_ = container.mirrored();
   wholeBlocks_ = detail::wholeBlocksRun(sourceCount_, idCount_);
+  laneSides_ = detail::wholeBlocksOn().load(std::memory_order_relaxed) && detail::runsAvx2() &&
+               sourceCount_ < (uint32_t(1) << 29);
   if (mesh.indices.empty() || mesh.positions.empty() || cut_.size() != mesh.positions.size() ||
       ids_.size() != mesh.positions.size()) {
     return fail(result, SplitStatus::InvalidInput, "the container holds no valid mesh (setMesh failed or was not called)");
@@ -1094,6 +1098,13 @@ void Splitter::classify(double tolerance) {
   const uint32_t ahead = idCount_ >= detail::kFarCount ? kIdsAhead : 0;
   inChunks(chunkCount(idCount_), idCount_, [&](uint32_t, uint32_t begin, uint32_t end) {
     int8_t* const sides = side_.data();  // a local pointer: a byte store would make every load again
+#ifdef CLEAVE_AVX2_VARIANTS
+    if (laneSides_) {  // side_lanes.h: four ids at a time, the same sides
+      detail::classifyAvx2(cut_.source().data(), cut_.moved().data(), reps_.data(), begin, end, normal_, offset_,
+                           tolerance, ahead, sides);
+      return;
+    }
+#endif
     for (uint32_t id = begin; id < end; ++id) {
       if (ahead != 0 && id + ahead < end) cut_.prefetch(reps_[id + ahead]);
       const double d = distanceOf(id);

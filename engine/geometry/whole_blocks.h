@@ -27,7 +27,8 @@ namespace cleave::geometry::detail {
 
 constexpr size_t kSidePadding = 3;
 
-// On unless a test turned the blocks off to compare them with the scalar loop (useWholeBlocks).
+// On unless a test turned the blocks off to compare them with the scalar loop (useWholeBlocks); the
+// classification's lanes (side_lanes.h) follow the same switch.
 inline std::atomic<bool>& wholeBlocksOn() {
   static std::atomic<bool> on{true};
   return on;

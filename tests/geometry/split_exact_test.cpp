@@ -902,12 +902,13 @@ TEST(ConcaveSplitter, ThreadsGiveTheSameBytesAsOneThread) {
   EXPECT_EQ(run(cases[4].mesh, cases[4].plane).result.pieces.size(), 3201u);
 }
 
-// The cut pass takes whole triangles eight at a time where the processor runs AVX2 (whole_blocks.h)
-// and leaves any block with a corner on the plane to its scalar loop: the output is the same bytes
-// with the blocks off. Planes through vertices (on-plane corners in many blocks), a mesh wound
-// inwards (its corners swapped), a part the plane does not reach (the islands' union, where the
-// blocks stand aside), many pieces, and the chunked pass on 1, 2 and 3 threads (chunk 0 of several
-// files its triangles backwards).
+// Where the processor runs AVX2 the classification takes ids four at a time (side_lanes.h) and the
+// cut pass whole triangles eight at a time (whole_blocks.h), leaving any block with a crossing
+// triangle to its scalar loop: the output is the same bytes with the lanes off. Planes through
+// vertices (on-plane corners in many blocks), a mesh wound inwards (its corners swapped), a part the
+// plane does not reach (the islands' union, where the blocks stand aside), many pieces, the chunked
+// passes on 1, 2 and 3 threads (chunk 0 of several files its triangles backwards), and cut
+// positions as the source's floats and as doubles moved by a transform.
 TEST(ConcaveSplitter, WholeTriangleBlocksGiveTheSameBytesAsTheScalarLoop) {
   if (!detail::wholeBlocksRun(3, 3)) GTEST_SKIP() << "this processor has no AVX2";
   struct Case {
@@ -926,18 +927,21 @@ TEST(ConcaveSplitter, WholeTriangleBlocksGiveTheSameBytesAsTheScalarLoop) {
       {"comb", primitives::combPrism(64), {planeOf({0, 1, 0}, 0.4), planeOf({0, 1, 0}, 0.2)}},
       {"bigSphere", primitives::uvSphere(1.f, 256, 128), {planeOf({0.12, 0.07, 0.99}, 0.0137), planeOf({0, 0, 1}, 0.0)}},
   };
+  const glm::mat4 moved = glm::rotate(glm::translate(glm::mat4(1.f), glm::vec3(0.3f, -0.2f, 0.1f)), 0.4f,
+                                      glm::vec3(0.2f, 1.f, 0.1f));
   size_t compared = 0;
   for (const Case& c : cases) {
     for (const Plane& plane : c.planes) {
       for (uint32_t threads : {1u, 2u, 3u}) {
+        const glm::mat4 model = threads == 2 ? moved : glm::mat4(1.f);
         SCOPED_TRACE(std::string(c.name) + ", " + std::to_string(threads) + " threads, offset " +
                      std::to_string(plane.offset));
         SplitOptions options;
         options.threads = threads;
         detail::useWholeBlocks(false);
-        const Split scalar = run(c.mesh, plane, options);
+        const Split scalar = run(c.mesh, plane, options, model);
         detail::useWholeBlocks(true);
-        const Split blocks = run(c.mesh, plane, options);
+        const Split blocks = run(c.mesh, plane, options, model);
         ASSERT_EQ(scalar.status, SplitStatus::Ok) << scalar.result.message;
         ASSERT_GE(scalar.result.pieces.size(), 2u);
         EXPECT_TRUE(sameBytes(scalar.result, blocks.result));
