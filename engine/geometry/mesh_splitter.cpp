@@ -370,6 +370,7 @@ class Splitter final : public IMeshSplitter {
     // pieces: gatherVertices sets back those writeTriangles set).
     std::vector<uint32_t> localOf;
     std::vector<uint32_t> weldRemap;   // per welded id: its position id in the piece, or kNone (all, between pieces)
+    detail::OffsetList<uint32_t> weldedOfId;  // pieceWeld: per position id of the piece, its welded id
     detail::OffsetList<glm::dvec3> pieceCut;  // cut-space positions of the piece being written (vertexCount)
     glm::dvec3 pieceLo{INFINITY}, pieceHi{-INFINITY};  // and their bounds
     std::vector<uint32_t> flipped;
@@ -1992,16 +1993,19 @@ void Splitter::pieceWeld(SideWork& w, MeshWeld& weld, bool closed) const {
   };
   uint32_t* const remap = w.weldRemap.data();
   uint32_t* const ids = weld.positionIds.data();
+  uint32_t* const weldedOfId = w.weldedOfId.place(count);  // per piece id: its welded id
   std::vector<uint32_t>& representatives = weld.representatives;
   for (uint32_t i = 0; i < count; ++i) {
-    uint32_t& entry = remap[weldedOfPiece(i)];
+    const uint32_t welded = weldedOfPiece(i);
+    uint32_t& entry = remap[welded];
     if (entry == kNone) {
       entry = static_cast<uint32_t>(representatives.size());
+      weldedOfId[entry] = welded;
       representatives.push_back(i);
     }
     ids[i] = entry;
   }
-  for (const uint32_t r : representatives) remap[weldedOfPiece(r)] = kNone;  // ready for the next piece
+  for (size_t id = 0; id < representatives.size(); ++id) remap[weldedOfId[id]] = kNone;  // ready for the next piece
 }
 
 // The union-find of one side's islands over welded ids: every triangle's corners united, or, after

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 #include <glm/glm.hpp>
 
@@ -51,9 +52,17 @@ namespace cleave::geometry::detail {
     }
     const __m256d d = _mm256_sub_pd(
         _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(nx, x), _mm256_mul_pd(ny, y)), _mm256_mul_pd(nz, z)), off);
-    const int up = _mm256_movemask_pd(_mm256_cmp_pd(d, above, _CMP_GT_OQ));
-    const int down = _mm256_movemask_pd(_mm256_cmp_pd(d, below, _CMP_LT_OQ));
-    for (int j = 0; j < 4; ++j) sides[id + j] = ((up >> j) & 1) ? 1 : (((down >> j) & 1) ? -1 : 0);
+    // Per lane +1, -1 or 0 as a 64-bit lane, then the low byte of each to four bytes.
+    const __m256i up = _mm256_castpd_si256(_mm256_cmp_pd(d, above, _CMP_GT_OQ));
+    const __m256i down = _mm256_castpd_si256(_mm256_cmp_pd(d, below, _CMP_LT_OQ));
+    const __m256i side = _mm256_sub_epi64(down, up);  // all ones (-1) below, 1 above, 0 on
+    const __m256i bytes = _mm256_shuffle_epi8(side, _mm256_setr_epi8(0, 8, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
+                                                                        -1, -1, -1, 0, 8, -1, -1, -1, -1, -1, -1, -1,
+                                                                        -1, -1, -1, -1, -1, -1, -1));
+    const uint32_t low = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm256_castsi256_si128(bytes))) & 0xffffu;
+    const uint32_t high = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm256_extracti128_si256(bytes, 1))) & 0xffffu;
+    const uint32_t four = low | high << 16;
+    std::memcpy(sides + id, &four, sizeof four);
   }
   for (; id < end; ++id) {
     const glm::dvec3 p = source ? glm::dvec3(source[reps[id]]) : moved[reps[id]];
