@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -24,12 +25,23 @@
 
 namespace cleave::geometry::detail {
 
-// Whether the processor runs AVX2 (asked once). The checks below then take twice the values per
-// instruction: the same loops compiled for it, the same answers.
+// On unless a test turned the AVX2 loops off (allowAvx2) to compare them with the plain ones.
+inline std::atomic<bool>& avx2Allowed() {
+  static std::atomic<bool> allowed{true};
+  return allowed;
+}
+// For tests: false makes runsAvx2() answer false from then on (passes already running may see
+// either), so that every AVX2 loop of the library gives way to its plain one.
+inline void allowAvx2(bool allowed) { avx2Allowed().store(allowed, std::memory_order_relaxed); }
+
+// Whether the processor runs AVX2 (asked once) and the AVX2 loops are allowed. The checks below
+// then take twice the values per instruction: the same loops compiled for it, the same answers.
+// So do the lanes of the classification, the cut pass (side_lanes.h, whole_blocks.h) and the
+// closedness check (mesh_container.cpp).
 inline bool runsAvx2() {
 #ifdef CLEAVE_AVX2_VARIANTS
   static const bool yes = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
-  return yes;
+  return yes && avx2Allowed().load(std::memory_order_relaxed);
 #else
   return false;
 #endif

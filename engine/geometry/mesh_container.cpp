@@ -773,6 +773,16 @@ typedef int32_t EightFlags __attribute__((vector_size(8 * sizeof(int32_t))));
 // exactly once among the others. (An entry twice would give its reverse two, or itself none.)
 // Seven rotations compare every entry with every other; the lanes past the count are set to ~0,
 // which no entry or reverse equals (ids are below 2^31).
+// How many entries of v rotated by r lanes (lane j takes lane j + r, mod 8) equal `reverse`, added
+// to `count` (-1 a match). __builtin_shufflevector: clang, and GCC from 12 (as the mass kernels).
+// Vectors go by reference: one returned by value changes the ABI where AVX is off.
+template <int r>
+[[gnu::always_inline]] inline void countRotated(const EightIds& v, const EightIds& reverse, EightFlags& count) {
+  const EightIds other = __builtin_shufflevector(v, v, r % 8, (r + 1) % 8, (r + 2) % 8, (r + 3) % 8, (r + 4) % 8,
+                                                 (r + 5) % 8, (r + 6) % 8, (r + 7) % 8);
+  count -= other == reverse;
+}
+
 [[gnu::always_inline]] inline bool pairedEight(const uint32_t* row, uint32_t count) {
   EightIds loaded;
   std::memcpy(&loaded, row, sizeof loaded);
@@ -781,13 +791,13 @@ typedef int32_t EightFlags __attribute__((vector_size(8 * sizeof(int32_t))));
   const EightIds v = inRow ? loaded : ~EightIds{};
   const EightIds reverse = v ^ 1u;
   EightFlags reverses = {};
-  reverses -= __builtin_shufflevector(v, v, 1, 2, 3, 4, 5, 6, 7, 0) == reverse;
-  reverses -= __builtin_shufflevector(v, v, 2, 3, 4, 5, 6, 7, 0, 1) == reverse;
-  reverses -= __builtin_shufflevector(v, v, 3, 4, 5, 6, 7, 0, 1, 2) == reverse;
-  reverses -= __builtin_shufflevector(v, v, 4, 5, 6, 7, 0, 1, 2, 3) == reverse;
-  reverses -= __builtin_shufflevector(v, v, 5, 6, 7, 0, 1, 2, 3, 4) == reverse;
-  reverses -= __builtin_shufflevector(v, v, 6, 7, 0, 1, 2, 3, 4, 5) == reverse;
-  reverses -= __builtin_shufflevector(v, v, 7, 0, 1, 2, 3, 4, 5, 6) == reverse;
+  countRotated<1>(v, reverse, reverses);
+  countRotated<2>(v, reverse, reverses);
+  countRotated<3>(v, reverse, reverses);
+  countRotated<4>(v, reverse, reverses);
+  countRotated<5>(v, reverse, reverses);
+  countRotated<6>(v, reverse, reverses);
+  countRotated<7>(v, reverse, reverses);
   const EightFlags bad = inRow & (reverses != 1);
   uint64_t words[4];
   std::memcpy(words, &bad, sizeof words);

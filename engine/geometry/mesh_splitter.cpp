@@ -454,11 +454,9 @@ class Splitter final : public IMeshSplitter {
   double diagonal_ = 0.0;  // the container's cut-space bounds diagonal
 
   std::vector<int8_t> side_;       // per position id: +1, -1, 0; then detail::kSidePadding bytes
-  // Whether cutWholeAndCollect takes whole triangles eight at a time (whole_blocks.h), and then per
-  // source vertex its position id's side (then detail::kSidePadding bytes).
-  bool wholeBlocks_ = false;
   bool laneSides_ = false;  // classify takes ids four at a time (side_lanes.h)
-  std::vector<int8_t> vertexSide_;
+  bool wholeBlocks_ = false;  // cutWholeAndCollect takes whole triangles eight at a time (whole_blocks.h)
+  std::vector<int8_t> vertexSide_;  // wholeBlocks_: per source vertex its id's side; padded as side_
   struct Pending {  // cutWholeAndCollect: a crossing triangle and where its parts go
     uint32_t triangle;
     uint32_t first[2];
@@ -662,8 +660,7 @@ SplitStatus Splitter::begin(const MeshContainer& container, const Plane& plane, 
   sourceCount_ = static_cast<uint32_t>(mesh.positions.size());
   mirrored_ = container.mirrored();
   wholeBlocks_ = detail::wholeBlocksRun(sourceCount_, idCount_);
-  laneSides_ = detail::wholeBlocksOn().load(std::memory_order_relaxed) && detail::runsAvx2() &&
-               sourceCount_ < (uint32_t(1) << 29);
+  laneSides_ = detail::runsAvx2() && sourceCount_ < (uint32_t(1) << 29);
   if (mesh.indices.empty() || mesh.positions.empty() || cut_.size() != mesh.positions.size() ||
       ids_.size() != mesh.positions.size()) {
     return fail(result, SplitStatus::InvalidInput, "the container holds no valid mesh (setMesh failed or was not called)");
@@ -961,8 +958,12 @@ void Splitter::collectRange(uint32_t begin, uint32_t end, bool unite, SideTriang
     // triangles of a block they stop at go through the loop here.
     if (blocks && (k - begin) % 8 == 0) {
       const int8_t* const vertexSides = vertexSide_.data();
-      if (kBackwards) k = begin + (end - detail::wholeBlocksAvx2<true>(indices, vertexSides, mirrored, begin, end - (k - begin), lists, at));
-      else k = detail::wholeBlocksAvx2<false>(indices, vertexSides, mirrored, k, end, lists, at);
+      if (kBackwards) {  // the triangles left are [begin, end - (k - begin)), last first
+        const uint32_t hi = detail::wholeBlocksAvx2<true>(indices, vertexSides, mirrored, begin, end - (k - begin), lists, at);
+        k = begin + (end - hi);
+      } else {
+        k = detail::wholeBlocksAvx2<false>(indices, vertexSides, mirrored, k, end, lists, at);
+      }
       if (k == end) break;
     }
 #endif

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Eight triangles of an index list as AVX2 lanes, for the passes that take triangles eight at a
-// time (the splitter's cut pass, whole_blocks.h; the container's closedness count). Internal to the
-// geometry library.
+// time (the splitter's cut pass, whole_blocks.h; the container's closedness filing, fileRows).
+// Internal to the geometry library.
 #pragma once
 
 #include <cstddef>

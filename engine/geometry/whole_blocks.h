@@ -27,19 +27,17 @@ namespace cleave::geometry::detail {
 
 constexpr size_t kSidePadding = 3;
 
-// On unless a test turned the blocks off to compare them with the scalar loop (useWholeBlocks); the
-// classification's lanes (side_lanes.h) follow the same switch.
-inline std::atomic<bool>& wholeBlocksOn() {
-  static std::atomic<bool> on{true};
-  return on;
-}
-// For tests: false leaves every triangle to the scalar loop, in splits that begin after the call.
-inline void useWholeBlocks(bool on) { wholeBlocksOn().store(on, std::memory_order_relaxed); }
-
-// Whether the blocks below run here, for a mesh of `vertices` vertices and `ids` position ids.
+// Whether the blocks below run here, for a mesh of `vertices` vertices and `ids` position ids (a
+// test turns them off with allowAvx2, index_range.h).
 inline bool wholeBlocksRun(size_t vertices, size_t ids) {
-  return wholeBlocksOn().load(std::memory_order_relaxed) && runsAvx2() && vertices < 0x80000000u &&
-         ids < 0x80000000u;
+  return runsAvx2() && vertices < 0x80000000u && ids < 0x80000000u;
+}
+
+// For tests: the blocks of eight taken so far in this process (wholeBlocksAvx2), so that a test can
+// tell that its splits went through them.
+inline std::atomic<uint64_t>& wholeBlocksTaken() {
+  static std::atomic<uint64_t> taken{0};
+  return taken;
 }
 
 #ifdef CLEAVE_AVX2_VARIANTS
@@ -81,6 +79,7 @@ template <bool kBackwards, class Row>
                                                  uint32_t lo, uint32_t hi, Row* const (&lists)[2], uint32_t (&at)[2]) {
   static_assert(sizeof(Row) == 16);
   const __m256i lanes = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const uint32_t loAtStart = lo, hiAtStart = hi;
   // Forwards the next row of each side; backwards one past it.
   Row* nextAbove = lists[0] + at[0];
   Row* nextBelow = lists[1] + at[1];
@@ -116,6 +115,7 @@ template <bool kBackwards, class Row>
     if (kBackwards) hi -= 8;
     else lo += 8;
   }
+  wholeBlocksTaken().fetch_add((kBackwards ? hiAtStart - hi : lo - loAtStart) / 8, std::memory_order_relaxed);
   at[0] = static_cast<uint32_t>(nextAbove - lists[0]);
   at[1] = static_cast<uint32_t>(nextBelow - lists[1]);
   return kBackwards ? hi : lo;

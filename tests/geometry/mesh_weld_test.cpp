@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "cleave/geometry/index_range.h"
 #include "cleave/geometry/mesh_splitter.h"
 #include "cleave/geometry/primitives.h"
 #include "test_meshes.h"
@@ -88,7 +89,9 @@ bool referenceConnected(const std::vector<uint32_t>& ids, const std::vector<uint
   return parts == 1;
 }
 
-// The container against the references; `what` names the mesh in a failure.
+// The container against the references; `what` names the mesh in a failure. Where the processor
+// runs AVX2, also against the container's plain loops (allowAvx2): the same closedness, parts and
+// winding.
 void expectLikeReference(const MeshData& mesh, const char* what) {
   SCOPED_TRACE(what);
   MeshContainer container;
@@ -98,6 +101,14 @@ void expectLikeReference(const MeshData& mesh, const char* what) {
   const bool closed = referenceClosed(ids, mesh.indices);
   EXPECT_EQ(container.closed(), closed);
   EXPECT_EQ(container.connected(), closed && referenceConnected(ids, mesh.indices));
+  detail::allowAvx2(false);
+  MeshContainer plain;
+  const bool set = plain.setMesh(mesh).ok();
+  detail::allowAvx2(true);
+  ASSERT_TRUE(set);
+  EXPECT_EQ(plain.closed(), container.closed());
+  EXPECT_EQ(plain.connected(), container.connected());
+  EXPECT_EQ(plain.inverted(), container.inverted());
 }
 
 // A closed slab over a grid of filled unit cells (like the benchmark's comb): top and bottom faces
@@ -274,8 +285,9 @@ TEST(MeshWeld, ClosednessAndPartsMatchTheReferenceOnDefects) {
   expectLikeReference(degenerateInside, "sphere with a degenerate triangle");
 }
 
-// Vertices of low valence: every id files at most eight edges (pairedRows then checks its row in
-// one vector rather than with the tally), with the same defects as above.
+// Vertices of low valence: the tetrahedron's ids file at most eight edges each (pairedRows then
+// checks a row in one vector rather than with the tally), with the same defects as above; the
+// doubled tetrahedron and the box also overflow a row at their lowest id.
 TEST(MeshWeld, ClosednessOfShortEdgeListsMatchesTheReference) {
   MeshData tetrahedron;
   tetrahedron.positions = {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)};
@@ -298,6 +310,14 @@ TEST(MeshWeld, ClosednessOfShortEdgeListsMatchesTheReference) {
   MeshData doubledBothWays = doubled;  // the face's edges used twice each way: four times in all
   doubledBothWays.indices.insert(doubledBothWays.indices.end(), reversed.begin(), reversed.end());
   expectLikeReference(doubledBothWays, "tetrahedron with a face doubled both ways");
+  MeshData inwards = tetrahedron;  // every face turned: closed, wound inwards
+  for (size_t t = 0; t < inwards.indices.size(); t += 3) std::swap(inwards.indices[t + 1], inwards.indices[t + 2]);
+  expectLikeReference(inwards, "tetrahedron wound inwards");
+  MeshData inwardSphere = primitives::uvSphere(1.f, 24, 12);  // past the first blocks of eight
+  for (size_t t = 0; t < inwardSphere.indices.size(); t += 3) std::swap(inwardSphere.indices[t + 1], inwardSphere.indices[t + 2]);
+  expectLikeReference(inwardSphere, "sphere wound inwards");
+  ASSERT_TRUE(container.setMesh(inwardSphere).ok());
+  EXPECT_TRUE(container.inverted());
   MeshData twice = primitives::merge(tetrahedron, tetrahedron);  // two closed copies at one place
   expectLikeReference(twice, "tetrahedron twice");
   expectLikeReference(primitives::box(glm::vec3(0.5f)), "box");

@@ -902,13 +902,14 @@ TEST(ConcaveSplitter, ThreadsGiveTheSameBytesAsOneThread) {
   EXPECT_EQ(run(cases[4].mesh, cases[4].plane).result.pieces.size(), 3201u);
 }
 
-// Where the processor runs AVX2 the classification takes ids four at a time (side_lanes.h) and the
-// cut pass whole triangles eight at a time (whole_blocks.h), leaving any block with a crossing
-// triangle to its scalar loop: the output is the same bytes with the lanes off. Planes through
-// vertices (on-plane corners in many blocks), a mesh wound inwards (its corners swapped), a part the
-// plane does not reach (the islands' union, where the blocks stand aside), many pieces, the chunked
-// passes on 1, 2 and 3 threads (chunk 0 of several files its triangles backwards), and cut
-// positions as the source's floats and as doubles moved by a transform.
+// Where the processor runs AVX2 the set-up's closedness filing, the classification (side_lanes.h)
+// and the cut pass (whole_blocks.h) take four or eight items at a time, leaving any block with a
+// crossing triangle to the scalar loop: the output is the same bytes with the AVX2 loops off
+// (allowAvx2). Planes through vertices (on-plane corners in many blocks), meshes wound inwards
+// (their corners swapped), a part the plane does not reach (the islands' union, where the blocks
+// stand aside), many pieces, the chunked passes on 1, 2 and 3 threads (chunk 0 of several files its
+// triangles backwards; the big inward sphere with them, and the classification in chunks past
+// 50,000 ids), and cut positions as the source's floats and as doubles moved by a transform.
 TEST(ConcaveSplitter, WholeTriangleBlocksGiveTheSameBytesAsTheScalarLoop) {
   if (!detail::wholeBlocksRun(3, 3)) GTEST_SKIP() << "this processor has no AVX2";
   struct Case {
@@ -916,20 +917,26 @@ TEST(ConcaveSplitter, WholeTriangleBlocksGiveTheSameBytesAsTheScalarLoop) {
     MeshData mesh;
     std::vector<Plane> planes;
   };
-  MeshData inwards = primitives::uvSphere(1.f, 48, 24);
-  for (size_t t = 0; t + 2 < inwards.indices.size(); t += 3) std::swap(inwards.indices[t + 1], inwards.indices[t + 2]);
+  auto inwardsOf = [](MeshData m) {
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
+    return m;
+  };
   const Case cases[] = {
       {"sphere", primitives::uvSphere(1.f, 64, 33),
        {planeOf({0, 0, 1}, 0.0), planeOf({0.12, 0.07, 0.99}, 0.0137), planeOf({1, 0, 0}, 0.5)}},
       {"torus", primitives::torus(1.f, 0.3f, 64, 24), {planeOf({0, 0, 1}, 0.0), planeOf({1, 0.2, 0.1}, 0.3)}},
-      {"inwards", inwards, {planeOf({0, 1, 0}, 0.0), planeOf({0.3, 1, 0.2}, 0.25)}},
+      {"inwards", inwardsOf(primitives::uvSphere(1.f, 48, 24)), {planeOf({0, 1, 0}, 0.0), planeOf({0.3, 1, 0.2}, 0.25)}},
       {"twoSpheres", primitives::twoDisjointSpheres(0.5f, 0.1f, 48, 24), {planeOf({1, 0, 0}, -0.55)}},
       {"comb", primitives::combPrism(64), {planeOf({0, 1, 0}, 0.4), planeOf({0, 1, 0}, 0.2)}},
       {"bigSphere", primitives::uvSphere(1.f, 256, 128), {planeOf({0.12, 0.07, 0.99}, 0.0137), planeOf({0, 0, 1}, 0.0)}},
+      {"bigInwards", inwardsOf(primitives::uvSphere(1.f, 256, 128)), {planeOf({0.2, 1, 0.1}, 0.05)}},
+      {"manyIds", primitives::uvSphere(1.f, 320, 160), {planeOf({1, 0.1, 0.05}, -0.2)}},
   };
+  ASSERT_GT(cases[7].mesh.positions.size(), 50000u);
   const glm::mat4 moved = glm::rotate(glm::translate(glm::mat4(1.f), glm::vec3(0.3f, -0.2f, 0.1f)), 0.4f,
                                       glm::vec3(0.2f, 1.f, 0.1f));
   size_t compared = 0;
+  const uint64_t blocksBefore = detail::wholeBlocksTaken().load();
   for (const Case& c : cases) {
     for (const Plane& plane : c.planes) {
       for (uint32_t threads : {1u, 2u, 3u}) {
@@ -938,9 +945,9 @@ TEST(ConcaveSplitter, WholeTriangleBlocksGiveTheSameBytesAsTheScalarLoop) {
                      std::to_string(plane.offset));
         SplitOptions options;
         options.threads = threads;
-        detail::useWholeBlocks(false);
+        detail::allowAvx2(false);
         const Split scalar = run(c.mesh, plane, options, model);
-        detail::useWholeBlocks(true);
+        detail::allowAvx2(true);
         const Split blocks = run(c.mesh, plane, options, model);
         ASSERT_EQ(scalar.status, SplitStatus::Ok) << scalar.result.message;
         ASSERT_GE(scalar.result.pieces.size(), 2u);
@@ -949,7 +956,9 @@ TEST(ConcaveSplitter, WholeTriangleBlocksGiveTheSameBytesAsTheScalarLoop) {
       }
     }
   }
-  EXPECT_EQ(compared, 36u);
+  EXPECT_EQ(compared, 42u);
+  // The blocks ran: most triangles of these meshes lie in blocks of eight whole ones.
+  EXPECT_GT(detail::wholeBlocksTaken().load() - blocksBefore, 20000u);
 }
 
 // A container whose cut space is the source space lends the splitter the source floats (no copy in
