@@ -1960,19 +1960,26 @@ void Splitter::gatherPositions(SideWork& w, std::vector<glm::vec3>& positions) c
   const bool sourceSpace = cut_.isSource();
   uint32_t* const localOf = w.localOf.data();
   glm::dvec3* const cut = w.pieceCut.place(count);
-  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  // The bounds in two pairs, even and odd vertices: each minimum then waits on the one two vertices
+  // back, not on the one before.
+  glm::dvec3 lo[2] = {glm::dvec3(INFINITY), glm::dvec3(INFINITY)}, hi[2] = {glm::dvec3(-INFINITY), glm::dvec3(-INFINITY)};
   assignMapped(positions, count, [&](size_t i) {
     const uint32_t ref = refs[i];
     localOf[ref] = kNone;
     const glm::vec3 p = ref < sourceCount ? source[ref] : extra[ref - sourceCount];
     const glm::dvec3 q = sourceSpace && ref < sourceCount ? glm::dvec3(p) : cutOfAny(ref);
     cut[i] = q;
-    lo = glm::min(lo, q);
-    hi = glm::max(hi, q);
+    if (i & 1) {
+      lo[1] = glm::min(lo[1], q);
+      hi[1] = glm::max(hi[1], q);
+    } else {
+      lo[0] = glm::min(lo[0], q);
+      hi[0] = glm::max(hi[0], q);
+    }
     return p;
   });
-  w.pieceLo = lo;
-  w.pieceHi = hi;
+  w.pieceLo = glm::min(lo[0], lo[1]);
+  w.pieceHi = glm::max(hi[0], hi[1]);
 }
 
 // The weld of the piece being written: its vertices' welded ids (merged cut points taken to the point
@@ -2139,8 +2146,9 @@ uint32_t Splitter::labelSide(int side, SideWork& w, const SplitOptions& options,
     const int8_t otherSide = side == 0 ? -1 : 1;
     uint32_t roots = 0;
     for (uint32_t x = 0; x < weldedCount; ++x) {
+      if (x < idCount_ && side_[x] == otherSide) continue;  // not this side's: no triangle of it uses x
       const uint32_t root = w.parent[x] = w.parent[w.parent[x]];
-      roots += root == x && (x >= idCount_ || side_[x] != otherSide) ? 1u : 0u;
+      roots += root == x ? 1u : 0u;
     }
     if (roots == 1 && !tris.empty()) {
       // Every id this side can use is in one island: so is every triangle, and no label is needed.
