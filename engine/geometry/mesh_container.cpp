@@ -618,9 +618,10 @@ struct EdgeRows {
     const int lowest = c[0] < c[1] ? (c[0] < c[2] ? 0 : 2) : (c[1] < c[2] ? 1 : 2);
     const uint32_t next = c[lowest == 2 ? 0 : lowest + 1], previous = c[lowest == 0 ? 2 : lowest - 1];
     lowestTwo(c[lowest], 2 * next, 2 * previous + 1);
-    const uint32_t at = std::min(next, previous);
-    put(at, count[at]++, next < previous ? 2 * previous : 2 * next + 1);
+    opposite(std::min(next, previous), next < previous ? 2 * previous : 2 * next + 1);
   }
+  // The edge opposite a triangle's lowest id, under the lower of its two ids `a`.
+  void opposite(uint32_t a, uint32_t edge) { put(a, count[a]++, edge); }
   [[gnu::always_inline]] void lowestTwo(uint32_t a, uint32_t leaving, uint32_t arriving) {
     const uint32_t slot = count[a];
     count[a] = slot + 2;
@@ -682,7 +683,7 @@ struct EdgeRows {
         continue;
       }
       rows.lowestTwo(at[j], leaving[j], arriving[j]);
-      rows.put(oppositeAt[j], rows.count[oppositeAt[j]]++, opposite[j]);
+      rows.opposite(oppositeAt[j], opposite[j]);
       edges += 3;
     }
   }
@@ -769,10 +770,6 @@ namespace {
 typedef uint32_t EightIds __attribute__((vector_size(8 * sizeof(uint32_t))));
 typedef int32_t EightFlags __attribute__((vector_size(8 * sizeof(int32_t))));
 
-// pairedRows for a row of 1 to 8 edges in one vector: each entry must meet its reverse (entry ^ 1)
-// exactly once among the others. (An entry twice would give its reverse two, or itself none.)
-// Seven rotations compare every entry with every other; the lanes past the count are set to ~0,
-// which no entry or reverse equals (ids are below 2^31).
 // How many entries of v rotated by r lanes (lane j takes lane j + r, mod 8) equal `reverse`, added
 // to `count` (-1 a match). __builtin_shufflevector: clang, and GCC from 12 (as the mass kernels).
 // Vectors go by reference: one returned by value changes the ABI where AVX is off.
@@ -783,6 +780,10 @@ template <int r>
   count -= other == reverse;
 }
 
+// pairedRows for a row of 1 to 8 edges in one vector: each entry must meet its reverse (entry ^ 1)
+// exactly once among the others. (An entry twice would give its reverse two, or itself none.)
+// Seven rotations compare every entry with every other; the lanes past the count are set to ~0,
+// which no entry or reverse equals (ids are below 2^31).
 [[gnu::always_inline]] inline bool pairedEight(const uint32_t* row, uint32_t count) {
   EightIds loaded;
   std::memcpy(&loaded, row, sizeof loaded);

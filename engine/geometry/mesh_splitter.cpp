@@ -245,7 +245,6 @@ constexpr uint32_t kDroppedSource = kNone;  // SideTriangle::source of a triangl
 // places that are filled before they are read (a crossing triangle's parts).
 using SideList = detail::OffsetList<SideTriangle>;
 
-
 struct LoopInfo {
   uint32_t begin = 0, end = 0;  // into loopIds_ / points_
   double twiceArea = 0.0;
@@ -1100,14 +1099,14 @@ void Splitter::classify(double tolerance) {
   const uint32_t ahead = idCount_ >= detail::kFarCount ? kIdsAhead : 0;
   inChunks(chunkCount(idCount_), idCount_, [&](uint32_t, uint32_t begin, uint32_t end) {
     int8_t* const sides = side_.data();  // a local pointer: a byte store would make every load again
+    uint32_t id = begin;
 #ifdef CLEAVE_AVX2_VARIANTS
-    if (laneSides_) {  // side_lanes.h: four ids at a time, the same sides
-      detail::classifyAvx2(cut_.source().data(), cut_.moved().data(), reps_.data(), begin, end, normal_, offset_,
-                           tolerance, ahead, sides);
-      return;
+    if (laneSides_) {  // side_lanes.h: four ids at a time, the same sides; the last few below
+      id = detail::classifyAvx2(cut_.source().data(), cut_.moved().data(), reps_.data(), begin, end, normal_, offset_,
+                                tolerance, ahead, sides);
     }
 #endif
-    for (uint32_t id = begin; id < end; ++id) {
+    for (; id < end; ++id) {
       if (ahead != 0 && id + ahead < end) cut_.prefetch(reps_[id + ahead]);
       const double d = distanceOf(id);
       sides[id] = d > tolerance ? 1 : (d < -tolerance ? -1 : 0);
@@ -1960,26 +1959,19 @@ void Splitter::gatherPositions(SideWork& w, std::vector<glm::vec3>& positions) c
   const bool sourceSpace = cut_.isSource();
   uint32_t* const localOf = w.localOf.data();
   glm::dvec3* const cut = w.pieceCut.place(count);
-  // The bounds in two pairs, even and odd vertices: each minimum then waits on the one two vertices
-  // back, not on the one before.
-  glm::dvec3 lo[2] = {glm::dvec3(INFINITY), glm::dvec3(INFINITY)}, hi[2] = {glm::dvec3(-INFINITY), glm::dvec3(-INFINITY)};
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
   assignMapped(positions, count, [&](size_t i) {
     const uint32_t ref = refs[i];
     localOf[ref] = kNone;
     const glm::vec3 p = ref < sourceCount ? source[ref] : extra[ref - sourceCount];
     const glm::dvec3 q = sourceSpace && ref < sourceCount ? glm::dvec3(p) : cutOfAny(ref);
     cut[i] = q;
-    if (i & 1) {
-      lo[1] = glm::min(lo[1], q);
-      hi[1] = glm::max(hi[1], q);
-    } else {
-      lo[0] = glm::min(lo[0], q);
-      hi[0] = glm::max(hi[0], q);
-    }
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
     return p;
   });
-  w.pieceLo = glm::min(lo[0], lo[1]);
-  w.pieceHi = glm::max(hi[0], hi[1]);
+  w.pieceLo = lo;
+  w.pieceHi = hi;
 }
 
 // The weld of the piece being written: its vertices' welded ids (merged cut points taken to the point

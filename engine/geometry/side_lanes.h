@@ -19,11 +19,12 @@
 namespace cleave::geometry::detail {
 
 #ifdef CLEAVE_AVX2_VARIANTS
-// sides[id] for the ids [begin, end), the representative of id being vertex reps[id] of the cut
-// positions: `source` floats or, when it is null, `moved` doubles. With `ahead` (a big mesh), the
-// representatives `ahead` ids on are asked for early. Vertex indices below 2^29 (gathered at three
-// times the index).
-[[gnu::target("avx2")]] inline void classifyAvx2(const glm::vec3* source, const glm::dvec3* moved, const uint32_t* reps,
+// sides[id] for the ids from begin in groups of four below end, the representative of id being
+// vertex reps[id] of the cut positions: `source` floats or, when it is null, `moved` doubles.
+// Returns the first id not done (the caller's scalar loop takes the last fewer than four). With
+// `ahead` (a big mesh), the representatives `ahead` ids on are asked for early. Vertex indices
+// below 2^29 (gathered at three times the index).
+[[gnu::target("avx2")]] inline uint32_t classifyAvx2(const glm::vec3* source, const glm::dvec3* moved, const uint32_t* reps,
                                                  uint32_t begin, uint32_t end, const glm::dvec3& normal,
                                                  double offset, double tolerance, uint32_t ahead, int8_t* sides) {
   const __m256d nx = _mm256_set1_pd(normal.x), ny = _mm256_set1_pd(normal.y), nz = _mm256_set1_pd(normal.z);
@@ -64,11 +65,7 @@ namespace cleave::geometry::detail {
     const uint32_t four = low | high << 16;
     std::memcpy(sides + id, &four, sizeof four);
   }
-  for (; id < end; ++id) {
-    const glm::dvec3 p = source ? glm::dvec3(source[reps[id]]) : moved[reps[id]];
-    const double d = glm::dot(normal, p) - offset;
-    sides[id] = d > tolerance ? 1 : (d < -tolerance ? -1 : 0);
-  }
+  return id;
 }
 #endif
 
