@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "cleave/components/piece_budget.h"
 #include "cleave/ecs/entity.h"
 #include "cleave/geometry/collider_parts.h"
 #include "cleave/geometry/mesh_data.h"
@@ -34,6 +35,9 @@ struct MeshRenderer {
 struct RigidBody {
   physics::BodyId body;
   physics::ShapeId shape;
+  // The body was awake at the last transform sync (syncTransformsFromBodies reads sleeping and
+  // frozen bodies once more after they stop, then leaves them alone until they wake).
+  bool moving = true;
 };
 
 // The convex parts the entity's collider is made of, in the mesh space of its MeshRenderer::source
@@ -57,6 +61,9 @@ struct SplitOrigin {
   ecs::Entity parent;
   uint64_t parentId = 0;    // the parent's id as written in the state dump
   uint32_t generation = 0;  // 0 for authored objects, +1 per cut
+  uint64_t tick = 0;        // the tick the piece was made in (the piece budget's age)
+  // How the piece budget retires it (piece_budget.h), from the Splitable of the object it came from.
+  PieceRetirement retirement = PieceRetirement::Default;
 };
 
 // The material set an entity shows; the demo cycles it with Q/E.

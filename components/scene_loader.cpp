@@ -1245,11 +1245,11 @@ void runSceneTick(SplitWorld& w, SplitSystem& splits, SceneRunner& runner, uint6
                   const glm::dvec3& cameraPosition) {
   runner.update(w, tick, dt);                  // Gameplay
   splits.gatherTriggerRequests(w, tick);       // Triggers
-  splits.activatePending(w);                   // Split
-  splits.runSplits(w, tick, cameraPosition);
+  splits.runSplits(w, tick, cameraPosition);   // Split (activations first), Commit
   w.physics.step(dt);                          // PhysicsStep
   syncTransformsFromBodies(w);                 // PhysicsSync
   updateDebris(w, float(dt));
+  splits.settlePieces(w, tick, dt);
 }
 
 }  // namespace cleave::components

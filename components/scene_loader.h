@@ -148,8 +148,8 @@ class SceneRunner {
 ecs::Entity createSplitterEntity(SplitWorld& w, const ScheduledSplitter& s);
 
 // One whole headless tick in the App's phase order: Gameplay (runner.update), Triggers
-// (gatherTriggerRequests), Split (activatePending, runSplits), PhysicsStep, PhysicsSync
-// (syncTransformsFromBodies, updateDebris). A request gathered in tick N is executed in tick N+1.
+// (gatherTriggerRequests), Split and Commit (runSplits, which activates queued bodies first),
+// PhysicsStep, PhysicsSync (syncTransformsFromBodies, updateDebris, settlePieces). A request gathered in tick N is executed in tick N+1.
 void runSceneTick(SplitWorld& w, SplitSystem& splits, SceneRunner& runner, uint64_t tick, double dt,
                   const glm::dvec3& cameraPosition);
 

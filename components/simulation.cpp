@@ -31,6 +31,11 @@ void Simulation::sync(double dt) {
   updateDebris(w, float(dt));
 }
 
+void Simulation::settle(uint64_t tick, double dt) {
+  SplitWorld w = splitWorld();
+  splits_.settlePieces(w, tick, dt);
+}
+
 void Simulation::animate(double dt) {
   SplitWorld w = splitWorld();
   updateAnimations(w, float(dt));
@@ -42,6 +47,7 @@ void Simulation::step(uint64_t tick, double dt, const glm::dvec3& camera) {
   commit(tick);
   stepPhysics(dt);
   sync(dt);
+  settle(tick, dt);
   animate(dt);
 }
 
@@ -57,7 +63,10 @@ void installSplitting(app::App& app, Simulation& sim, SplittingHooks hooks) {
     if (committed) committed(c, sim.splits().lastEvents());
   });
   app.addSystem(app::Phase::PhysicsStep, "physics.step", [&sim](app::TickContext& c) { sim.stepPhysics(c.dt); });
-  app.addSystem(app::Phase::PhysicsSync, "physics.sync", [&sim](app::TickContext& c) { sim.sync(c.dt); });
+  app.addSystem(app::Phase::PhysicsSync, "physics.sync", [&sim](app::TickContext& c) {
+    sim.sync(c.dt);
+    sim.settle(c.tick, c.dt);
+  });
   app.addSystem(app::Phase::Animation, "animation", [&sim](app::TickContext& c) { sim.animate(c.dt); });
 }
 

@@ -46,6 +46,7 @@ class Simulation {
   void commit(uint64_t tick);                             // Commit
   void stepPhysics(double dt);                            // PhysicsStep
   void sync(double dt);                                   // PhysicsSync
+  void settle(uint64_t tick, double dt);                  // PhysicsSync, after sync: the piece budget
   void animate(double dt);                                // Animation
   // One whole tick without an App (gameplay is the caller's, before this).
   void step(uint64_t tick, double dt, const glm::dvec3& camera);

@@ -118,18 +118,34 @@ void planHierarchyChildren(const PieceContext& c, const geometry::MeshData& whol
   }
 }
 
+// True when the mesh, seen in its body frame (principal axes), is thinner than `thickness` along
+// one of the axes.
+bool thinnerThan(const geometry::MeshData& mesh, const glm::dmat4& toBody, double thickness) {
+  if (thickness <= 0.0 || mesh.positions.empty()) return false;
+  glm::dvec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::vec3& p : mesh.positions) {
+    const glm::dvec3 q(toBody * glm::dvec4(p, 1.0));
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  const glm::dvec3 size = hi - lo;
+  return std::min({size.x, size.y, size.z}) < thickness;
+}
+
 // Plans one piece; returns false when the piece is removed (small, SmallPieceMode::Remove).
 bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint32_t k, PieceSpec& spec) {
   const SplitJob& job = c.job;
   const Splitable& sp = job.settings;
   spec.volume = std::max(piece.mass.volume, 0.0);
   spec.mass = c.shareParentMass ? job.parent.mass * spec.volume / c.totalVolume : sp.density * spec.volume;
-  const bool small = spec.volume < sp.minPieceVolume;
+  spec.frame = bodyFrameFor(piece.mass, std::max(spec.mass, 1e-9), job.model);
+  // Too small for the solver: by volume, or (a rigid piece) by its thinnest extent.
+  const bool small = spec.volume < std::max(sp.minPieceVolume, job.minBodyVolume) ||
+                     (!job.skinned() && thinnerThan(piece.mesh, spec.frame.meshOffset, job.minBodyThickness));
   if (small && sp.smallPieces == SmallPieceMode::Remove) return false;
   spec.side = piece.side;
   spec.capLoops = piece.capLoops;
   spec.closed = piece.mass.closed;
-  spec.frame = bodyFrameFor(piece.mass, std::max(spec.mass, 1e-9), job.model);
   spec.offsetFromParent = spec.frame.position - job.parent.centre;
   spec.impulse = c.normal * (double(piece.side) * sp.splitImpulse);
   spec.velocity = job.parent.velocity + glm::cross(job.parent.angularVelocity, spec.offsetFromParent) + spec.impulse;

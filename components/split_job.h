@@ -99,6 +99,9 @@ struct SplitJob {
   Splitable settings;          // the target's Splitable (pieces get a copy)
   ParentMotion parent;
   uint32_t depth = 1;          // cuts deep the pieces will be
+  // The piece budget's smallest body (piece_budget.h): smaller pieces are debris (or removed).
+  double minBodyVolume = 0.0;      // m^3, beside Splitable::minPieceVolume
+  double minBodyThickness = 0.0;   // m, smallest extent along the principal axes (rigid jobs)
   std::vector<render::Material> materials;  // piece materials, the cap material in place
   bool hasMaterialChoice = false;
   int materialChoice = 0;

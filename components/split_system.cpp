@@ -368,9 +368,25 @@ base::Status makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, Colli
   return {};
 }
 
+namespace {
+
+// True when the plane through `origin` with unit `normal` passes through the body's collider.
+bool planeCrossesBody(const physics::PhysicsWorld& physics, physics::BodyId body, const glm::dvec3& normal,
+                      const glm::dvec3& origin) {
+  const auto extent = physics.extentAlong(body, glm::vec3(normal));
+  if (!extent) return false;
+  const double d = glm::dot(normal, origin);
+  return double(extent->x) < d && d < double(extent->y);
+}
+
+}  // namespace
+
 void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
+  // (splitter index, object id) of every touch of a persistent splitter in the last step: an object
+  // whose bodies (a ragdoll has several) no longer touch the blade has left it, and its next touch
+  // is a new pass.
+  std::vector<std::pair<uint32_t, uint64_t>> touching;
   for (const physics::TriggerEvent& ev : w.physics.triggerEvents()) {
-    if (ev.kind == physics::TriggerEventKind::Stay) continue;
     const auto splitterUser = w.physics.triggerUserData(ev.trigger);
     const auto bodyUser = w.physics.bodyUserData(ev.body);
     if (!splitterUser || !bodyUser) continue;
@@ -380,24 +396,25 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
     auto* splitter = w.world.tryGet<Splitter>(splitterEntity);
     if (!splitter) continue;
     const bool persistent = splitter->lifetime == SplitterLifetime::Persistent;
-    if (ev.kind == physics::TriggerEventKind::End) {
-      // It left the blade: the next touch is a new pass.
-      if (persistent) std::erase(splitter->passing, *bodyUser);
-      continue;
-    }
+    // A touch that goes on matters to a persistent splitter whose plane did not cross the body yet.
+    if (ev.kind == physics::TriggerEventKind::Stay && !persistent) continue;
+    if (ev.kind == physics::TriggerEventKind::End) continue;  // passes end below
+    if (persistent) touching.emplace_back(splitterEntity.index, *bodyUser);
     if (!w.world.has<Splitable>(target)) continue;
     // A persistent splitter cuts an object once per pass: the pieces of its own cut appear touching
     // it (their caps lie on its plane) and are not cut again.
-    if (persistent) {
-      if (std::find(splitter->passing.begin(), splitter->passing.end(), *bodyUser) != splitter->passing.end())
-        continue;
-      splitter->passing.push_back(*bodyUser);
-    }
+    if (persistent &&
+        std::find(splitter->passing.begin(), splitter->passing.end(), *bodyUser) != splitter->passing.end())
+      continue;
     const auto* wt = w.world.tryGet<ecs::WorldTransform>(splitterEntity);
     if (!wt) continue;
     const glm::dmat4 m(wt->matrix);
     const glm::dvec3 origin(m[3]);
     const glm::dvec3 normal = glm::normalize(glm::transpose(glm::inverse(glm::dmat3(m))) * glm::dvec3(0, 1, 0));
+    // The trigger box is thicker than the plane: a body that touches the box but lies wholly on one
+    // side of the plane is not asked for (yet); a persistent blade asks once its plane crosses it.
+    if (splitter->kind == SplitterKind::Plane && !planeCrossesBody(w.physics, ev.body, normal, origin)) continue;
+    if (persistent) splitter->passing.push_back(*bodyUser);
     SplitRequest r;
     r.target = target;
     r.planeNormal = normal;
@@ -415,13 +432,22 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
   }
   // One-tick splitters are gone after the step that reported their touches.
   ecs::CommandBuffer& commands = commandsFor(scratch_->commands, scratch_->commandsWorld, w.world);
+  std::sort(touching.begin(), touching.end());
   for (auto [e, splitter] : w.world.view<Splitter>()) {
-    std::erase_if(splitter.passing, [&](uint64_t id) { return !w.world.alive(fromUserData(id)); });
+    std::erase_if(splitter.passing, [&](uint64_t id) {
+      return !w.world.alive(fromUserData(id)) ||
+             (splitter.lifetime == SplitterLifetime::Persistent &&
+              !std::binary_search(touching.begin(), touching.end(), std::pair(e.index, id)));
+    });
     if (splitter.lifetime == SplitterLifetime::OneTick && w.physics.isTriggerSpent(splitter.trigger)) {
       commands.destroy(e);
     }
   }
   flush(w);
+}
+
+void SplitSystem::settlePieces(SplitWorld& w, uint64_t tick, double dt) {
+  pieces_.update(w, tick, camera_, float(dt));
 }
 
 void SplitSystem::activatePending(SplitWorld& w) {
@@ -470,6 +496,7 @@ SplitCost estimateSplit(SplitWorld& w, const SplitBudgetSettings& s, const Split
 void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
   const double start = nowMilliseconds();
   events_.clear();
+  camera_ = cameraPosition;
   activatePending(w);
   auto inFlight = [this](ecs::Entity e) {
     return std::any_of(pending_.begin(), pending_.end(), [&](const Pending& p) { return p.job->request.target == e; });
@@ -652,6 +679,8 @@ bool SplitSystem::prepare(SplitWorld& w, const SplitRequest& request, uint64_t t
   job.settings = *sp;
   const auto* origin = w.world.tryGet<SplitOrigin>(target);
   job.depth = origin ? origin->generation + 1 : 1;
+  job.minBodyVolume = pieces_.settings().minBodyVolume;
+  job.minBodyThickness = pieces_.settings().minBodyThickness;
   job.materials = mr ? mr->materials : std::vector<render::Material>{};
   if (job.materials.size() <= sp->capMaterialId)
     job.materials.resize(sp->capMaterialId + 1, job.materials.empty() ? render::Material{} : job.materials.back());
@@ -846,7 +875,10 @@ void addPieceComponents(CommitContext& c, const PieceSpec& spec, ecs::Entity e, 
   so.parent = c.job.request.target;
   so.parentId = toUserData(c.job.request.target);
   so.generation = c.job.depth;
+  so.tick = c.ev.tick;
+  so.retirement = c.job.settings.retirement;
   c.commands.add<SplitOrigin>(e, so);
+  if (spec.kind != PieceKind::Debris) c.commands.add<PieceMotion>(e, PieceMotion{});
   if (c.job.hasMaterialChoice) c.commands.add<MaterialChoice>(e, MaterialChoice{c.job.materialChoice});
   // A piece drawn with its skin (KeepAnimating, or debris a handler made of a ragdoll piece): the
   // copy of the animator keeps playing in the body's frame.
@@ -855,6 +887,7 @@ void addPieceComponents(CommitContext& c, const PieceSpec& spec, ecs::Entity e, 
     Debris d;
     d.velocity = glm::vec3(velocity);
     d.angularVelocity = glm::vec3(c.m.now.angularVelocity);
+    d.radius = float(std::cbrt(3.0 * spec.volume / (4.0 * 3.14159265358979)));
     c.commands.add<Debris>(e, d);
   }
 }
@@ -896,6 +929,11 @@ RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs
   def.localInertia = glm::vec3(spec.frame.moments);
   def.userData = toUserData(e);
   def.ccdRadius = smallPieceCcdRadius(spec);
+  // Small pieces: sleep when their surface barely moves (a 1 cm chip turning at 5 rad/s looks still),
+  // and a little damping of the spin the solver gives slivers at contacts.
+  const double radius = std::cbrt(3.0 * std::max(spec.volume, 1e-12) / (4.0 * 3.14159265358979));
+  def.sleepAngularSpeed = float(std::max(1.0, 0.08 / radius));
+  if (radius < 0.05) def.angularDamping = 0.2f;
   const bool awakeNow = scratch_->activationsThisTick < budget_.settings().maxActivationsPerTick;
   def.startAwake = awakeNow;
   auto created = w.physics.createBody(def);
@@ -978,6 +1016,8 @@ void SplitSystem::commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome&
     std::erase(blade->passing, toUserData(target));
     for (ecs::Entity piece : ev.pieces) blade->passing.push_back(toUserData(piece));
   }
+  // Frozen pieces that rested on the original thaw (piece_budget.h).
+  if (const auto* rb = w.world.tryGet<RigidBody>(target)) pieces_.disturb(w.physics, rb->body);
   // The original goes (its subtree with it), and its hooks free what it held; the pieces carry
   // copies of its parts.
   if (job.hierarchy()) {
@@ -990,6 +1030,12 @@ void SplitSystem::commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome&
 
 void syncTransformsFromBodies(SplitWorld& w) {
   for (auto [e, rb, t] : w.world.view<RigidBody, ecs::Transform>()) {
+    // Bodies at rest do not move: only awake ones (and static or kinematic ones, moved by hand) and
+    // those that were awake at the last sync are read.
+    const bool awake = w.physics.isAwake(rb.body);
+    const bool read = awake || rb.moving || !(w.physics.bodyMass(rb.body).value_or(0.f) > 0.f);
+    rb.moving = awake;
+    if (!read) continue;
     const auto bt = w.physics.bodyTransform(rb.body);
     if (!bt) continue;
     t.position = bt->position;
@@ -1014,12 +1060,29 @@ void submitMeshes(SplitWorld& w) {
 void updateDebris(SplitWorld& w, float dt) {
   ecs::CommandBuffer commands(w.world);
   const glm::vec3 gravity = w.physics.gravity();
+  constexpr float kShrinkSeconds = 0.5f;
   for (auto [e, d, t] : w.world.view<Debris, ecs::Transform>()) {
-    d.velocity += gravity * dt;
-    t.position += d.velocity * dt;
+    if (!d.landed) {
+      d.velocity += gravity * dt;
+      const glm::vec3 next = t.position + d.velocity * dt;
+      const glm::vec3 along = d.velocity * dt;
+      const float reach = glm::length(along);
+      // The ray runs `radius` past the step so the piece stops that far above what it meets.
+      auto hit = reach > 0.f ? w.physics.raycast(t.position, next + along / reach * d.radius) : std::nullopt;
+      // Only what stays put holds it (static, frozen or sleeping bodies), and not from inside.
+      if (hit && (hit->fraction <= 0.f || w.physics.isAwake(hit->body))) hit.reset();
+      if (hit) {
+        t.position = hit->point + hit->normal * d.radius;
+        d.velocity = d.angularVelocity = glm::vec3(0.f);
+        d.landed = true;
+      } else {
+        t.position = next;
+      }
+    }
     const float angle = glm::length(d.angularVelocity) * dt;
     if (angle > 0.f) t.rotation = glm::normalize(glm::angleAxis(angle, glm::normalize(d.angularVelocity)) * t.rotation);
     d.secondsLeft -= dt;
+    if (d.secondsLeft < kShrinkSeconds) t.scale = glm::vec3(std::max(d.secondsLeft, 0.f) / kShrinkSeconds);
     if (d.secondsLeft <= 0.f || t.position.y < -50.f) commands.destroy(e);
   }
   w.world.apply(commands);

@@ -29,6 +29,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "cleave/components/piece_budget.h"
 #include "cleave/components/scene_components.h"
 #include "cleave/components/split_budget.h"
 #include "cleave/components/split_job.h"
@@ -103,6 +104,10 @@ class SplitSystem {
   // effect at the next prepare, after the jobs in flight are done).
   SplitBudget& budget() { return budget_; }
   const SplitBudget& budget() const { return budget_; }
+  // The piece budget: what the splits leave behind (piece_budget.h). Its minimum body size applies
+  // to the pieces of every split prepared from then on; settlePieces runs its tick.
+  PieceBudget& pieces() { return pieces_; }
+  const PieceBudget& pieces() const { return pieces_; }
   void registerHandler(const std::string& name, SplitHandler handler);
   // Runs compute tasks on the host's task system instead of our threads (empty: our own).
   void setTaskExecutor(SplitTaskExecutor executor);
@@ -127,6 +132,10 @@ class SplitSystem {
 
   // Activates bodies created by earlier splits, a few per tick (called by prepareSplits).
   void activatePending(SplitWorld& w);
+
+  // PhysicsSync phase, after the transforms follow the bodies: the piece budget's tick (thaws hit
+  // pieces, retires what is over its limits, fades), with the camera of the last prepare.
+  void settlePieces(SplitWorld& w, uint64_t tick, double dt);
 
   // Splits `target` by the world plane now (no budget, no deferral, compute inline): used by tests
   // and tools. Jobs in flight are committed first.
@@ -165,6 +174,8 @@ class SplitSystem {
   // Applies the batch (the destroyed entities' hooks free what they held, resource_hooks.h).
   void flush(SplitWorld& w);
   SplitBudget budget_;
+  PieceBudget pieces_;
+  glm::dvec3 camera_{0.0};  // of the last prepare
   std::map<std::string, SplitHandler> handlers_;
   std::vector<SplitEvent> events_;
   std::unique_ptr<Scratch> scratch_;
@@ -217,11 +228,15 @@ void syncTransformsFromBodies(SplitWorld& w);
 // Render phase: submits every visible MeshRenderer at WorldTransform x meshOffset.
 void submitMeshes(SplitWorld& w);
 
-// Debris: pieces without collider fall under gravity and vanish after a while.
+// Debris: pieces without collider fall under gravity, come to rest on the first body at rest their
+// path meets (the floor, a frozen or sleeping piece: a ray along each step's motion), shrink away in their last half second
+// and vanish after a while.
 struct Debris {
   glm::vec3 velocity{0.f};
   glm::vec3 angularVelocity{0.f};
   float secondsLeft = 3.f;
+  float radius = 0.f;     // m, of a ball of the piece's volume: how far above a surface it rests
+  bool landed = false;
 };
 void updateDebris(SplitWorld& w, float dt);
 

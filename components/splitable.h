@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "cleave/components/piece_budget.h"
 #include "cleave/components/shatter.h"
 #include "cleave/geometry/mesh_splitter.h"
 #include "cleave/physics/physics_ids.h"
@@ -78,6 +79,9 @@ struct Splitable {
   uint32_t maxDepth = 12;                   // pieces this many cuts deep are no longer splitable
   std::string handler;                      // a custom split handler registered under this name
   SkinnedPieceMode skinnedPieces = SkinnedPieceMode::Ragdoll;  // skinned meshes only
+  // How the piece budget retires this object's pieces when a limit is passed (piece_budget.h);
+  // Default: the budget's policy.
+  PieceRetirement retirement = PieceRetirement::Default;
 };
 
 enum class SplitterLifetime : uint8_t {

@@ -38,6 +38,11 @@ constexpr int kKindTrigger = 2;
 constexpr btScalar kTouchDistance = 0.001f;
 constexpr double kMaxStep = 1.0;
 constexpr int kJointSolverIterations = 40;
+// Frozen bodies: a broadphase group of their own (Bullet's spare debris bit), paired with dynamic
+// bodies and triggers only.
+constexpr int kFrozenGroup = btBroadphaseProxy::DebrisFilter;
+constexpr int kFrozenMask = btBroadphaseProxy::AllFilter & ~btBroadphaseProxy::StaticFilter &
+                            ~btBroadphaseProxy::KinematicFilter & ~kFrozenGroup;
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool finite(const glm::quat& q) {
@@ -64,6 +69,8 @@ struct BodyRecord {
   uint64_t userData = 0;
   uint64_t collisionGroup = 0;
   bool kinematic = false;
+  bool frozen = false;
+  btVector3 frozenInertia{0, 0, 0};  // principal moments kept while frozen
 };
 
 struct JointRecord {
@@ -145,6 +152,9 @@ struct PhysicsWorld::Impl {
     world.setGravity(toBt(gravity));
     world.getSolverInfo().m_numIterations =
         def.solverIterations >= 1 ? def.solverIterations : WorldDef{}.solverIterations;
+    // Only moving objects get new bounds each step: sleeping, static and frozen bodies keep theirs
+    // (every teleport below updates the bounds it moves).
+    world.setForceUpdateAllAabbs(false);
   }
 
   ~Impl() {
@@ -188,6 +198,13 @@ struct PhysicsWorld::Impl {
     joints.erase(index);
   }
   TriggerRecord* trigger(TriggerId id) { return triggers.get(id.index, id.generation); }
+  bool jointed(BodyId id) const {
+    bool any = false;
+    joints.forEach([&](uint32_t, uint32_t, const JointRecord& j) { any = any || j.bodyA == id || j.bodyB == id; });
+    return any;
+  }
+  void freeze(BodyRecord& r);
+  void thaw(BodyRecord& r);
 
   void releaseShapeUser(uint32_t index) {
     ShapeRecord* record = shapes.atIndex(index);
@@ -306,6 +323,38 @@ void PhysicsWorld::Impl::collectEvents() {
     }
   }
   touching = std::move(now);
+}
+
+// Freezing re-enters the body in the world as a static object of the frozen group (Bullet keeps a
+// static body's activation state asleep and never integrates it); thawing re-enters it dynamic with
+// the mass and moments it had. Both drop the body's contact manifolds, which the next step rebuilds.
+void PhysicsWorld::Impl::freeze(BodyRecord& r) {
+  btRigidBody& b = *r.body;
+  world.removeRigidBody(&b);
+  const btVector3 inverse = b.getInvInertiaDiagLocal();
+  auto invert = [](btScalar x) { return x > 0.0f ? 1.0f / x : 0.0f; };
+  r.frozenInertia = btVector3(invert(inverse.x()), invert(inverse.y()), invert(inverse.z()));
+  b.setLinearVelocity(btVector3(0, 0, 0));
+  b.setAngularVelocity(btVector3(0, 0, 0));
+  b.setMassProps(0.0f, btVector3(0, 0, 0));
+  b.setCollisionFlags(b.getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
+  b.updateInertiaTensor();
+  world.addRigidBody(&b, kFrozenGroup, kFrozenMask);
+  r.frozen = true;
+}
+
+void PhysicsWorld::Impl::thaw(BodyRecord& r) {
+  btRigidBody& b = *r.body;
+  world.removeRigidBody(&b);
+  b.setCollisionFlags(b.getCollisionFlags() & ~btCollisionObject::CF_STATIC_OBJECT);
+  b.setMassProps(r.mass, r.frozenInertia);
+  b.updateInertiaTensor();
+  b.setLinearVelocity(btVector3(0, 0, 0));
+  b.setAngularVelocity(btVector3(0, 0, 0));
+  world.addRigidBody(&b);
+  b.setDeactivationTime(0.0f);
+  b.forceActivationState(ACTIVE_TAG);
+  r.frozen = false;
 }
 
 PhysicsWorld::PhysicsWorld(const WorldDef& def) : impl_(std::make_unique<Impl>(def)) {}
@@ -602,7 +651,7 @@ bool PhysicsWorld::setBodyTransform(BodyId body, const BodyTransform& transform)
   const std::optional<glm::quat> rotation = normalisedRotation(transform.rotation);
   if (record == nullptr || !finite(transform.position) || !rotation) return false;
   record->body->setCenterOfMassTransform(detail::toBt(transform.position, *rotation));
-  if (record->mass > 0.0f) record->body->activate(true);
+  if (record->mass > 0.0f && !record->frozen) record->body->activate(true);
   impl_->world.updateSingleAabb(record->body.get());
   return true;
 }
@@ -612,6 +661,7 @@ bool PhysicsWorld::setVelocity(BodyId body, glm::vec3 linear, glm::vec3 angular)
   if (record == nullptr || record->mass <= 0.0f || !finite(linear) || !finite(angular)) {
     return false;
   }
+  if (record->frozen) impl_->thaw(*record);
   record->body->setLinearVelocity(toBt(linear));
   record->body->setAngularVelocity(toBt(angular));
   record->body->activate(true);
@@ -623,6 +673,7 @@ bool PhysicsWorld::applyImpulse(BodyId body, glm::vec3 impulse, glm::vec3 worldP
   if (record == nullptr || record->mass <= 0.0f || !finite(impulse) || !finite(worldPoint)) {
     return false;
   }
+  if (record->frozen) impl_->thaw(*record);
   btRigidBody& rigid = *record->body;
   rigid.applyImpulse(toBt(impulse), toBt(worldPoint) - rigid.getCenterOfMassPosition());
   rigid.activate(true);
@@ -632,8 +683,103 @@ bool PhysicsWorld::applyImpulse(BodyId body, glm::vec3 impulse, glm::vec3 worldP
 bool PhysicsWorld::activate(BodyId body) {
   BodyRecord* record = impl_->body(body);
   if (record == nullptr || record->mass <= 0.0f) return false;
+  if (record->frozen) impl_->thaw(*record);
   record->body->activate(true);
   return true;
+}
+
+bool PhysicsWorld::setFrozen(BodyId body, bool frozen) {
+  BodyRecord* record = impl_->body(body);
+  if (record == nullptr || record->mass <= 0.0f || record->kinematic) return false;
+  if (record->frozen == frozen) return true;
+  if (frozen && impl_->jointed(body)) return false;
+  if (frozen) {
+    impl_->freeze(*record);
+  } else {
+    impl_->thaw(*record);
+  }
+  return true;
+}
+
+bool PhysicsWorld::isFrozen(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  return record != nullptr && record->frozen;
+}
+
+uint32_t PhysicsWorld::frozenBodyCount() const {
+  uint32_t count = 0;
+  impl_->bodies.forEach([&](uint32_t, uint32_t, const BodyRecord& r) { count += r.frozen ? 1u : 0u; });
+  return count;
+}
+
+namespace {
+
+// Widens [lo, hi] by the shape's support points along `d` (in the shape's frame `toBody` inside
+// the body frame); compounds recurse into their children, other shapes use their bounding box.
+void projectShape(const btCollisionShape& shape, const btTransform& toBody, const btVector3& d, btScalar& lo,
+                  btScalar& hi) {
+  if (shape.isConvex()) {
+    const auto& convex = static_cast<const btConvexShape&>(shape);
+    const btVector3 local = toBody.getBasis().transpose() * d;
+    hi = std::max(hi, d.dot(toBody(convex.localGetSupportingVertex(local))));
+    lo = std::min(lo, d.dot(toBody(convex.localGetSupportingVertex(-local))));
+    return;
+  }
+  if (shape.isCompound()) {
+    const auto& compound = static_cast<const btCompoundShape&>(shape);
+    for (int i = 0; i < compound.getNumChildShapes(); ++i)
+      projectShape(*compound.getChildShape(i), toBody * compound.getChildTransform(i), d, lo, hi);
+    return;
+  }
+  btVector3 min, max;
+  shape.getAabb(toBody, min, max);
+  const btVector3 centre = (min + max) * 0.5f, half = (max - min) * 0.5f;
+  const btScalar reach = std::fabs(d.x()) * half.x() + std::fabs(d.y()) * half.y() + std::fabs(d.z()) * half.z();
+  lo = std::min(lo, d.dot(centre) - reach);
+  hi = std::max(hi, d.dot(centre) + reach);
+}
+
+}  // namespace
+
+std::optional<std::pair<glm::vec3, glm::vec3>> PhysicsWorld::bodyBounds(BodyId body) const {
+  const BodyRecord* record = impl_->body(body);
+  if (record == nullptr || record->body->getBroadphaseHandle() == nullptr) return std::nullopt;
+  const btBroadphaseProxy& proxy = *record->body->getBroadphaseHandle();
+  return std::pair(toGlm(proxy.m_aabbMin), toGlm(proxy.m_aabbMax));
+}
+
+std::vector<BodyId> PhysicsWorld::bodiesInBox(glm::vec3 lo, glm::vec3 hi) const {
+  struct Collect : btBroadphaseAabbCallback {
+    const Impl* w = nullptr;
+    std::vector<BodyId> found;
+    bool process(const btBroadphaseProxy* proxy) override {
+      const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+      if (object != nullptr && object->getUserIndex2() == kKindBody)
+        found.push_back(w->bodyIdAt(uint32_t(object->getUserIndex())));
+      return true;
+    }
+  } collect;
+  collect.w = impl_.get();
+  if (!finite(lo) || !finite(hi)) return {};
+  impl_->broadphase.aabbTest(toBt(lo), toBt(hi), collect);
+  std::sort(collect.found.begin(), collect.found.end(),
+            [](BodyId a, BodyId b) { return a.index < b.index; });
+  return collect.found;
+}
+
+std::optional<glm::vec2> PhysicsWorld::extentAlong(BodyId body, glm::vec3 direction) const {
+  const BodyRecord* record = impl_->body(body);
+  if (record == nullptr || !finite(direction) || glm::dot(direction, direction) <= 0.0f) return std::nullopt;
+  const btRigidBody& b = *record->body;
+  const btTransform& t = b.getWorldTransform();
+  // The interval in the body frame, shifted by the body's position along the direction.
+  const btVector3 d = t.getBasis().transpose() * toBt(direction);
+  btScalar lo = BT_LARGE_FLOAT, hi = -BT_LARGE_FLOAT;
+  btTransform identity;
+  identity.setIdentity();
+  projectShape(*b.getCollisionShape(), identity, d, lo, hi);
+  const btScalar at = toBt(direction).dot(t.getOrigin());
+  return glm::vec2(lo + at, hi + at);
 }
 
 // ---- joints ----
@@ -685,6 +831,9 @@ Result<JointId> PhysicsWorld::createJoint(const JointDef& def) {
     hinge->setLimit(-def.upperLimit, -def.lowerLimit);
     constraint = std::move(hinge);
   }
+  // A joint needs both bodies simulated.
+  if (a->frozen) w.thaw(*a);
+  if (b->frozen) w.thaw(*b);
   btTypedConstraint* raw = constraint.get();
   // Chains of joints (a ragdoll) drift apart with the world's few iterations: joints get more.
   raw->setOverrideNumSolverIterations(kJointSolverIterations);

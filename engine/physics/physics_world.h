@@ -23,6 +23,8 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -113,8 +115,33 @@ class PhysicsWorld {
   // Applies an impulse (N s) at a world point, changing linear and angular velocity, and wakes the
   // body. False for stale handles, static bodies or non-finite values.
   bool applyImpulse(BodyId body, glm::vec3 impulse, glm::vec3 worldPoint);
-  // Wakes a sleeping body. False for stale handles and static bodies.
+  // Wakes a sleeping body (a frozen one is thawed first). False for stale handles and static bodies.
   bool activate(BodyId body);
+
+  // ---- freezing (bodies a game stops simulating but keeps in the world) ----
+  // A frozen dynamic body leaves the simulation where it is: it becomes a static collider (awake
+  // bodies rest on it and bounce off it; it never moves), its velocities are zeroed, and its mass and
+  // inertia are kept for its return. It never pairs with static or other frozen bodies, so a heap of
+  // frozen bodies costs the broadphase and the solver nothing among itself, while triggers and ray
+  // casts still see it. setFrozen(body, false) returns it to the simulation awake and at rest;
+  // setVelocity, applyImpulse and activate thaw a frozen body first. Freezing a frozen body (or
+  // thawing a thawed one) changes nothing and returns true. False for stale handles, static,
+  // kinematic and jointed bodies (a joint needs both of its bodies simulated).
+  bool setFrozen(BodyId body, bool frozen);
+  bool isFrozen(BodyId body) const;
+  uint32_t frozenBodyCount() const;
+
+  // The interval [min, max] (x, y) covered by the body's collision shape, margin included, along a
+  // world direction (need not be unit; the interval is in units of its length): the plane
+  // dot(direction, x) = d crosses the body when min < d < max. Hulls and compounds of hulls are
+  // projected exactly; other shapes by their world bounding box (a wider interval). nullopt for a
+  // stale handle or a zero or non-finite direction.
+  std::optional<glm::vec2> extentAlong(BodyId body, glm::vec3 direction) const;
+  // The body's world bounding box (min, max) as the broadphase holds it, margins included.
+  std::optional<std::pair<glm::vec3, glm::vec3>> bodyBounds(BodyId body) const;
+  // Bodies whose broadphase bounds overlap the box [lo, hi] (static, sleeping and frozen ones
+  // included; triggers not), in handle order.
+  std::vector<BodyId> bodiesInBox(glm::vec3 lo, glm::vec3 hi) const;
 
   // ---- joints (constraints between two bodies, see joint_def.h) ----
   // Errors: StaleHandle (a body), InvalidArgument (same body twice, both bodies static or

@@ -60,6 +60,10 @@ class DemoGame {
   // in one tick; prints the ticks until the last piece is committed and the most main-thread
   // split time in any tick, as a table or JSON.
   void benchmarkBurst(bool json);
+  // benchmarkSession (session_bench.cpp): `minutes` of blades sweeping a field of 225 objects (and
+  // shatters, and fresh objects), then 30 s of nothing; prints per minute the pieces (live, awake,
+  // frozen, debris), tick p50 / p99 / max with split and physics apart, resident memory, GPU meshes.
+  void benchmarkSession(int minutes, bool json);
   physics::PhysicsWorld& physics() { return *physics_; }
 
   // What the physics world and the renderer hold now (physics 0 before setup).

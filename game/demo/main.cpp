@@ -16,11 +16,15 @@ int main(int argc, char** argv) {
   start.program = "cleave-demo";
   start.title = "Cleave tech demo";
   start.scene = "demo";
-  start.gameOptions = {{"--bench-splits", 1}, {"--bench-burst", 0}, {"--json", 0}};
+  start.gameOptions = {{"--bench-splits", 1}, {"--bench-burst", 0}, {"--bench-session", 1}, {"--no-piece-budget", 0},
+                       {"--json", 0}};
   start.gameHelp =
       "demo options:\n"
       "  --bench-splits N           cut each demo object N times, print median stage times\n"
       "  --bench-burst              cut 50 cubes, then 100 characters, each lot in one tick\n"
+      "  --bench-session MINUTES    blades sweep 225 objects for MINUTES, then 30 s of quiet; per-minute\n"
+      "                             pieces, tick p50/p99/max, physics and split time, memory\n"
+      "  --no-piece-budget          retire no pieces (the piece budget off), to see what it buys\n"
       "  --json                     benchmarks print JSON instead of a table\n\n"
       "keys: WASD move, mouse look, hold Space and drag to cut, right button push, F shatter,\n"
       "  1-8 spawn, Q/E material, H help, F1 inspector, Esc free the mouse (twice: quit)\n";
@@ -36,7 +40,21 @@ int main(int argc, char** argv) {
   }
   const auto& extra = options.extra;
   const bool json = std::find(extra.begin(), extra.end(), "--json") != extra.end();
+  if (std::find(extra.begin(), extra.end(), "--no-piece-budget") != extra.end()) {
+    cleave::components::PieceBudgetSettings off = game.splits().pieces().settings();
+    off.enabled = false;
+    game.splits().pieces().setSettings(off);
+  }
   for (size_t i = 0; i < extra.size(); ++i) {
+    if (extra[i] == "--bench-session" && i + 1 < extra.size()) {
+      const int minutes = std::atoi(extra[i + 1].c_str());
+      if (minutes <= 0) {
+        std::fprintf(stderr, "cleave-demo: --bench-session needs a positive number of minutes\n");
+        return 2;
+      }
+      game.benchmarkSession(minutes, json);
+      return 0;
+    }
     if (extra[i] == "--bench-burst") {
       game.benchmarkBurst(json);
       return 0;

@@ -55,6 +55,9 @@ Shattered shatterCrate(uint32_t threads, uint32_t cells, double outward,
   SplitBudgetSettings settings = sim.splits.budget().settings();
   settings.threads = threads;
   sim.splits.budget().setSettings(settings);
+  PieceBudgetSettings pieces = sim.splits.pieces().settings();
+  pieces.minBodyVolume = pieces.minBodyThickness = 0.0;  // every cell a body, however thin (see addCrate)
+  sim.splits.pieces().setSettings(pieces);
   const ecs::Entity crate = addCrate(sim, mesh);
   (void)crate;
   Shattered out;
