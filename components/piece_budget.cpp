@@ -7,6 +7,8 @@
 #include <tuple>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cleave/components/scene_components.h"
 #include "cleave/components/skinned.h"
 #include "cleave/components/split_system.h"
@@ -22,6 +24,21 @@ const char* toString(PieceRetirement retirement) {
     case PieceRetirement::Remove: return "remove";
   }
   return "?";
+}
+
+nlohmann::json toJson(const PieceBudgetStats& s) {
+  return nlohmann::json{{"live", s.live},
+                        {"awake", s.awake},
+                        {"frozen", s.frozen},
+                        {"debris", s.debris},
+                        {"frozen_total", s.frozenTotal},
+                        {"faded_total", s.fadedTotal},
+                        {"removed_total", s.removedTotal},
+                        {"thawed_total", s.thawedTotal},
+                        {"debris_removed_total", s.debrisRemovedTotal},
+                        {"frozen_kg", s.frozenMass},
+                        {"faded_kg", s.fadedMass},
+                        {"removed_kg", s.removedMass}};
 }
 
 namespace {

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "cleave/ecs/world.h"
 #include "cleave/physics/physics_world.h"
@@ -111,6 +112,10 @@ struct Fading {
   float seconds = 1.f;
   glm::vec3 scale{1.f};  // the scale it had when it started fading
 };
+
+// The stats as a JSON object (live, awake, frozen, debris, and the run's totals with their mass), for
+// state dumps and benchmarks.
+nlohmann::json toJson(const PieceBudgetStats& stats);
 
 class PieceBudget {
  public:

@@ -452,6 +452,8 @@ struct SceneDesc {
   FloorDesc floor;
   bool budgetGiven = false;
   SplitBudgetSettings budget;
+  bool pieceBudgetGiven = false;
+  PieceBudgetSettings pieceBudget;
   glm::vec3 cameraPosition{0.f, 2.f, 6.f};
   glm::vec3 cameraTarget{0.f};
   uint64_t ticks = 0;
@@ -689,7 +691,7 @@ bool readSplitable(Reader& rd, const Node& n, EntityDesc& d) {
   if (!rd.expectObject(n, {"convex", "cap", "cap_material", "cap_material_id", "cap_uv", "cap_uv_per_metre",
                            "cap_atlas_rect", "cap_uv_per_border", "mass_mode", "density", "split_impulse",
                            "min_piece_volume", "small_pieces", "separate_islands", "max_depth", "handler",
-                           "open_sections", "islands"}))
+                           "open_sections", "islands", "retirement"}))
     return false;
   d.splitable = true;
   Splitable& s = d.split;
@@ -698,6 +700,7 @@ bool readSplitable(Reader& rd, const Node& n, EntityDesc& d) {
   int small = int(s.smallPieces);
   int open = int(s.openSections);
   int islands = int(s.islands);
+  int retirement = int(s.retirement);
   d.splitDensityGiven = n.has("density");
   d.capMaterialIdGiven = n.has("cap_material_id");
   if (!rd.boolean(n, "convex", s.convexHint) || !rd.boolean(n, "cap", s.cap) ||
@@ -713,8 +716,10 @@ bool readSplitable(Reader& rd, const Node& n, EntityDesc& d) {
       !rd.boolean(n, "separate_islands", s.separateIslands) ||
       !rd.integer32(n, "max_depth", s.maxDepth, 1, 64) || !rd.string(n, "handler", s.handler) ||
       !rd.choice(n, "open_sections", {"refuse", "cap_closed", "bridge"}, open) ||
-      !rd.choice(n, "islands", {"touching", "connected"}, islands))
+      !rd.choice(n, "islands", {"touching", "connected"}, islands) ||
+      !rd.choice(n, "retirement", {"default", "freeze", "fade", "remove"}, retirement))
     return false;
+  s.retirement = PieceRetirement(retirement);
   s.openSections = geometry::OpenSectionMode(open);
   s.islands = geometry::IslandMode(islands);
   s.capUvMode = uv == 1 ? geometry::CapUvMode::NormalizedBounds : geometry::CapUvMode::WorldPlanar;
@@ -834,10 +839,36 @@ bool readSplitter(Reader& rd, const Node& n, ScheduledSplitter& s) {
   return true;
 }
 
+// The piece budget (piece_budget.h): limits, policy, fade time, hit speed, the smallest body.
+bool readPieceBudget(Reader& rd, const Node& b, SceneDesc& scene) {
+  if (!rd.expectObject(b, {"enabled", "max_live_pieces", "max_awake_pieces", "max_frozen_pieces", "max_debris",
+                           "max_retirements_per_tick", "policy", "fade_seconds", "hit_speed", "restless_seconds",
+                           "min_body_volume", "min_body_thickness"}))
+    return false;
+  scene.pieceBudgetGiven = true;
+  PieceBudgetSettings& s = scene.pieceBudget;
+  int policy = int(s.policy) - 1;
+  double fade = s.fadeSeconds, hit = s.hitSpeed, restless = s.restlessSeconds;
+  if (!rd.boolean(b, "enabled", s.enabled) || !rd.integer32(b, "max_live_pieces", s.maxLivePieces, 0) ||
+      !rd.integer32(b, "max_awake_pieces", s.maxAwakePieces, 0) ||
+      !rd.integer32(b, "max_frozen_pieces", s.maxFrozenPieces, 0) || !rd.integer32(b, "max_debris", s.maxDebris, 0) ||
+      !rd.integer32(b, "max_retirements_per_tick", s.maxRetirementsPerTick, 1) ||
+      !rd.choice(b, "policy", {"freeze", "fade", "remove"}, policy) || !rd.nonNegative(b, "fade_seconds", fade) ||
+      !rd.nonNegative(b, "hit_speed", hit) || !rd.nonNegative(b, "restless_seconds", restless) ||
+      !rd.nonNegative(b, "min_body_volume", s.minBodyVolume) ||
+      !rd.nonNegative(b, "min_body_thickness", s.minBodyThickness))
+    return false;
+  s.policy = PieceRetirement(policy + 1);
+  s.fadeSeconds = float(fade);
+  s.hitSpeed = float(hit);
+  s.restlessSeconds = float(restless);
+  return true;
+}
+
 bool readScene(Reader& rd, const json& root, const std::string& baseDirectory, SceneDesc& scene) {
   const Node n{&root, {}};
-  if (!rd.expectObject(n, {"version", "description", "gravity", "floor", "budget", "camera", "ticks",
-                           "entities", "splitters"}))
+  if (!rd.expectObject(n, {"version", "description", "gravity", "floor", "budget", "piece_budget", "camera",
+                           "ticks", "entities", "splitters"}))
     return false;
   if (n.has("version")) {
     uint64_t version = 1;
@@ -882,6 +913,7 @@ bool readScene(Reader& rd, const json& root, const std::string& baseDirectory, S
         !rd.nonNegative(b, "estimated_worker_ms_per_triangle", s.estimatedWorkerMillisecondsPerTriangle))
       return false;
   }
+  if (n.has("piece_budget") && !readPieceBudget(rd, n.child("piece_budget"), scene)) return false;
   if (n.has("camera")) {
     const Node c = n.child("camera");
     if (!rd.expectObject(c, {"position", "target"}) || !rd.vec3(c, "position", scene.cameraPosition) ||
@@ -1158,6 +1190,8 @@ SceneLoadResult loadSceneFromString(const std::string& text, const std::string& 
   result.gravity = scene.gravity;
   result.budget = ctx.splits ? ctx.splits->budget().settings() : SplitBudgetSettings{};
   if (scene.budgetGiven) result.budget = scene.budget;
+  result.pieceBudget = ctx.splits ? ctx.splits->pieces().settings() : PieceBudgetSettings{};
+  if (scene.pieceBudgetGiven) result.pieceBudget = scene.pieceBudget;
   result.cameraPosition = scene.cameraPosition;
   result.cameraTarget = scene.cameraTarget;
   result.ticks = scene.ticks;
@@ -1186,6 +1220,7 @@ SceneLoadResult loadSceneFromString(const std::string& text, const std::string& 
     return result;
   }
   if (ctx.splits && scene.budgetGiven) ctx.splits->budget().setSettings(scene.budget);
+  if (ctx.splits && scene.pieceBudgetGiven) ctx.splits->pieces().setSettings(scene.pieceBudget);
   ecs::updateWorldTransforms(ctx.world);
   result.splitters = std::move(scene.splitters);
   result.code = base::StatusCode::Ok;

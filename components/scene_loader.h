@@ -110,6 +110,7 @@ struct SceneLoadResult : base::Status {
   ecs::Entity floor;                        // null when the scene has none
   glm::vec3 gravity{0.f, -9.81f, 0.f};      // applied to the physics world
   SplitBudgetSettings budget;               // applied to ctx.splits when given
+  PieceBudgetSettings pieceBudget;          // applied to ctx.splits when given
   glm::vec3 cameraPosition{0.f, 2.f, 6.f};  // where the scene wants to be seen from
   glm::vec3 cameraTarget{0.f};
   uint64_t ticks = 0;                       // suggested run length (0: not given)

@@ -122,6 +122,7 @@ void ArenaGame::dumpFrame(nlohmann::json& line) {
   nlohmann::json splits;
   splitLog_.writeJson(splits);
   line["splits"] = std::move(splits);
+  line["piece_budget"] = components::toJson(splits_->pieces().stats());
   const auto& stats = splits_->budget().stats();
   line["budget"] = {{"deferred_total", splitStats_.deferredTotal},
                     {"max_queue", splitStats_.maxQueue},

@@ -342,6 +342,15 @@ base::Status ArenaGame::setup(app::App& app) {
   sim_ = std::make_unique<components::Simulation>(app.world(), budget, &app.renderer());
   physics_ = &sim_->physics();
   splits_ = &sim_->splits();
+  // The piece budget: limbs and shards fade rather than freeze (the sand must stay readable, and the
+  // arena's own lifetime below shrinks what stays); a bound on simulated and awake pieces keeps the
+  // physics step inside the tick in the busiest waves.
+  components::PieceBudgetSettings pieces;
+  pieces.policy = components::PieceRetirement::Fade;
+  pieces.maxLivePieces = 200;
+  pieces.maxAwakePieces = 80;
+  pieces.maxDebris = 64;
+  splits_->pieces().setSettings(pieces);
   // Gladiators fall as ragdoll halves; what a blow only clips off (a hand, a head) flies away as
   // skinned debris instead of a ragdoll of its own.
   splits_->registerHandler("arena.gladiator", [](const components::SplitJob& job, components::SplitOutcome& out) {

@@ -497,6 +497,7 @@ base::Status DemoGame::setup(app::App& app) {
     nlohmann::json splits;
     splitLog_.writeJson(splits);
     line["splits"] = std::move(splits);
+    line["piece_budget"] = components::toJson(splits_->pieces().stats());
     line["looks_cycled"] = looksShown_;  // every look Q/E switched an object to, sorted
     line["notice"] = tick_ < noticeUntil_ ? notice_ : std::string();
     // The HUD's boxes and the extent of the text in each (x, y, w, h in pixels), with the frame size:
@@ -838,7 +839,9 @@ void DemoGame::drawStatsPanel(app::TickContext& c, float u) {
                 headless ? c.app.ticksPerSecond() : c.app.framesPerSecond(), c.app.lastTickMilliseconds());
   std::snprintf(texts[1], sizeof(texts[1]), "splits this tick %u   queue %u", splitStats_.splitsThisTick, stats.queueLength);
   std::snprintf(texts[2], sizeof(texts[2]), "split ms last %.2f  max %.2f", splitStats_.lastSplitMs, splitStats_.maxSplitMs);
-  std::snprintf(texts[3], sizeof(texts[3]), "pieces %u   tick %llu", pieces, static_cast<unsigned long long>(c.tick));
+  const components::PieceBudgetStats& kept = splits_->pieces().stats();
+  std::snprintf(texts[3], sizeof(texts[3]), "pieces %u  awake %u  frozen %u   tick %llu", pieces, kept.awake,
+                kept.frozen, static_cast<unsigned long long>(c.tick));
   // The panel fits its longest line: the counts as they are, the timings at their widest usual
   // figures (so that its size does not change with the wall clock).
   const float gw = 120.f * u, gh = 12.f * u;  // the split-time graph

@@ -95,6 +95,7 @@ void Inspector::draw(app::TickContext& c, const InspectorFeed& feed) {
     ImGui::PushItemWidth(-std::min(15.f * ImGui::GetFontSize(), 0.5f * ImGui::GetContentRegionAvail().x));
     drawTarget(feed);
     drawBudget(feed);
+    drawPieceBudget(feed);
     drawTiming(c, feed);
     drawLog(feed);
     ImGui::PopItemWidth();
@@ -162,9 +163,33 @@ void Inspector::drawBudget(const InspectorFeed& feed) {
               static_cast<unsigned long long>(st.totalExecuted));
 }
 
+// The piece budget: its limits and policy edited live (applied at the next tick), and what it holds.
+void Inspector::drawPieceBudget(const InspectorFeed& feed) {
+  if (!ImGui::CollapsingHeader("Piece budget")) return;  // closed at first: the split log stays in view
+  components::PieceBudget& pieces = feed.splits.pieces();
+  components::PieceBudgetSettings s = pieces.settings();
+  bool changed = ImGui::Checkbox("retire pieces", &s.enabled);
+  changed |= slider("max live", ImGuiDataType_U32, s.maxLivePieces, 8u, 2000u, "%u");
+  changed |= slider("max awake", ImGuiDataType_U32, s.maxAwakePieces, 8u, 1000u, "%u");
+  changed |= slider("max frozen", ImGuiDataType_U32, s.maxFrozenPieces, 0u, 5000u, "%u");
+  changed |= slider("max debris", ImGuiDataType_U32, s.maxDebris, 0u, 1000u, "%u");
+  int policy = int(s.policy) - 1;
+  changed |= ImGui::Combo("retire by", &policy, "freeze\0fade\0remove\0");
+  s.policy = components::PieceRetirement(policy + 1);
+  changed |= slider("smallest body m^3", ImGuiDataType_Double, s.minBodyVolume, 0.0, 1e-3, "%.1e", false);
+  if (changed) pieces.setSettings(s);
+  const components::PieceBudgetStats& st = pieces.stats();
+  ImGui::Text("live %u   awake %u   frozen %u   debris %u", st.live, st.awake, st.frozen, st.debris);
+  ImGui::Text("retired: %llu frozen, %llu faded, %llu removed; %llu thawed",
+              static_cast<unsigned long long>(st.frozenTotal), static_cast<unsigned long long>(st.fadedTotal),
+              static_cast<unsigned long long>(st.removedTotal), static_cast<unsigned long long>(st.thawedTotal));
+}
+
 void Inspector::drawTiming(app::TickContext& c, const InspectorFeed& feed) {
   if (!ImGui::CollapsingHeader("Frame and split times", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  ImGui::Text("pieces %u   tick %llu", feed.pieces, static_cast<unsigned long long>(c.tick));
+  const components::PieceBudgetStats& kept = feed.splits.pieces().stats();
+  ImGui::Text("pieces %u (awake %u, frozen %u)   tick %llu", feed.pieces, kept.awake, kept.frozen,
+              static_cast<unsigned long long>(c.tick));
   const auto& phase = c.app.phaseMilliseconds();
   ImGui::BeginGroup();
   if (c.app.headless()) {

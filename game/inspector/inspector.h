@@ -59,6 +59,7 @@ class Inspector {
  private:
   void drawTarget(const InspectorFeed& feed);
   void drawBudget(const InspectorFeed& feed);
+  void drawPieceBudget(const InspectorFeed& feed);
   void drawTiming(app::TickContext& c, const InspectorFeed& feed);
   void drawGraph(const InspectorFeed& feed);
   void drawLog(const InspectorFeed& feed);
