@@ -87,13 +87,13 @@ constexpr uint32_t kCreepTicks = 30;
 void PieceBudget::update(SplitWorld& w, uint64_t tick, const glm::dvec3& camera, float dt) {
   stats_.retiredThisTick = 0;
   stats_.thawedThisTick = 0;
-  thawHitPieces(w);
+  thawHitPieces(w, dt);
   count(w);
   thawDisturbed(w);
   advanceFades(w, dt);
   if (settings_.enabled) {
-    freezeRestless(w, tick);
     uint32_t quota = settings_.maxRetirementsPerTick;
+    freezeRestless(w, tick, quota);
     count(w);
     retireLive(w, tick, camera, quota);
     count(w);
@@ -148,13 +148,12 @@ void PieceBudget::thawDisturbed(SplitWorld& w) {
       fade(w, e, settings_.fadeSeconds);  // fading disturbs its box too: what rested on it follows
       continue;
     }
-    thaw(w, e);  // thawing disturbs its own box: the next tick goes one further up
-    stats_.live++;
+    if (thaw(w, e)) stats_.live++;  // thawing disturbs its own box: the next tick goes one further up
   }
 }
 
 // Pieces awake and slower than the creep speed for restlessSeconds are frozen (piece_budget.h).
-void PieceBudget::freezeRestless(SplitWorld& w, uint64_t tick) {
+void PieceBudget::freezeRestless(SplitWorld& w, uint64_t tick, uint32_t& quota) {
   if (settings_.restlessSeconds <= 0.f) return;
   const uint32_t limit = uint32_t(settings_.restlessSeconds * 60.f);
   const float lin2 = settings_.creepLinearSpeed * settings_.creepLinearSpeed;
@@ -164,25 +163,24 @@ void PieceBudget::freezeRestless(SplitWorld& w, uint64_t tick) {
     motion.restlessTicks = v && glm::dot(*v, *v) < lin2 ? motion.restlessTicks + 1 : 0;
     if (motion.restlessTicks > limit && !w.world.has<Ragdoll>(e)) restless.push_back(e);
   }
-  for (ecs::Entity e : restless) retire(w, e, PieceRetirement::Freeze, tick);
+  for (size_t i = 0; i < restless.size() && quota > 0; ++i, --quota) retire(w, restless[i], PieceRetirement::Freeze, tick);
 }
 
-// A frozen piece touched in the last step by an awake body moving at hitSpeed or faster.
-void PieceBudget::thawHitPieces(SplitWorld& w) {
+// A frozen piece hit in the last step by an awake body: the contact impulse would change the piece's
+// speed by hitSpeed or more, and is more than twice what the hitter's weight puts on it in a step (a
+// piece resting on a frozen one is not a hit). The impulse, not the hitter's speed after the step:
+// a head-on hit stops the hitter.
+void PieceBudget::thawHitPieces(SplitWorld& w, float dt) {
   std::vector<ecs::Entity> hit;
-  const float hitSpeed2 = settings_.hitSpeed * settings_.hitSpeed;
-  auto hitter = [&](physics::BodyId body) {
-    if (!w.physics.isAwake(body)) return false;
-    const auto v = w.physics.linearVelocity(body);
-    return v && glm::dot(*v, *v) >= hitSpeed2;
-  };
+  const float weightPerStep = glm::length(w.physics.gravity()) * dt;
   for (const physics::ContactEvent& ev : w.physics.contactEvents()) {
     const bool frozenA = w.physics.isFrozen(ev.bodyA), frozenB = w.physics.isFrozen(ev.bodyB);
     if (frozenA == frozenB) continue;
     const physics::BodyId frozen = frozenA ? ev.bodyA : ev.bodyB;
-    if (!hitter(frozenA ? ev.bodyB : ev.bodyA)) continue;
-    // A hit, not a touch: the impulse would change the frozen piece's speed by a tenth of hitSpeed.
-    if (ev.impulse < 0.1f * settings_.hitSpeed * w.physics.bodyMass(frozen).value_or(0.f)) continue;
+    const physics::BodyId hitter = frozenA ? ev.bodyB : ev.bodyA;
+    if (!w.physics.isAwake(hitter)) continue;
+    if (ev.impulse < settings_.hitSpeed * w.physics.bodyMass(frozen).value_or(0.f)) continue;
+    if (ev.impulse <= 2.f * weightPerStep * w.physics.bodyMass(hitter).value_or(0.f)) continue;
     if (const auto user = w.physics.bodyUserData(frozen)) hit.push_back(fromUserData(*user));
   }
   for (ecs::Entity e : hit)
@@ -191,10 +189,12 @@ void PieceBudget::thawHitPieces(SplitWorld& w) {
 
 void PieceBudget::count(SplitWorld& w) {
   stats_.live = stats_.awake = stats_.frozen = stats_.debris = 0;
+  stats_.frozenMass = 0.0;
   for (auto [e, origin, rb] : w.world.view<SplitOrigin, RigidBody>()) {
     if (!isPiece(origin)) continue;
     if (w.world.has<Frozen>(e)) {
       stats_.frozen++;
+      stats_.frozenMass += massOf(w.world, e);
       continue;
     }
     stats_.live++;
@@ -254,6 +254,7 @@ void PieceBudget::trimFrozen(SplitWorld& w, uint64_t tick, const glm::dvec3& cam
   std::partial_sort(candidates.begin(), candidates.begin() + over, candidates.end(), retiresFirst);
   for (size_t i = 0; i < over; ++i) {
     stats_.fadedTotal++;
+    stats_.fadedMass += massOf(w.world, candidates[i].entity);
     fade(w, candidates[i].entity, settings_.fadeSeconds);
     --quota;
   }
@@ -285,7 +286,6 @@ void PieceBudget::retire(SplitWorld& w, ecs::Entity piece, PieceRetirement how, 
     if (rb && !w.world.has<Ragdoll>(piece) && w.physics.setFrozen(rb->body, true)) {
       w.world.add<Frozen>(piece, Frozen{tick});
       stats_.frozenTotal++;
-      stats_.frozenMass += mass;
       return;
     }
     how = PieceRetirement::Fade;  // a ragdoll (bodies on joints) cannot freeze

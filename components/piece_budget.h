@@ -6,14 +6,16 @@
 //
 // A piece is an entity made by a split (SplitOrigin::generation > 0). Authored objects are never
 // retired. Each tick, after the physics step and the transform sync (PhysicsSync phase), update():
-//   1. thaws frozen pieces that an awake body hit (speed >= hitSpeed) in the last step, and those
+//   1. thaws frozen pieces that an awake body hit in the last step (hitSpeed), and those
 //      next to something that went away (disturb): they are simulated again, at rest, and fall or
 //      tumble as the hit makes them; freezes pieces that stay awake without settling (restless);
 //   2. retires live pieces over maxLivePieces by their retirement (below), and freezes awake pieces
 //      that barely move (creep) while more than maxAwakePieces are awake;
 //   3. fades frozen pieces over maxFrozenPieces, removes the oldest debris over maxDebris, and lets
 //      fading pieces shrink away.
-// At most maxRetirementsPerTick pieces are retired in one tick; the rest wait for the next ticks.
+// At most maxRetirementsPerTick pieces are frozen or retired in one tick (pieces faded because what
+// held them went away while the live budget is full excepted); the rest wait for the next ticks.
+// Ages and times count fixed ticks of 1/60 s, and "above" is along +y (the engine's up).
 //
 // Retirement (per piece: SplitOrigin::retirement, copied from the Splitable of the object it came
 // from; Default takes the settings' policy):
@@ -65,9 +67,9 @@ struct PieceBudgetSettings {
   uint32_t maxRetirementsPerTick = 48;
   PieceRetirement policy = PieceRetirement::Freeze;  // for pieces whose retirement is Default
   float fadeSeconds = 1.0f;        // a fading piece shrinks away in this time
-  // m/s: an awake body at least this fast thaws a frozen piece it hits hard enough to change the
-  // piece's speed by a tenth of this (the contact impulse over the piece's mass).
-  float hitSpeed = 1.0f;
+  // m/s: a frozen piece thaws when an awake body's contact impulse would change its speed by this
+  // much (impulse over the piece's mass) and is more than twice the hitter's weight over a step.
+  float hitSpeed = 0.1f;
   // Creep: an awake piece slower than both for half a second is frozen while more than
   // maxAwakePieces are awake.
   float creepLinearSpeed = 0.25f;  // m/s
@@ -89,9 +91,12 @@ struct PieceBudgetStats {
   uint32_t awake = 0;    // of which awake
   uint32_t frozen = 0;
   uint32_t debris = 0;   // render-only: Debris and fading pieces
-  // Over the whole run, with the mass that left the simulation.
+  double frozenMass = 0.0;  // kg, of the pieces frozen now (out of the simulation, still in the world)
+  // Over the whole run: how many times pieces were frozen, faded, removed, thawed; and the mass that
+  // left the world by fading (from the simulation or frozen) and by removal. Simulated mass + frozen
+  // mass + faded + removed (+ debris, which never had a body) is what the splits made.
   uint64_t frozenTotal = 0, fadedTotal = 0, removedTotal = 0, thawedTotal = 0, debrisRemovedTotal = 0;
-  double frozenMass = 0.0, fadedMass = 0.0, removedMass = 0.0;  // kg
+  double fadedMass = 0.0, removedMass = 0.0;  // kg
   uint32_t retiredThisTick = 0;
   uint32_t thawedThisTick = 0;
 };
@@ -138,9 +143,9 @@ class PieceBudget {
   void disturb(const physics::PhysicsWorld& physics, physics::BodyId body);
 
  private:
-  void thawHitPieces(SplitWorld& w);
+  void thawHitPieces(SplitWorld& w, float dt);
   void thawDisturbed(SplitWorld& w);
-  void freezeRestless(SplitWorld& w, uint64_t tick);
+  void freezeRestless(SplitWorld& w, uint64_t tick, uint32_t& quota);
   void count(SplitWorld& w);
   void retireLive(SplitWorld& w, uint64_t tick, const glm::dvec3& camera, uint32_t& quota);
   void freezeCreeping(SplitWorld& w, uint64_t tick, const glm::dvec3& camera, uint32_t& quota);

@@ -70,6 +70,7 @@ struct BodyRecord {
   uint64_t collisionGroup = 0;
   bool kinematic = false;
   bool frozen = false;
+  bool allowSleep = true;            // BodyDef::allowSleep, restored when a frozen body thaws
   btVector3 frozenInertia{0, 0, 0};  // principal moments kept while frozen
 };
 
@@ -353,7 +354,7 @@ void PhysicsWorld::Impl::thaw(BodyRecord& r) {
   b.setAngularVelocity(btVector3(0, 0, 0));
   world.addRigidBody(&b);
   b.setDeactivationTime(0.0f);
-  b.forceActivationState(ACTIVE_TAG);
+  b.forceActivationState(r.allowSleep ? ACTIVE_TAG : DISABLE_DEACTIVATION);
   r.frozen = false;
 }
 
@@ -554,6 +555,7 @@ Result<BodyId> PhysicsWorld::createBody(const BodyDef& def) {
   record.userData = def.userData;
   record.collisionGroup = def.collisionGroup;
   record.kinematic = def.kinematic;
+  record.allowSleep = def.allowSleep;
   const auto key = w.bodies.insert(std::move(record));
   raw->setUserIndex(int(key.index));
   raw->setUserIndex2(kKindBody);

@@ -27,8 +27,6 @@ using testing::kDt;
 using testing::scenePath;
 using testing::Sim;
 
-constexpr uint64_t kTicksPerSecond = 60;
-
 // One whole tick with the piece budget: the scene's gameplay, then Simulation::step (the harness's
 // Sim::step leaves the budget's settle stage out).
 void tick(Sim& sim) {
@@ -373,7 +371,10 @@ TEST(PieceBudget, RetiredMassIsAccountedByHowThePiecesLeft) {
 
 // ---- thawing ----
 
-// A frozen piece on the floor and a ball shot at its side at 8 m/s (well over hitSpeed).
+// A frozen piece on the floor and a 2 kg ball shot head-on at its side at 8 m/s. The hit is read
+// from the contact impulse (15 N s here: over hitSpeed x the piece's 62.5 kg, and over twice the
+// ball's weight in a step): after the step the solver has already stopped the ball, so a rule on the
+// hitter's speed would miss it.
 TEST(PieceBudget, AFrozenPieceHitByAFastBodyThaws) {
   Sim sim;
   addFloor(sim);
@@ -524,33 +525,31 @@ TEST(PieceBudget, LivePiecesNeverExceedTheLimitAfterAnUpdate) {
 
 // ---- coming to rest ----
 
-// A crate at 1.2 m shattered into 30 cells (all rigid) that fall on the floor: 5 s later no piece is
-// awake. Pieces that tremble in the heap would keep it awake for good without the budget.
-TEST(PieceBudget, ThirtyShatteredPiecesAreAllAtRestAfterFiveSeconds) {
+// A 1 m crate held 0.3 m above the floor shattered into 40 rigid cells that fall in a heap. Heaped
+// cells tremble: without the budget every one of them is still awake at 6 s (they keep each other's
+// island awake); with it, restless pieces are frozen and 5.5 s after the blow none is awake.
+TEST(PieceBudget, AHeapOfFortyShatteredPiecesIsAtRestAfterFiveAndAHalfSeconds) {
   Sim sim;
   addFloor(sim);
   Splitable sp;
   sp.density = 600.0;
   sp.minPieceVolume = 0.0;
-  const ecs::Entity crate =
-      testing::addSplitableBody(sim, "crate", geometry::primitives::box(glm::vec3(0.3f)), sp, sp.density, glm::vec3(0, 1.2f, 0));
-  (void)crate;
+  testing::addSplitableBody(sim, "crate", geometry::primitives::box(glm::vec3(0.5f)), sp, sp.density, glm::vec3(0, 0.8f, 0));
   Splitter hammer;
   hammer.kind = SplitterKind::Shatter;
-  hammer.shatter.cells = 30;
+  hammer.shatter.cells = 40;
   hammer.shatter.seed = 11;
-  hammer.shatter.outwardImpulse = 1.0;
-  hammer.halfExtents = glm::vec3(0.8f);
+  hammer.halfExtents = glm::vec3(1.f);
   SplitWorld w = sim.sw();
-  ASSERT_NE(createSplitter(w, "hammer", physics::ShapeDef::box(hammer.halfExtents), glm::vec3(0.1f, 1.2f, 0.f),
+  ASSERT_NE(createSplitter(w, "hammer", physics::ShapeDef::box(hammer.halfExtents), glm::vec3(0.1f, 0.8f, 0.f),
                            glm::quat(1.f, 0.f, 0.f, 0.f), hammer),
             ecs::kNullEntity);
-  ticks(sim, 5 * int(kTicksPerSecond) + 5);
+  ticks(sim, 330);
   uint32_t pieces = 0;
   for (auto [e, origin, rb] : sim.world.view<SplitOrigin, RigidBody>()) pieces += origin.generation > 0 ? 1u : 0u;
   std::printf("[ budget ] %u pieces with bodies, %u frozen, %u awake, %u debris\n", pieces,
               sim.splits.pieces().stats().frozen, awakePieces(sim), sim.splits.pieces().stats().debris);
-  EXPECT_GE(pieces, 25u);  // the cells are there (a few slivers may be debris)
+  EXPECT_GE(pieces, 35u);  // the cells are there (a sliver or two may be debris)
   EXPECT_EQ(awakePieces(sim), 0u);
   EXPECT_EQ(sim.splits.pieces().stats().awake, 0u);
 }
@@ -566,9 +565,9 @@ std::vector<uint64_t> scriptedSession(uint32_t threads, PieceBudgetStats& stats)
   budget.threads = threads;
   sim.splits.budget().setSettings(budget);
   editBudget(sim, [](PieceBudgetSettings& s) {
-    s.maxLivePieces = 40;
+    s.maxLivePieces = 80;
     s.maxAwakePieces = 10;
-    s.maxFrozenPieces = 30;
+    s.maxFrozenPieces = 60;
     s.maxDebris = 4;
     s.restlessSeconds = 1.f;
   });
@@ -599,6 +598,7 @@ TEST(PieceBudget, TheSameSessionGivesTheSameStateOnZeroOneAndThreeThreads) {
   }
   // The budget really worked in the session, the same way each time.
   EXPECT_GT(s0.frozenTotal, 0u);
+  EXPECT_GT(s0.thawedTotal, 0u);  // the second swing cut pieces that frozen ones rested on
   EXPECT_GT(s0.fadedTotal + s0.removedTotal + s0.debrisRemovedTotal, 0u);
   for (const PieceBudgetStats* s : {&s1, &s3}) {
     EXPECT_EQ(s->frozenTotal, s0.frozenTotal);

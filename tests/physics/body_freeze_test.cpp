@@ -341,7 +341,11 @@ TEST(BodyFreeze, StateHashIsTheSameInTwoRunsWithFreezing) {
   EXPECT_NE(a[29], a[239]);  // the scene moves
 }
 
-// A body that must never sleep (BodyDef::allowSleep = false) keeps that after a freeze and a thaw.
+// A body that must never sleep (BodyDef::allowSleep = false) keeps that after a freeze and a thaw
+// (setFrozen(body, false) "returns it to the simulation awake and at rest").
+//
+// Bullet keeps "never sleep" as an activation state, which freezing (a static object sleeps)
+// overwrites: the body record keeps allowSleep for the thaw.
 TEST(BodyFreeze, ThawedBodyStillNeverSleepsWhenItWasMadeSo) {
   PhysicsWorld world;
   addGround(world);
