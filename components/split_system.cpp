@@ -386,6 +386,9 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
   // whose bodies (a ragdoll has several) no longer touch the blade has left it, and its next touch
   // is a new pass.
   std::vector<std::pair<uint32_t, uint64_t>> touching;
+  // (splitter index, object id) asked for in this call: an object of several bodies (a ragdoll's
+  // bones) touching a one-tick splitter is asked for once.
+  std::vector<std::pair<uint32_t, uint64_t>> asked;
   for (const physics::TriggerEvent& ev : w.physics.triggerEvents()) {
     const auto splitterUser = w.physics.triggerUserData(ev.trigger);
     const auto bodyUser = w.physics.bodyUserData(ev.body);
@@ -414,6 +417,8 @@ void SplitSystem::gatherTriggerRequests(SplitWorld& w, uint64_t tick) {
     // The trigger box is thicker than the plane: a body that touches the box but lies wholly on one
     // side of the plane is not asked for (yet); a persistent blade asks once its plane crosses it.
     if (splitter->kind == SplitterKind::Plane && !planeCrossesBody(w.physics, ev.body, normal, origin)) continue;
+    if (std::find(asked.begin(), asked.end(), std::pair(splitterEntity.index, *bodyUser)) != asked.end()) continue;
+    asked.emplace_back(splitterEntity.index, *bodyUser);
     if (persistent) splitter->passing.push_back(*bodyUser);
     SplitRequest r;
     r.target = target;
