@@ -56,9 +56,10 @@ void ArenaGame::drawMatchPanel(render::Renderer& r, float u) {
   r.submitText(line, {20 * u, 48 * u}, 2.6f * u, kGold);
   std::snprintf(line, sizeof(line), "WAVE %d   ENEMIES %zu", wave_, enemies_.size() + pendingSpawns_.size());
   r.submitText(line, {20 * u, 80 * u}, 2.f * u, kWhite);
-  std::snprintf(line, sizeof(line), "pieces %llu  kills %u  skinned %u",
-                static_cast<unsigned long long>(piecesSpawned_), match_.enemiesKilled,
-                match_.killsByKind[size_t(EnemyKind::Skinned)][0]);
+  // Pieces on the sand now: simulated (of which awake) and fading; the match's figures after them.
+  const components::PieceBudgetStats& pieces = splits_->pieces().stats();
+  std::snprintf(line, sizeof(line), "pieces %u (%u awake)  kills %u  skinned %u", pieces.live + pieces.frozen,
+                pieces.awake, match_.enemiesKilled, match_.killsByKind[size_t(EnemyKind::Skinned)][0]);
   r.submitText(line, {20 * u, 102 * u}, 1.5f * u, kWhite);
 }
 
