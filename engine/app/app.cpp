@@ -138,6 +138,7 @@ base::Status App::setUiOpen(bool open) {
     if (base::Status started = ui->start(*platform_, platform_->frameSize()); !started.ok()) return started;
     ui_ = std::move(ui);
   }
+  if (!uiOpen_) ui_->ignoreHeldButtons();  // the press of a drag in the game is no click on it
   uiOpen_ = true;
   return {};
 }

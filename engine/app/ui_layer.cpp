@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "cleave/render/renderer.h"
 
@@ -55,6 +56,11 @@ void UiLayer::newFrame(glm::ivec2 frameSize, double deltaSeconds) {
   renderer_->newFrame();
   if (platformInput_) {
     platform_->uiNewFrame();  // the window's size, clock and mouse
+    if (ignoreHeldButtons_) {
+      bool held = false;
+      for (bool& down : io.MouseDown) held = std::exchange(down, false) || held;
+      ignoreHeldButtons_ = held;
+    }
   } else {
     io.DisplaySize = ImVec2(float(frameSize.x), float(frameSize.y));
     io.DisplayFramebufferScale = ImVec2(1.f, 1.f);

@@ -54,6 +54,10 @@ class UiLayer {
   bool wantsMouse() const;
   bool wantsKeyboard() const;
 
+  // The UI is shown again: mouse buttons pressed while it was hidden (a drag in the game) are not
+  // clicks on it. Its mouse buttons read as up until every button has been released.
+  void ignoreHeldButtons() { ignoreHeldButtons_ = true; }
+
  private:
   void newFrame(glm::ivec2 frameSize, double deltaSeconds);
 
@@ -62,6 +66,7 @@ class UiLayer {
   bool platformInput_ = false;  // the window's input backend is attached
   std::unique_ptr<render::UiRenderer> renderer_;  // made by start
   double lastSeconds_ = -1.0;
+  bool ignoreHeldButtons_ = false;
 };
 
 }  // namespace cleave::app
