@@ -124,6 +124,42 @@ struct GroupFilter : btOverlapFilterCallback {
   }
 };
 
+// Midphase for box triggers: a long blade turned about the vertical has bounds over most of a level,
+// so the broadphase pairs it with every body there and each pair would run the narrowphase every
+// step. A body whose bounds lie wholly outside the blade's box along one of the box's own axes
+// cannot touch it: its pair skips the narrowphase, and the pair's contact points are dropped so no
+// stale touch is reported. Other pairs take Bullet's own path.
+bool separatedFromBox(const btCollisionObject& box, const btBroadphaseProxy& other) {
+  const auto& shape = static_cast<const btBoxShape&>(*box.getCollisionShape());
+  const btVector3 half = shape.getHalfExtentsWithMargin();
+  const btVector3 centre = (other.m_aabbMin + other.m_aabbMax) * 0.5f;
+  const btVector3 extent = (other.m_aabbMax - other.m_aabbMin) * 0.5f;
+  const btTransform& t = box.getWorldTransform();
+  const btVector3 offset = centre - t.getOrigin();
+  for (int axis = 0; axis < 3; ++axis) {
+    const btVector3 u = t.getBasis().getColumn(axis);
+    const btScalar reach = std::fabs(u.x()) * extent.x() + std::fabs(u.y()) * extent.y() + std::fabs(u.z()) * extent.z();
+    if (std::fabs(u.dot(offset)) > half[axis] + reach) return true;
+  }
+  return false;
+}
+
+void triggerNearCallback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher, const btDispatcherInfo& info) {
+  const auto* a = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+  const auto* b = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+  const bool aBox = a->getUserIndex2() == kKindTrigger && a->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE;
+  const bool bBox = b->getUserIndex2() == kKindTrigger && b->getCollisionShape()->getShapeType() == BOX_SHAPE_PROXYTYPE;
+  if ((aBox && separatedFromBox(*a, *pair.m_pProxy1)) || (bBox && separatedFromBox(*b, *pair.m_pProxy0))) {
+    if (pair.m_algorithm != nullptr) {
+      btManifoldArray manifolds;
+      pair.m_algorithm->getAllContactManifolds(manifolds);
+      for (int i = 0; i < manifolds.size(); ++i) manifolds[i]->clearManifold();
+    }
+    return;
+  }
+  btCollisionDispatcher::defaultNearCallback(pair, dispatcher, info);
+}
+
 struct PhysicsWorld::Impl {
   // Declaration order is construction order; ~Impl empties the world before members go.
   btDefaultCollisionConfiguration config;
@@ -146,6 +182,7 @@ struct PhysicsWorld::Impl {
 
   explicit Impl(const WorldDef& def) {
     btGImpactCollisionAlgorithm::registerAlgorithm(&dispatcher);
+    dispatcher.setNearCallback(triggerNearCallback);
     broadphase.getOverlappingPairCache()->setInternalGhostPairCallback(&ghostPairCallback);
     groupFilter.bodies = &bodies;
     broadphase.getOverlappingPairCache()->setOverlapFilterCallback(&groupFilter);

@@ -207,21 +207,19 @@ void DemoGame::benchmarkSession(int minutes, bool json) {
                                 {"physics_p50_ms", percentile(m.physics, 0.5)}, {"physics_p99_ms", percentile(m.physics, 0.99)},
                                 {"resident_mb", m.residentMb}, {"gpu_meshes", m.gpuMeshes}, {"splits", m.splits},
                                 {"pieces", m.pieces}});
-    out["retired"] = {{"frozen", s.frozenTotal}, {"faded", s.fadedTotal}, {"removed", s.removedTotal},
-                      {"thawed", s.thawedTotal}, {"debris_removed", s.debrisRemovedTotal},
-                      {"frozen_kg", s.frozenMass}, {"faded_kg", s.fadedMass}, {"removed_kg", s.removedMass}};
+    out["retired"] = components::toJson(s);
     std::printf("%s\n", out.dump().c_str());
   } else {
-    std::printf("| minute | live | awake | frozen | debris | tick p50 | p99 | max | split p99 | physics p50 | physics p99 | "
+    std::printf("| minute | live (max) | awake | frozen | debris | tick p50 | p99 | max | split p99 | physics p50 | physics p99 | "
                 "RSS MB | GPU meshes | splits |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const Minute& m : report)
-      std::printf("| %d%s | %u | %u | %u | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %u | %llu |\n", m.minute,
-                  m.minute > minutes ? " (quiet)" : "", m.live, m.awake, m.frozen, m.debris, percentile(m.tick, 0.5),
+      std::printf("| %d%s | %u (%u) | %u | %u | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %u | %llu |\n", m.minute,
+                  m.minute > minutes ? " (quiet)" : "", m.live, m.maxLive, m.awake, m.frozen, m.debris, percentile(m.tick, 0.5),
                   percentile(m.tick, 0.99), percentile(m.tick, 1.0), percentile(m.split, 0.99),
                   percentile(m.physics, 0.5), percentile(m.physics, 0.99), m.residentMb, m.gpuMeshes,
                   (unsigned long long)m.splits);
-    std::printf("retired: %llu frozen (%.1f kg), %llu faded (%.1f kg), %llu removed (%.1f kg), %llu thawed, %llu debris "
-                "removed; piece budget %s\n",
+    std::printf("retired: %llu freezes (%.1f kg frozen at the end), %llu faded (%.1f kg), %llu removed (%.1f kg), "
+                "%llu thawed, %llu debris removed; piece budget %s\n",
                 (unsigned long long)s.frozenTotal, s.frozenMass, (unsigned long long)s.fadedTotal, s.fadedMass,
                 (unsigned long long)s.removedTotal, s.removedMass, (unsigned long long)s.thawedTotal,
                 (unsigned long long)s.debrisRemovedTotal, splits_->pieces().settings().enabled ? "on" : "off");
