@@ -85,6 +85,17 @@ void DemoGame::benchmarkSession(int minutes, bool json) {
   std::vector<Minute> report(size_t(minutes) + 1);
   for (size_t m = 0; m < report.size(); ++m) report[m].minute = int(m) + 1;
   int sweep = 0;
+  auto printRow = [&](const Minute& m) {
+    std::printf("| %d%s | %u (%u) | %u | %u | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %u | %llu |\n", m.minute,
+                m.minute > minutes ? " (quiet)" : "", m.live, m.maxLive, m.awake, m.frozen, m.debris,
+                percentile(m.tick, 0.5), percentile(m.tick, 0.99), percentile(m.tick, 1.0), percentile(m.split, 0.99),
+                percentile(m.physics, 0.5), percentile(m.physics, 0.99), m.residentMb, m.gpuMeshes,
+                (unsigned long long)m.splits);
+    std::fflush(stdout);
+  };
+  if (!json)
+    std::printf("| minute | live (max) | awake | frozen | debris | tick p50 | p99 | max | split p99 | physics p50 | "
+                "physics p99 | RSS MB | GPU meshes | splits |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (uint64_t n = 0; n < sessionTicks + quietTicks; ++n) {
     const uint64_t tick = first + n;
     const bool cutting = n < sessionTicks;
@@ -177,6 +188,7 @@ void DemoGame::benchmarkSession(int minutes, bool json) {
       m.bodies = physics_->bodyCount();
       m.residentMb = residentMegabytes();
       m.gpuMeshes = resources().gpuMeshes;
+      if (!json) printRow(m);  // as the minute ends: a long run shows its figures as it goes
     }
     if (std::getenv("CLEAVE_SESSION_TRACE") && (n + 1) % 600 == 0) {
       std::map<uint32_t, int> contacts;
@@ -210,14 +222,6 @@ void DemoGame::benchmarkSession(int minutes, bool json) {
     out["retired"] = components::toJson(s);
     std::printf("%s\n", out.dump().c_str());
   } else {
-    std::printf("| minute | live (max) | awake | frozen | debris | tick p50 | p99 | max | split p99 | physics p50 | physics p99 | "
-                "RSS MB | GPU meshes | splits |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (const Minute& m : report)
-      std::printf("| %d%s | %u (%u) | %u | %u | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %u | %llu |\n", m.minute,
-                  m.minute > minutes ? " (quiet)" : "", m.live, m.maxLive, m.awake, m.frozen, m.debris, percentile(m.tick, 0.5),
-                  percentile(m.tick, 0.99), percentile(m.tick, 1.0), percentile(m.split, 0.99),
-                  percentile(m.physics, 0.5), percentile(m.physics, 0.99), m.residentMb, m.gpuMeshes,
-                  (unsigned long long)m.splits);
     std::printf("retired: %llu freezes (%.1f kg frozen at the end), %llu faded (%.1f kg), %llu removed (%.1f kg), "
                 "%llu thawed, %llu debris removed; piece budget %s\n",
                 (unsigned long long)s.frozenTotal, s.frozenMass, (unsigned long long)s.fadedTotal, s.fadedMass,
