@@ -12,6 +12,7 @@
 #include <span>
 #include <unordered_map>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -863,6 +864,10 @@ void addHierarchyChildren(CommitContext& c, const PieceSpec& spec, ecs::Entity e
   c.commands.add<ecs::Children>(e, ecs::Children{std::move(children)});
 }
 
+// The radius of a ball of `volume` (m^3): the size of a piece for its sleep threshold and of a
+// debris piece for where it comes to rest.
+double ballRadius(double volume) { return std::cbrt(3.0 * std::max(volume, 0.0) / (4.0 * glm::pi<double>())); }
+
 // The components every piece gets (and a debris piece's motion).
 void addPieceComponents(CommitContext& c, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform,
                         MeshRenderer renderer, const glm::dvec3& velocity) {
@@ -892,7 +897,7 @@ void addPieceComponents(CommitContext& c, const PieceSpec& spec, ecs::Entity e, 
     Debris d;
     d.velocity = glm::vec3(velocity);
     d.angularVelocity = glm::vec3(c.m.now.angularVelocity);
-    d.radius = float(std::cbrt(3.0 * spec.volume / (4.0 * 3.14159265358979)));
+    d.radius = float(ballRadius(spec.volume));
     c.commands.add<Debris>(e, d);
   }
 }
@@ -936,7 +941,7 @@ RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs
   def.ccdRadius = smallPieceCcdRadius(spec);
   // Small pieces: sleep when their surface barely moves (a 1 cm chip turning at 5 rad/s looks still),
   // and a little damping of the spin the solver gives slivers at contacts.
-  const double radius = std::cbrt(3.0 * std::max(spec.volume, 1e-12) / (4.0 * 3.14159265358979));
+  const double radius = ballRadius(std::max(spec.volume, 1e-12));
   def.sleepAngularSpeed = float(std::max(1.0, 0.08 / radius));
   if (radius < 0.05) def.angularDamping = 0.2f;
   const bool awakeNow = scratch_->activationsThisTick < budget_.settings().maxActivationsPerTick;
