@@ -63,6 +63,147 @@ struct Blade {
   uint64_t startTick = 0, endTick = 0;
 };
 
+// A new blade for sweep `sweep`: crossing the field in 11 s, turned 0.7 rad further each sweep;
+// every third plane leans (cuts pieces flat).
+Blade startBlade(components::SplitWorld& sw, int sweep, uint64_t tick) {
+  const float angle = 0.7f * float(sweep);
+  const glm::vec3 across(std::cos(angle), 0.f, std::sin(angle));
+  const float tilt = (sweep % 3 == 2) ? 1.1f : 0.f;
+  const glm::vec3 normal = glm::normalize(across + glm::vec3(0.f, tilt, 0.f));
+  Blade b;
+  b.start = kField - across * 18.f + glm::vec3(0.f, 0.4f, 0.f);
+  b.velocity = across * 3.2f;
+  b.startTick = tick;
+  b.endTick = tick + 660;
+  // The blade's frame: local +Y the plane normal, local X along the field, local Z as near up as the
+  // plane allows. 44 m long and 3.2 m tall, its lower edge at the floor.
+  const glm::vec3 along = glm::normalize(glm::cross(normal, glm::vec3(0.f, 1.f, 0.f)));
+  b.rotation = glm::quat_cast(glm::mat3(along, normal, glm::cross(along, normal)));
+  b.start.y = 1.6f;
+  components::Splitter splitter;
+  splitter.lifetime = components::SplitterLifetime::Persistent;
+  splitter.halfExtents = glm::vec3(22.f, 0.02f, 1.6f);
+  b.entity = components::createSplitter(sw, "blade " + std::to_string(sweep), physics::ShapeDef::box(splitter.halfExtents),
+                                        b.start, b.rotation, splitter);
+  return b;
+}
+
+// Moves every blade to its place at `tick`; a blade past its end goes.
+void moveBlades(components::SplitWorld& sw, std::vector<Blade>& blades, uint64_t tick) {
+  for (Blade& b : blades) {
+    if (!sw.world.alive(b.entity)) continue;
+    if (tick >= b.endTick) {
+      sw.world.destroy(b.entity);
+      continue;
+    }
+    const glm::vec3 at = b.start + b.velocity * (float(tick - b.startTick) / 60.f);
+    auto& t = sw.world.get<ecs::Transform>(b.entity);
+    t.position = at;
+    sw.world.get<ecs::WorldTransform>(b.entity).matrix = ecs::localMatrix(t);
+    sw.physics.setTriggerTransform(sw.world.get<components::Splitter>(b.entity).trigger, physics::BodyTransform{at, b.rotation});
+  }
+  std::erase_if(blades, [&](const Blade& b) { return !sw.world.alive(b.entity); });
+}
+
+// Three shatters of 12 cells, on splitable objects of the field picked by the generator.
+void requestShatters(ecs::World& world, components::SplitSystem& splits, std::mt19937& rng, uint64_t tick) {
+  std::vector<ecs::Entity> targets;
+  for (auto [e, sp, t] : world.view<components::Splitable, ecs::Transform>())
+    if (t.position.y > -1.f && std::abs(t.position.z - kField.z) < 20.f) targets.push_back(e);
+  std::sort(targets.begin(), targets.end(), [](ecs::Entity a, ecs::Entity b) { return a.index < b.index; });
+  for (int k = 0; k < 3 && !targets.empty(); ++k) {
+    const ecs::Entity e = targets[rng() % targets.size()];
+    components::SplitRequest r;
+    r.target = e;
+    r.shatter = true;
+    r.shatterSpec.cells = 12;
+    r.shatterSpec.impactPoint = glm::dvec3(world.get<ecs::Transform>(e).position);
+    r.requestedTick = tick;
+    splits.request(r);
+  }
+}
+
+// CLEAVE_SESSION_TRACE: every awake piece with its speeds, size, height, contacts and age.
+void traceAwakePieces(components::SplitWorld& sw, uint64_t n, uint64_t tick) {
+  std::map<uint32_t, int> contacts;
+  for (const physics::ContactEvent& ev : sw.physics.contactEvents()) contacts[ev.bodyA.index]++, contacts[ev.bodyB.index]++;
+  for (auto [e, origin, rb, info] : sw.world.view<components::SplitOrigin, components::RigidBody, components::MassInfo>()) {
+    if (!sw.physics.isAwake(rb.body)) continue;
+    const auto st = sw.physics.bodyState(rb.body);
+    std::fprintf(stderr, "tick %llu awake %u: v %.3f w %.3f vol %.2e y %.3f contacts %d age %llu ragdoll %d\n",
+                 (unsigned long long)n, e.index, glm::length(st->linearVelocity), glm::length(st->angularVelocity),
+                 info.volume, st->transform.position.y, contacts[rb.body.index], (unsigned long long)(tick - origin.tick),
+                 int(sw.world.has<components::Ragdoll>(e)));
+  }
+}
+
+void printHeader() {
+  std::printf("| minute | live (max) | awake | frozen | debris | tick p50 | p99 | max | split p99 | physics p50 | "
+              "physics p99 | RSS MB | GPU meshes | splits |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+}
+
+void printRow(const Minute& m, int minutes) {
+  std::printf("| %d%s | %u (%u) | %u | %u | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %u | %llu |\n", m.minute,
+              m.minute > minutes ? " (quiet)" : "", m.live, m.maxLive, m.awake, m.frozen, m.debris, percentile(m.tick, 0.5),
+              percentile(m.tick, 0.99), percentile(m.tick, 1.0), percentile(m.split, 0.99), percentile(m.physics, 0.5),
+              percentile(m.physics, 0.99), m.residentMb, m.gpuMeshes, (unsigned long long)m.splits);
+  std::fflush(stdout);
+}
+
+void printJson(const std::vector<Minute>& report, const components::SplitSystem& splits) {
+  nlohmann::json out;
+  out["budget"] = splits.pieces().settings().enabled;
+  out["threads"] = splits.budget().settings().threads;
+  for (const Minute& m : report)
+    out["minutes"].push_back({{"minute", m.minute}, {"live", m.live}, {"awake", m.awake}, {"frozen", m.frozen},
+                              {"debris", m.debris}, {"bodies", m.bodies}, {"max_live", m.maxLive}, {"max_awake", m.maxAwake},
+                              {"tick_p50_ms", percentile(m.tick, 0.5)}, {"tick_p99_ms", percentile(m.tick, 0.99)},
+                              {"tick_max_ms", percentile(m.tick, 1.0)}, {"split_p99_ms", percentile(m.split, 0.99)},
+                              {"physics_p50_ms", percentile(m.physics, 0.5)}, {"physics_p99_ms", percentile(m.physics, 0.99)},
+                              {"resident_mb", m.residentMb}, {"gpu_meshes", m.gpuMeshes}, {"splits", m.splits},
+                              {"pieces", m.pieces}});
+  out["retired"] = components::toJson(splits.pieces().stats());
+  std::printf("%s\n", out.dump().c_str());
+}
+
+void printRetired(const components::SplitSystem& splits) {
+  const components::PieceBudgetStats& s = splits.pieces().stats();
+  std::printf("retired: %llu freezes (%.1f kg frozen at the end), %llu faded (%.1f kg), %llu removed (%.1f kg), "
+              "%llu thawed, %llu debris removed; piece budget %s\n",
+              (unsigned long long)s.frozenTotal, s.frozenMass, (unsigned long long)s.fadedTotal, s.fadedMass,
+              (unsigned long long)s.removedTotal, s.removedMass, (unsigned long long)s.thawedTotal,
+              (unsigned long long)s.debrisRemovedTotal, splits.pieces().settings().enabled ? "on" : "off");
+}
+
+// One tick of the session in the simulation's phase order, timed by stage into the minute's figures.
+void timedTick(components::Simulation& sim, uint64_t tick, const glm::dvec3& camera, bool trace, Minute& m) {
+  const double t0 = components::nowMilliseconds();
+  sim.gather(tick);
+  sim.prepare(tick, camera);
+  sim.commit(tick);
+  const double t1 = components::nowMilliseconds();
+  sim.stepPhysics(app::kTickSeconds);
+  const double t2 = components::nowMilliseconds();
+  sim.sync(app::kTickSeconds);
+  sim.settle(tick, app::kTickSeconds);
+  sim.animate(app::kTickSeconds);
+  const double t3 = components::nowMilliseconds();
+  const components::PieceBudgetStats& s = sim.splits().pieces().stats();
+  if (trace && t2 - t1 > 6.0)
+    std::fprintf(stderr, "slow tick %llu: physics %.2f split %.2f live %u awake %u frozen %u contacts %zu triggers %zu\n",
+                 (unsigned long long)tick, t2 - t1, t1 - t0, s.live, s.awake, s.frozen, sim.physics().contactEvents().size(),
+                 sim.physics().triggerEvents().size());
+  m.tick.push_back(t3 - t0);
+  m.split.push_back(t1 - t0);
+  m.physics.push_back(t2 - t1);
+  for (const components::SplitEvent& ev : sim.splits().lastEvents()) {
+    m.splits++;
+    m.pieces += ev.pieces.size();
+  }
+  m.maxLive = std::max(m.maxLive, s.live);
+  m.maxAwake = std::max(m.maxAwake, s.awake);
+}
+
 }  // namespace
 
 void DemoGame::benchmarkSession(int minutes, bool json) {
@@ -80,153 +221,40 @@ void DemoGame::benchmarkSession(int minutes, bool json) {
   const glm::dvec3 camera(kField + glm::vec3(0.f, 9.f, 24.f));
   const uint64_t first = 2000000;  // ticks of its own, after anything the demo did
   const uint64_t sessionTicks = uint64_t(minutes) * kTicksPerMinute;
-  const uint64_t quietTicks = 30 * 60;
+  const uint64_t allTicks = sessionTicks + 30 * 60;  // then 30 s of quiet
+  const bool trace = std::getenv("CLEAVE_SESSION_TRACE") != nullptr;
   std::vector<Blade> blades;
   std::vector<Minute> report(size_t(minutes) + 1);
   for (size_t m = 0; m < report.size(); ++m) report[m].minute = int(m) + 1;
   int sweep = 0;
-  auto printRow = [&](const Minute& m) {
-    std::printf("| %d%s | %u (%u) | %u | %u | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %u | %llu |\n", m.minute,
-                m.minute > minutes ? " (quiet)" : "", m.live, m.maxLive, m.awake, m.frozen, m.debris,
-                percentile(m.tick, 0.5), percentile(m.tick, 0.99), percentile(m.tick, 1.0), percentile(m.split, 0.99),
-                percentile(m.physics, 0.5), percentile(m.physics, 0.99), m.residentMb, m.gpuMeshes,
-                (unsigned long long)m.splits);
-    std::fflush(stdout);
-  };
-  if (!json)
-    std::printf("| minute | live (max) | awake | frozen | debris | tick p50 | p99 | max | split p99 | physics p50 | "
-                "physics p99 | RSS MB | GPU meshes | splits |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-  for (uint64_t n = 0; n < sessionTicks + quietTicks; ++n) {
+  if (!json) printHeader();
+  for (uint64_t n = 0; n < allTicks; ++n) {
     const uint64_t tick = first + n;
     const bool cutting = n < sessionTicks;
-    if (cutting && n % 720 == 0) {  // a new blade every 12 s, crossing the field in 11 s
-      const float angle = 0.7f * float(sweep);
-      const glm::vec3 across(std::cos(angle), 0.f, std::sin(angle));
-      const float tilt = (sweep % 3 == 2) ? 1.1f : 0.f;  // every third plane leans (cuts pieces flat)
-      const glm::vec3 normal = glm::normalize(across + glm::vec3(0.f, tilt, 0.f));
-      Blade b;
-      b.start = kField - across * 18.f + glm::vec3(0.f, 0.4f, 0.f);
-      b.velocity = across * 3.2f;
-      b.startTick = tick;
-      b.endTick = tick + 660;
-      // The blade's frame: local +Y the plane normal, local X along the field, local Z as near up as the
-      // plane allows. 44 m long and 3.2 m tall, its lower edge at the floor.
-      const glm::vec3 along = glm::normalize(glm::cross(normal, glm::vec3(0.f, 1.f, 0.f)));
-      b.rotation = glm::quat_cast(glm::mat3(along, normal, glm::cross(along, normal)));
-      b.start.y = 1.6f;
-      components::Splitter splitter;
-      splitter.lifetime = components::SplitterLifetime::Persistent;
-      splitter.halfExtents = glm::vec3(22.f, 0.02f, 1.6f);
-      b.entity = components::createSplitter(sw, "blade " + std::to_string(sweep), physics::ShapeDef::box(splitter.halfExtents),
-                                            b.start, b.rotation, splitter);
-      blades.push_back(b);
-      ++sweep;
-    }
-    for (Blade& b : blades) {
-      if (!world.alive(b.entity)) continue;
-      if (tick >= b.endTick) {
-        world.destroy(b.entity);
-        continue;
-      }
-      const glm::vec3 at = b.start + b.velocity * (float(tick - b.startTick) / 60.f);
-      auto& t = world.get<ecs::Transform>(b.entity);
-      t.position = at;
-      world.get<ecs::WorldTransform>(b.entity).matrix = ecs::localMatrix(t);
-      physics_->setTriggerTransform(world.get<components::Splitter>(b.entity).trigger, physics::BodyTransform{at, b.rotation});
-    }
-    std::erase_if(blades, [&](const Blade& b) { return !world.alive(b.entity); });
-    if (cutting && n % 1800 == 900) {  // three shatters every 30 s, on objects picked by the generator
-      std::vector<ecs::Entity> targets;
-      for (auto [e, sp, t] : world.view<components::Splitable, ecs::Transform>())
-        if (t.position.y > -1.f && std::abs(t.position.z - kField.z) < 20.f) targets.push_back(e);
-      std::sort(targets.begin(), targets.end(), [](ecs::Entity a, ecs::Entity b) { return a.index < b.index; });
-      for (int k = 0; k < 3 && !targets.empty(); ++k) {
-        const ecs::Entity e = targets[rng() % targets.size()];
-        components::SplitRequest r;
-        r.target = e;
-        r.shatter = true;
-        r.shatterSpec.cells = 12;
-        r.shatterSpec.impactPoint = glm::dvec3(world.get<ecs::Transform>(e).position);
-        r.requestedTick = tick;
-        splits_->request(r);
-      }
-    }
+    if (cutting && n % 720 == 0) blades.push_back(startBlade(sw, sweep++, tick));  // a blade every 12 s
+    moveBlades(sw, blades, tick);
+    if (cutting && n % 1800 == 900) requestShatters(world, *splits_, rng, tick);  // every 30 s
     if (cutting && n % kTicksPerMinute == 1800) {  // fresh objects drop in
       for (int k = 0; k < 25; ++k)
         spawn(kinds[rng() % 8], spot(int(rng() % (kSide * kSide)), 2.5f + float(k % 5)), glm::quat(1.f, 0.f, 0.f, 0.f));
     }
-    const double t0 = components::nowMilliseconds();
-    sim_->gather(tick);
-    sim_->prepare(tick, camera);
-    sim_->commit(tick);
-    const double t1 = components::nowMilliseconds();
-    sim_->stepPhysics(app::kTickSeconds);
-    const double t2 = components::nowMilliseconds();
-    sim_->sync(app::kTickSeconds);
-    sim_->settle(tick, app::kTickSeconds);
-    sim_->animate(app::kTickSeconds);
-    const double t3 = components::nowMilliseconds();
-    if (std::getenv("CLEAVE_SESSION_TRACE") && t2 - t1 > 6.0) {
-      const components::PieceBudgetStats& ps = splits_->pieces().stats();
-      std::fprintf(stderr, "slow tick %llu: physics %.2f split %.2f live %u awake %u frozen %u contacts %zu triggers %zu blades %zu\n",
-                   (unsigned long long)n, t2 - t1, t1 - t0, ps.live, ps.awake, ps.frozen, physics_->contactEvents().size(),
-                   physics_->triggerEvents().size(), blades.size());
-    }
     Minute& m = report[std::min<size_t>(n / kTicksPerMinute, report.size() - 1)];
-    m.tick.push_back(t3 - t0);
-    m.split.push_back(t1 - t0);
-    m.physics.push_back(t2 - t1);
-    for (const components::SplitEvent& ev : splits_->lastEvents()) {
-      m.splits++;
-      m.pieces += ev.pieces.size();
-    }
+    timedTick(*sim_, tick, camera, trace, m);
     const components::PieceBudgetStats& s = splits_->pieces().stats();
-    m.maxLive = std::max(m.maxLive, s.live);
-    m.maxAwake = std::max(m.maxAwake, s.awake);
-    if ((n + 1) % kTicksPerMinute == 0 || n + 1 == sessionTicks + quietTicks) {
+    if ((n + 1) % kTicksPerMinute == 0 || n + 1 == allTicks) {
       m.live = s.live, m.awake = s.awake, m.frozen = s.frozen, m.debris = s.debris;
       m.bodies = physics_->bodyCount();
       m.residentMb = residentMegabytes();
       m.gpuMeshes = resources().gpuMeshes;
-      if (!json) printRow(m);  // as the minute ends: a long run shows its figures as it goes
+      if (!json) printRow(m, minutes);  // as the minute ends: a long run shows its figures as it goes
     }
-    if (std::getenv("CLEAVE_SESSION_TRACE") && (n + 1) % 600 == 0) {
-      std::map<uint32_t, int> contacts;
-      for (const physics::ContactEvent& ev : physics_->contactEvents()) contacts[ev.bodyA.index]++, contacts[ev.bodyB.index]++;
-      for (auto [e, origin, rb, info] : world.view<components::SplitOrigin, components::RigidBody, components::MassInfo>()) {
-        if (!physics_->isAwake(rb.body)) continue;
-        const auto st = physics_->bodyState(rb.body);
-        std::fprintf(stderr, "tick %llu awake %u: v %.3f w %.3f vol %.2e y %.3f contacts %d age %llu ragdoll %d\n",
-                     (unsigned long long)n, e.index, glm::length(st->linearVelocity), glm::length(st->angularVelocity),
-                     info.volume, st->transform.position.y, contacts[rb.body.index], (unsigned long long)(tick - origin.tick),
-                     int(world.has<components::Ragdoll>(e)));
-      }
-    }
-    if (n + 1 == sessionTicks + 5 * 60) {
-      std::fprintf(stderr, "5 s after the last blade: %u awake of %u live\n", s.awake, s.live);
-    }
+    if (trace && (n + 1) % 600 == 0) traceAwakePieces(sw, n, tick);
+    if (n + 1 == sessionTicks + 5 * 60) std::fprintf(stderr, "5 s after the last blade: %u awake of %u live\n", s.awake, s.live);
   }
-  const components::PieceBudgetStats& s = splits_->pieces().stats();
   if (json) {
-    nlohmann::json out;
-    out["budget"] = splits_->pieces().settings().enabled;
-    out["threads"] = splits_->budget().settings().threads;
-    for (const Minute& m : report)
-      out["minutes"].push_back({{"minute", m.minute}, {"live", m.live}, {"awake", m.awake}, {"frozen", m.frozen},
-                                {"debris", m.debris}, {"bodies", m.bodies}, {"max_live", m.maxLive}, {"max_awake", m.maxAwake},
-                                {"tick_p50_ms", percentile(m.tick, 0.5)}, {"tick_p99_ms", percentile(m.tick, 0.99)},
-                                {"tick_max_ms", percentile(m.tick, 1.0)}, {"split_p99_ms", percentile(m.split, 0.99)},
-                                {"physics_p50_ms", percentile(m.physics, 0.5)}, {"physics_p99_ms", percentile(m.physics, 0.99)},
-                                {"resident_mb", m.residentMb}, {"gpu_meshes", m.gpuMeshes}, {"splits", m.splits},
-                                {"pieces", m.pieces}});
-    out["retired"] = components::toJson(s);
-    std::printf("%s\n", out.dump().c_str());
+    printJson(report, *splits_);
   } else {
-    std::printf("retired: %llu freezes (%.1f kg frozen at the end), %llu faded (%.1f kg), %llu removed (%.1f kg), "
-                "%llu thawed, %llu debris removed; piece budget %s\n",
-                (unsigned long long)s.frozenTotal, s.frozenMass, (unsigned long long)s.fadedTotal, s.fadedMass,
-                (unsigned long long)s.removedTotal, s.removedMass, (unsigned long long)s.thawedTotal,
-                (unsigned long long)s.debrisRemovedTotal, splits_->pieces().settings().enabled ? "on" : "off");
+    printRetired(*splits_);
   }
   std::fflush(stdout);
 }
