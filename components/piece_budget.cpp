@@ -99,6 +99,8 @@ void PieceBudget::update(SplitWorld& w, uint64_t tick, const glm::dvec3& camera,
     count(w);
     freezeCreeping(w, tick, camera, quota);
     count(w);
+    retireAwake(w, tick, camera, quota);
+    count(w);
     trimFrozen(w, tick, camera, quota);
     trimDebris(w);
     stats_.retiredThisTick = settings_.maxRetirementsPerTick - quota;
@@ -240,6 +242,33 @@ void PieceBudget::freezeCreeping(SplitWorld& w, uint64_t tick, const glm::dvec3&
   std::partial_sort(candidates.begin(), candidates.begin() + over, candidates.end(), retiresFirst);
   for (size_t i = 0; i < over; ++i) {
     retire(w, candidates[i].entity, PieceRetirement::Freeze, tick);
+    --quota;
+  }
+}
+
+// Still more than maxAwakePieces awake (a blade through a heap makes hundreds of pieces at once):
+// the excess retires in key order, each by its retirement, except that a piece moving faster than
+// the creep speeds fades rather than freeze in mid-air.
+void PieceBudget::retireAwake(SplitWorld& w, uint64_t tick, const glm::dvec3& camera, uint32_t& quota) {
+  if (stats_.awake <= settings_.maxAwakePieces || quota == 0) return;
+  std::vector<Candidate> candidates;
+  for (auto [e, origin, rb] : w.world.view<SplitOrigin, RigidBody>()) {
+    if (!isPiece(origin) || w.world.has<Frozen>(e) || !w.physics.isAwake(rb.body)) continue;
+    candidates.push_back(candidateOf(w.world, e, origin, true, tick, camera));
+  }
+  const size_t over = std::min<size_t>({stats_.awake - settings_.maxAwakePieces, quota, candidates.size()});
+  std::partial_sort(candidates.begin(), candidates.begin() + over, candidates.end(), retiresFirst);
+  const float lin2 = settings_.creepLinearSpeed * settings_.creepLinearSpeed;
+  const float ang2 = settings_.creepAngularSpeed * settings_.creepAngularSpeed;
+  for (size_t i = 0; i < over; ++i) {
+    const ecs::Entity e = candidates[i].entity;
+    const PieceRetirement own = w.world.get<SplitOrigin>(e).retirement;
+    PieceRetirement how = own == PieceRetirement::Default ? settings_.policy : own;
+    const physics::BodyId body = w.world.get<RigidBody>(e).body;
+    const glm::vec3 v = w.physics.linearVelocity(body).value_or(glm::vec3(0.f));
+    const glm::vec3 a = w.physics.angularVelocity(body).value_or(glm::vec3(0.f));
+    if (how == PieceRetirement::Freeze && (glm::dot(v, v) >= lin2 || glm::dot(a, a) >= ang2)) how = PieceRetirement::Fade;
+    retire(w, e, how, tick);
     --quota;
   }
 }

@@ -9,8 +9,10 @@
 //   1. thaws frozen pieces that an awake body hit in the last step (hitSpeed), and those
 //      next to something that went away (disturb): they are simulated again, at rest, and fall or
 //      tumble as the hit makes them; freezes pieces that stay awake without settling (restless);
-//   2. retires live pieces over maxLivePieces by their retirement (below), and freezes awake pieces
-//      that barely move (creep) while more than maxAwakePieces are awake;
+//   2. retires live pieces over maxLivePieces by their retirement (below); freezes awake pieces
+//      that barely move (creep) while more than maxAwakePieces are awake, and if that is not
+//      enough, retires the excess awake pieces in key order (a moving piece fades rather than
+//      freeze in mid-air);
 //   3. fades frozen pieces over maxFrozenPieces, removes the oldest debris over maxDebris, and lets
 //      fading pieces shrink away.
 // At most maxRetirementsPerTick pieces are frozen or retired in one tick (pieces faded because what
@@ -61,7 +63,7 @@ const char* toString(PieceRetirement retirement);
 struct PieceBudgetSettings {
   bool enabled = true;  // false: nothing is retired (the counts are still kept)
   uint32_t maxLivePieces = 400;    // simulated pieces, awake or asleep (frozen and debris not counted)
-  uint32_t maxAwakePieces = 96;    // beyond: creeping pieces are frozen, oldest first
+  uint32_t maxAwakePieces = 96;    // beyond: creeping pieces freeze, then the excess retires in key order
   uint32_t maxFrozenPieces = 1500; // beyond: frozen pieces fade, in retirement order
   uint32_t maxDebris = 96;         // render-only pieces (Debris and fading); beyond: the oldest go
   uint32_t maxRetirementsPerTick = 48;
@@ -149,6 +151,7 @@ class PieceBudget {
   void count(SplitWorld& w);
   void retireLive(SplitWorld& w, uint64_t tick, const glm::dvec3& camera, uint32_t& quota);
   void freezeCreeping(SplitWorld& w, uint64_t tick, const glm::dvec3& camera, uint32_t& quota);
+  void retireAwake(SplitWorld& w, uint64_t tick, const glm::dvec3& camera, uint32_t& quota);
   void trimFrozen(SplitWorld& w, uint64_t tick, const glm::dvec3& camera, uint32_t& quota);
   void trimDebris(SplitWorld& w);
   void retire(SplitWorld& w, ecs::Entity piece, PieceRetirement how, uint64_t tick);

@@ -523,6 +523,50 @@ TEST(PieceBudget, LivePiecesNeverExceedTheLimitAfterAnUpdate) {
   EXPECT_EQ(most, 12u);
 }
 
+// The same swing with room for all 100 pieces but only 16 awake: the pieces fly apart, so none
+// creeps, and the excess must still retire in the update that sees it.
+TEST(PieceBudget, AwakePiecesNeverExceedTheLimitAfterAnUpdate) {
+  Sim sim;
+  ASSERT_TRUE(sim.load(scenePath("fifty_cubes.json"))) << sim.scene.message;
+  editBudget(sim, [](PieceBudgetSettings& s) {
+    s.maxLivePieces = 1000;
+    s.maxAwakePieces = 16;
+    s.maxRetirementsPerTick = 200;
+  });
+  uint32_t most = 0;
+  for (int i = 0; i < 240; ++i) {
+    tick(sim);
+    const uint32_t awake = awakePieces(sim);
+    ASSERT_LE(awake, 16u) << "tick " << sim.tick;
+    EXPECT_EQ(sim.splits.pieces().stats().awake, awake) << "tick " << sim.tick;
+    most = std::max(most, awake);
+  }
+  EXPECT_GE(sim.splits.totalPiecesCreated(), 100u);
+  EXPECT_EQ(most, 16u);
+  EXPECT_GT(sim.splits.pieces().stats().fadedTotal, 0u);  // pieces in flight faded
+}
+
+// Over the awake limit, a piece that barely moves freezes where it is; one in flight fades rather
+// than hang in the air, though the policy says freeze.
+TEST(PieceBudget, OverTheAwakeLimitAMovingPieceFadesAndASlowOneFreezes) {
+  Sim sim;
+  const ecs::Entity flying = addPiece(sim, glm::vec3(0.25f), glm::vec3(0, 3, 0), 0);
+  const ecs::Entity slow = addPiece(sim, glm::vec3(0.25f), glm::vec3(2, 3, 0), 0);
+  ASSERT_TRUE(sim.physics.setVelocity(bodyOf(sim, flying), glm::vec3(0.f, 2.f, 0.f), glm::vec3(0.f)));
+  ASSERT_TRUE(sim.physics.setVelocity(bodyOf(sim, slow), glm::vec3(0.1f, 0.f, 0.f), glm::vec3(0.f)));
+  editBudget(sim, [](PieceBudgetSettings& s) {
+    s.policy = PieceRetirement::Freeze;
+    s.maxAwakePieces = 0;
+  });
+  settleOnce(sim, 60);
+  EXPECT_TRUE(sim.world.has<Fading>(flying));
+  EXPECT_FALSE(sim.world.has<RigidBody>(flying));
+  EXPECT_TRUE(sim.world.has<Frozen>(slow));
+  EXPECT_EQ(sim.splits.pieces().stats().awake, 0u);
+  EXPECT_EQ(sim.splits.pieces().stats().frozenTotal, 1u);
+  EXPECT_EQ(sim.splits.pieces().stats().fadedTotal, 1u);
+}
+
 // ---- coming to rest ----
 
 // A 1 m crate held 0.3 m above the floor shattered into 40 rigid cells that fall in a heap. Heaped
