@@ -4,7 +4,8 @@
 // (vertical and tilted planes, turning by a fixed step), three objects are shattered every 30
 // seconds, 25 fresh objects drop onto the field every minute; then 30 seconds of nothing. Every
 // minute it prints the pieces (live, awake, frozen, debris), the tick's p50 / p99 / max with the
-// split stages and the physics step apart, resident memory and GPU meshes. It measures, it does not
+// split stages and the physics step apart, a frame of the field every 5 s (time, draw calls,
+// triangles), resident memory and GPU meshes. It measures, it does not
 // test; the same run is deterministic (a seeded generator, the budgets' own deterministic rules).
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
@@ -36,7 +38,8 @@ const glm::vec3 kField(0.f, 0.f, -34.f);  // centre of the field, away from the 
 struct Minute {
   int minute = 0;
   uint32_t live = 0, awake = 0, frozen = 0, debris = 0, bodies = 0, maxLive = 0, maxAwake = 0;
-  std::vector<double> tick, split, physics;
+  std::vector<double> tick, split, physics, frame;
+  uint32_t drawCalls = 0, triangles = 0;  // of the minute's last frame
   double residentMb = 0.0;
   uint32_t gpuMeshes = 0;
   uint64_t splits = 0, pieces = 0;
@@ -137,16 +140,34 @@ void traceAwakePieces(components::SplitWorld& sw, uint64_t n, uint64_t tick) {
   }
 }
 
+// CLEAVE_SESSION_TRACE on a slow tick: the awake pieces by motion (at rest, creeping, moving) and
+// how many are younger than two seconds.
+std::string awakeByMotion(components::SplitWorld& sw, uint64_t tick) {
+  int rest = 0, creep = 0, moving = 0, young = 0;
+  for (auto [e, origin, rb] : sw.world.view<components::SplitOrigin, components::RigidBody>()) {
+    if (!sw.physics.isAwake(rb.body) || sw.physics.isFrozen(rb.body)) continue;
+    const auto st = sw.physics.bodyState(rb.body);
+    const float v = glm::length(st->linearVelocity), w = glm::length(st->angularVelocity);
+    (v < 0.05f && w < 0.5f ? rest : v < 0.25f ? creep : moving)++;
+    if (tick - origin.tick < 120) young++;
+  }
+  char text[96];
+  std::snprintf(text, sizeof text, "rest %d creep %d moving %d young %d", rest, creep, moving, young);
+  return text;
+}
+
 void printHeader() {
   std::printf("| minute | live (max) | awake | frozen | debris | tick p50 | p99 | max | split p99 | physics p50 | "
-              "physics p99 | RSS MB | GPU meshes | splits |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+              "physics p99 | frame ms | draws | triangles | RSS MB | GPU meshes | splits |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
 }
 
 void printRow(const Minute& m, int minutes) {
-  std::printf("| %d%s | %u (%u) | %u | %u | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f | %u | %llu |\n", m.minute,
-              m.minute > minutes ? " (quiet)" : "", m.live, m.maxLive, m.awake, m.frozen, m.debris, percentile(m.tick, 0.5),
-              percentile(m.tick, 0.99), percentile(m.tick, 1.0), percentile(m.split, 0.99), percentile(m.physics, 0.5),
-              percentile(m.physics, 0.99), m.residentMb, m.gpuMeshes, (unsigned long long)m.splits);
+  std::printf("| %d%s | %u (%u) | %u | %u | %u | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %u | %u | %.0f | %u | %llu |\n",
+              m.minute, m.minute > minutes ? " (quiet)" : "", m.live, m.maxLive, m.awake, m.frozen, m.debris,
+              percentile(m.tick, 0.5), percentile(m.tick, 0.99), percentile(m.tick, 1.0), percentile(m.split, 0.99),
+              percentile(m.physics, 0.5), percentile(m.physics, 0.99), percentile(m.frame, 0.5), m.drawCalls, m.triangles,
+              m.residentMb, m.gpuMeshes, (unsigned long long)m.splits);
   std::fflush(stdout);
 }
 
@@ -160,6 +181,7 @@ void printJson(const std::vector<Minute>& report, const components::SplitSystem&
                               {"tick_p50_ms", percentile(m.tick, 0.5)}, {"tick_p99_ms", percentile(m.tick, 0.99)},
                               {"tick_max_ms", percentile(m.tick, 1.0)}, {"split_p99_ms", percentile(m.split, 0.99)},
                               {"physics_p50_ms", percentile(m.physics, 0.5)}, {"physics_p99_ms", percentile(m.physics, 0.99)},
+                              {"frame_p50_ms", percentile(m.frame, 0.5)}, {"draw_calls", m.drawCalls}, {"triangles", m.triangles},
                               {"resident_mb", m.residentMb}, {"gpu_meshes", m.gpuMeshes}, {"splits", m.splits},
                               {"pieces", m.pieces}});
   out["retired"] = components::toJson(splits.pieces().stats());
@@ -189,10 +211,11 @@ void timedTick(components::Simulation& sim, uint64_t tick, const glm::dvec3& cam
   sim.animate(app::kTickSeconds);
   const double t3 = components::nowMilliseconds();
   const components::PieceBudgetStats& s = sim.splits().pieces().stats();
+  components::SplitWorld sw = sim.splitWorld();
   if (trace && t2 - t1 > 6.0)
-    std::fprintf(stderr, "slow tick %llu: physics %.2f split %.2f live %u awake %u frozen %u contacts %zu triggers %zu\n",
+    std::fprintf(stderr, "slow tick %llu: physics %.2f split %.2f live %u awake %u frozen %u contacts %zu triggers %zu %s\n",
                  (unsigned long long)tick, t2 - t1, t1 - t0, s.live, s.awake, s.frozen, sim.physics().contactEvents().size(),
-                 sim.physics().triggerEvents().size());
+                 sim.physics().triggerEvents().size(), awakeByMotion(sw, tick).c_str());
   m.tick.push_back(t3 - t0);
   m.split.push_back(t1 - t0);
   m.physics.push_back(t2 - t1);
@@ -202,6 +225,28 @@ void timedTick(components::Simulation& sim, uint64_t tick, const glm::dvec3& cam
   }
   m.maxLive = std::max(m.maxLive, s.live);
   m.maxAwake = std::max(m.maxAwake, s.awake);
+}
+
+// One frame of the field at 1280 x 720 as the player's camera would see it, timed up to its pixels
+// being read back (so the GPU's work is in it; on a software rasterizer that is the processor's).
+void timedFrame(components::SplitWorld& sw, const glm::vec3& eye, const glm::vec3& target, Minute& m) {
+  if (!sw.renderer) return;
+  render::Camera camera;
+  camera.position = eye;
+  camera.view = glm::lookAt(eye, target, glm::vec3(0.f, 1.f, 0.f));
+  render::Lighting lighting;
+  lighting.shadowCenter = glm::vec3(target.x, 0.f, target.z);
+  lighting.shadowRadius = 24.f;
+  const double t0 = components::nowMilliseconds();
+  sw.renderer->beginFrame(1280, 720, camera, lighting);
+  components::submitMeshes(sw);
+  const render::FrameStats stats = sw.renderer->endFrame();
+  std::vector<uint8_t> rgba;
+  int width = 0, height = 0;
+  sw.renderer->readPixels(rgba, width, height);
+  m.frame.push_back(components::nowMilliseconds() - t0);
+  m.drawCalls = stats.drawCalls;
+  m.triangles = stats.triangles;
 }
 
 }  // namespace
@@ -248,6 +293,7 @@ void DemoGame::benchmarkSession(int minutes, bool json) {
       m.gpuMeshes = resources().gpuMeshes;
       if (!json) printRow(m, minutes);  // as the minute ends: a long run shows its figures as it goes
     }
+    if ((n + 1) % 300 == 0) timedFrame(sw, glm::vec3(camera), kField, m);  // every 5 s
     if (trace && (n + 1) % 600 == 0) traceAwakePieces(sw, n, tick);
     if (n + 1 == sessionTicks + 5 * 60) std::fprintf(stderr, "5 s after the last blade: %u awake of %u live\n", s.awake, s.live);
   }
