@@ -6,7 +6,15 @@
 namespace cleave::components {
 
 Simulation::Simulation(ecs::World& world, SplitBudgetSettings budget, render::Renderer* renderer)
-    : world_(world), resources_(world, physics_, renderer), splits_(budget), renderer_(renderer) {}
+    : world_(world), resources_(world, physics_, renderer), splits_(budget), renderer_(renderer) {
+  batches_.setRenderer(renderer);
+}
+
+void Simulation::submitMeshes(uint64_t tick) {
+  batches_.update(world_, tick);
+  SplitWorld w = splitWorld();
+  components::submitMeshes(w, &batches_);
+}
 
 void Simulation::gather(uint64_t tick) {
   SplitWorld w = splitWorld();

@@ -18,6 +18,7 @@
 
 #include "cleave/components/resource_hooks.h"
 #include "cleave/components/split_system.h"
+#include "cleave/components/static_batches.h"
 #include "cleave/app/app.h"
 #include "cleave/ecs/world.h"
 #include "cleave/physics/physics_world.h"
@@ -36,10 +37,15 @@ class Simulation {
   physics::PhysicsWorld& physics() { return physics_; }
   SplitSystem& splits() { return splits_; }
   SplitWorld splitWorld() { return SplitWorld{world_, physics_, renderer_}; }
+  StaticBatches& batches() { return batches_; }
   void setRenderer(render::Renderer* renderer) {
     renderer_ = renderer;
     resources_.setRenderer(renderer);
+    batches_.setRenderer(renderer);
   }
+  // Between the renderer's beginFrame and endFrame: every mesh of the world, frozen pieces through
+  // their static batches (static_batches.h), which this updates first.
+  void submitMeshes(uint64_t tick);
 
   void gather(uint64_t tick);                             // Triggers
   void prepare(uint64_t tick, const glm::dvec3& camera);  // Split
@@ -57,6 +63,7 @@ class Simulation {
   ResourceHooks resources_;  // after physics_: the hooks go before the bodies they free
   SplitSystem splits_;
   render::Renderer* renderer_ = nullptr;
+  StaticBatches batches_;  // a drawing cache of frozen pieces; its GPU meshes are its own
 };
 
 struct SplittingHooks {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "cleave/components/split_system.h"
+#include "cleave/components/static_batches.h"
 #include "cleave/components/split_clock.h"
 #include "cleave/components/skinned.h"
 
@@ -1054,16 +1055,19 @@ void syncTransformsFromBodies(SplitWorld& w) {
   ecs::updateWorldTransforms(w.world);
 }
 
-void submitMeshes(SplitWorld& w) {
+void submitMeshes(SplitWorld& w, const StaticBatches* batches) {
   if (!w.renderer) return;
+  if (batches) batches->submit();
   for (auto [e, mr, wt] : w.world.view<MeshRenderer, ecs::WorldTransform>()) {
     if (!mr.visible || !mr.gpu.valid() || mr.materials.empty()) continue;
+    if (batches && batches->covers(e)) continue;
     // Skinned meshes draw in their current pose (GPU skinning).
     if (const auto* skin = w.world.tryGet<SkinnedMesh>(e); skin && !skin->jointMatrices.empty()) {
       w.renderer->submitSkinned(mr.gpu, wt.matrix * mr.meshOffset, skin->jointMatrices, mr.materials);
       continue;
     }
-    w.renderer->submit(mr.gpu, wt.matrix * mr.meshOffset, mr.materials);
+    const auto* info = w.world.tryGet<MassInfo>(e);
+    w.renderer->submit(mr.gpu, wt.matrix * mr.meshOffset, mr.materials, info && info->closed);
   }
 }
 

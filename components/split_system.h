@@ -225,8 +225,11 @@ void placeOnBody(SplitWorld& w, ecs::Entity e, const physics::BodyDef& def, phys
 // Physics sync (PhysicsSync phase): entity transforms follow their bodies.
 void syncTransformsFromBodies(SplitWorld& w);
 
-// Render phase: submits every visible MeshRenderer at WorldTransform x meshOffset.
-void submitMeshes(SplitWorld& w);
+class StaticBatches;  // static_batches.h
+
+// Render phase: submits every visible MeshRenderer at WorldTransform x meshOffset; with `batches`,
+// its built batches, and not the pieces they cover.
+void submitMeshes(SplitWorld& w, const StaticBatches* batches = nullptr);
 
 // Debris: pieces without collider fall under gravity, come to rest on the first body at rest their
 // path meets (the floor, a frozen or sleeping piece: a ray along each step's motion), shrink away in their last half second

@@ -99,6 +99,8 @@ struct DrawItem {
   glm::mat4 model;
   uint32_t firstMaterial;  // into Impl::materials
   uint32_t materialCount;
+  bool closed = false;     // back faces culled
+  bool mirrored = false;   // the model mirrors: its front faces wind clockwise on screen
   uint32_t firstJoint = 0;  // into Impl::jointMatrices
   uint32_t jointCount = 0;  // 0: drawn unskinned
 };
@@ -209,6 +211,17 @@ struct Renderer::Impl {
   void drawWorldLines(const glm::mat4& viewProj);
   void upscaleScene();
   void drawOverlay();
+
+  // Back faces culled for a closed mesh; a mirroring model's front faces wind clockwise, so that
+  // culling and gl_FrontFacing (the lit pass flips the normals of back faces) stay right.
+  static void setFaces(const DrawItem& d) {
+    if (d.closed) {
+      glEnable(GL_CULL_FACE);
+    } else {
+      glDisable(GL_CULL_FACE);
+    }
+    glFrontFace(d.mirrored ? GL_CW : GL_CCW);
+  }
 
   // Skinning uniforms of the bound program for one draw.
   void setSkin(const DrawItem& d, GLint skinnedLocation, GLint jointsLocation) const {
@@ -483,12 +496,13 @@ void Renderer::beginFrame(int width, int height, const Camera& camera, const Lig
   r.overlayTriangles.clear();
 }
 
-void Renderer::submit(MeshHandle mesh, const glm::mat4& model, std::span<const Material> materials) {
+void Renderer::submit(MeshHandle mesh, const glm::mat4& model, std::span<const Material> materials, bool closed) {
   Impl& r = *impl_;
   if (!r.mesh(mesh) || materials.empty()) return;
   const uint32_t first = uint32_t(r.materials.size());
   r.materials.insert(r.materials.end(), materials.begin(), materials.end());
-  r.draws.push_back({mesh.index, model, first, uint32_t(materials.size())});
+  const bool mirrored = glm::determinant(glm::mat3(model)) < 0.f;
+  r.draws.push_back({mesh.index, model, first, uint32_t(materials.size()), closed, mirrored});
 }
 
 void Renderer::submitSkinned(MeshHandle mesh, const glm::mat4& model, std::span<const glm::mat4> jointMatrices,
@@ -547,7 +561,7 @@ void Renderer::Impl::drawShadowPass(const glm::mat4& lightVp) {
   glViewport(0, 0, shadowSize, shadowSize);
   glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);  // closed and open meshes alike cast shadows
+  glCullFace(GL_BACK);
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.5f, 2.f);
   glUseProgram(shadowProgram);
@@ -557,6 +571,7 @@ void Renderer::Impl::drawShadowPass(const glm::mat4& lightVp) {
     // The floor (checker material) and materials marked so receive but do not cast.
     const Material& first = materials[d.firstMaterial];
     if (first.shading == Shading::Checker || !first.castsShadow) continue;
+    setFaces(d);  // open meshes cast shadows from both sides
     setSkin(d, shadowSkinnedU, shadowJointsU);
     glUniformMatrix4fv(shadowMvpU, 1, GL_FALSE, glm::value_ptr(lightVp * d.model));
     glBindVertexArray(m->vao);
@@ -565,11 +580,13 @@ void Renderer::Impl::drawShadowPass(const glm::mat4& lightVp) {
                      reinterpret_cast<void*>(uintptr_t(s.firstIndex) * 4));
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
 }
 
-// Back faces are drawn too (flipped normals) so open pieces in hollow mode look right.
+// Back faces of open meshes are drawn too (flipped normals) so open pieces in hollow mode look right.
 void Renderer::Impl::drawLitPass(const FrameMatrices& fm, FrameStats& stats) {
-  glDisable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glUseProgram(meshProgram);
@@ -590,6 +607,7 @@ void Renderer::Impl::drawLitPass(const FrameMatrices& fm, FrameStats& stats) {
   for (const DrawItem& d : draws) {
     const GpuMesh* m = meshes.atIndex(d.mesh);
     if (!m) continue;  // destroyed since it was submitted
+    setFaces(d);
     setSkin(d, u.skinned, u.joints);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
     glUniformMatrix4fv(u.model, 1, GL_FALSE, glm::value_ptr(d.model));
@@ -614,6 +632,8 @@ void Renderer::Impl::drawLitPass(const FrameMatrices& fm, FrameStats& stats) {
       stats.triangles += s.indexCount / 3;
     }
   }
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
 }
 
 // A full-screen triangle at the far plane, drawn after the meshes so that only the pixels nothing

@@ -57,6 +57,7 @@ struct Material {
   glm::vec4 checkerColor{0.2f, 0.2f, 0.22f, 1.f};  // second checker colour
   bool castsShadow = true;         // read from a draw's first material: false for floors and walls
                                    // that only receive shadows (saves the shadow pass their area)
+  friend bool operator==(const Material&, const Material&) = default;
 };
 
 struct Camera {
@@ -135,7 +136,12 @@ class Renderer {
   // Starts a frame of the given size in pixels; resizes the offscreen target when needed.
   void beginFrame(int width, int height, const Camera& camera, const Lighting& lighting);
   // Queues a mesh. `materials` is indexed by the submesh material id (clamped to the last entry).
-  void submit(MeshHandle mesh, const glm::mat4& model, std::span<const Material> materials);
+  // `closed`: the mesh is closed and wound counter-clockwise seen from outside, so its back faces
+  // are never seen and both passes skip them (a third of a frame of many pieces on a software
+  // rasterizer). Open meshes draw both sides (a piece cut open in hollow mode shows its inside).
+  // A mirroring `model` (negative determinant) is drawn with its winding turned, so it is lit and
+  // culled as its unmirrored self.
+  void submit(MeshHandle mesh, const glm::mat4& model, std::span<const Material> materials, bool closed = false);
   // Queues a skinned mesh, posed on the GPU: world = model * sum_k w_k * jointMatrices[j_k] * p (the
   // blend divided by the weight sum), with each joint matrix = joint global * inverse bind (see
   // anim::poseToJointMatrices); normals use the blend's 3x3 part. The same pose on the CPU is

@@ -481,6 +481,7 @@ components::ResourceCounts ArenaGame::resources() const {
 
 void ArenaGame::releaseAll() {
   if (!app_) return;
+  if (sim_) sim_->batches().release();
   app_->world().clear();
   for (physics::BodyId body : staticBodies_) physics_->destroyBody(body);
   for (physics::ShapeId shape : staticShapes_) physics_->destroyShape(shape);
@@ -947,8 +948,7 @@ void ArenaGame::render(app::TickContext& c) {
   lighting.shadowCenter = focus;
   lighting.shadowRadius = state_ == MatchState::Menu ? 9.f : 15.f;
   c.renderer.beginFrame(c.frameSize.x, c.frameSize.y, camera, lighting);
-  components::SplitWorld sw = splitWorld();
-  components::submitMeshes(sw);
+  sim_->submitMeshes(c.tick);
   const glm::mat4 playerModel = glm::translate(glm::mat4(1.f), glm::vec3(playerPosition_.x, 0.f, playerPosition_.y)) *
                                 glm::mat4_cast(glm::angleAxis(playerYaw_, glm::vec3(0, 1, 0)));
   std::vector<render::Material> look = materials_.player;

@@ -170,6 +170,7 @@ components::ResourceCounts DemoGame::resources() const {
 }
 
 void DemoGame::releaseAll() {
+  if (sim_) sim_->batches().release();
   if (app_) app_->world().clear();
 }
 
@@ -766,8 +767,7 @@ void DemoGame::render(app::TickContext& c) {
   lighting.shadowCenter.y = 0.f;
   lighting.shadowRadius = 12.f;
   c.renderer.beginFrame(c.frameSize.x, c.frameSize.y, camera, lighting);
-  components::SplitWorld sw = splitWorld();
-  components::submitMeshes(sw);
+  sim_->submitMeshes(c.tick);
   drawHud(c);
 }
 
