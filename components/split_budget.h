@@ -61,6 +61,13 @@ struct SplitBudgetSettings {
   // A split prepared in tick T commits in tick T + commitDelayTicks, whatever the threads did: the
   // main thread waits for a late job. 0 commits in the tick it was prepared.
   uint32_t commitDelayTicks = 1;
+  // A split whose compute is estimated at more than one tick's worth (workerMillisecondsPerCommitTick,
+  // a worker's share of a 60 Hz tick) commits later by as many ticks as the estimate needs, at most
+  // maxExtraCommitTicks more, so that the main thread does not stand waiting for it (a hammer on a
+  // skinned warrior: about 50 ms of ragdoll planning). A job never commits before one prepared
+  // earlier (commit order is request order). From the estimate only: the same ticks on any threads.
+  double workerMillisecondsPerCommitTick = 16.0;
+  uint32_t maxExtraCommitTicks = 3;
   // The split system's estimates, per stage and piece kind, fitted to the demo objects (each within
   // 2x of the measured medians; docs/performance.md lists both). Main thread, rigid pieces: a fixed
   // part, per collider part (shapes built at commit) and per triangle (GPU upload); skinned pieces
@@ -79,6 +86,7 @@ struct SplitBudgetSettings {
   double estimatedWorkerMillisecondsPerTriangle = 0.00012;
   double estimatedWorkerMillisecondsPerPartWork = 0.00004;
   double estimatedDecomposeMillisecondsPerTriangle = 0.004;
+  double estimatedRagdollWorkerMillisecondsPerTriangle = 0.0006;  // planning each piece's bones
 };
 
 struct SplitBudgetStats {

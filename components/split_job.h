@@ -81,7 +81,8 @@ struct HierarchyPartData {
 struct SplitJob {
   uint64_t sequence = 0;       // the request's arrival order (commits go in prepare order: the budget's)
   uint64_t preparedTick = 0;
-  uint64_t commitTick = 0;     // preparedTick + commitDelayTicks
+  uint64_t commitTick = 0;     // preparedTick + commitDelayTicks, later for a long compute (split_budget.h)
+  double estimatedWorkerMilliseconds = 0.0;  // the budget's estimate of the compute
   SplitRequest request;
   std::string targetName;      // its Name, if it had one
   // The mesh to cut (mesh space) and what is known of it. For a hierarchy, `mesh` is null and the

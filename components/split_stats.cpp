@@ -6,6 +6,16 @@
 
 namespace cleave::components {
 
+SplitTickTimes splitTickTimes(const SplitSystem& splits) {
+  SplitTickTimes t;
+  for (const SplitEvent& ev : splits.lastEvents()) {
+    t.wait += ev.waitMilliseconds;
+    t.workers += ev.computeMilliseconds;
+  }
+  t.work = std::max(0.0, splits.lastTickMainMilliseconds() - t.wait);
+  return t;
+}
+
 void SplitTickStats::record(const SplitSystem& splits) {
   const SplitBudgetStats& stats = splits.budget().stats();
   deferredTotal += stats.deferred;
@@ -16,6 +26,9 @@ void SplitTickStats::record(const SplitSystem& splits) {
   msThisTick = splits.lastTickMainMilliseconds();
   maxMsInATick = std::max(maxMsInATick, msThisTick);
   maxChargedMsInATick = std::max(maxChargedMsInATick, stats.millisecondsCharged);
+  times = splitTickTimes(splits);
+  maxWorkMsInATick = std::max(maxWorkMsInATick, times.work);
+  maxWaitMsInATick = std::max(maxWaitMsInATick, times.wait);
   history.push_back(float(msThisTick));
   if (history.size() > kHistory) history.pop_front();
 }

@@ -13,12 +13,23 @@
 
 namespace cleave::components {
 
+// One tick's split time on the main thread, apart: its own work (prepare and commit) and the time
+// it stood waiting for workers at commit; and the compute time the workers spent on the splits that
+// committed (on the main thread itself with 0 threads, then inside `work`).
+struct SplitTickTimes {
+  double work = 0.0, wait = 0.0, workers = 0.0;  // ms
+};
+SplitTickTimes splitTickTimes(const SplitSystem& splits);
+
 struct SplitTickStats {
   static constexpr size_t kHistory = 120;  // ticks the graph shows
   uint32_t splitsThisTick = 0;
   double msThisTick = 0.0;           // main-thread split time of the last tick (prepare and commit)
   double maxMsInATick = 0.0;         // the most msThisTick has been
   double maxChargedMsInATick = 0.0;  // the most the budget charged in one tick
+  SplitTickTimes times;              // msThisTick apart, and the workers' time
+  double maxWorkMsInATick = 0.0;     // the most times.work has been
+  double maxWaitMsInATick = 0.0;     // the most times.wait has been
   double lastSplitMs = 0.0;          // of the last split done (kept over ticks without one)
   double maxSplitMs = 0.0;           // the budget's largest single split, over the run
   uint64_t deferredTotal = 0;        // requests left waiting at the end of a tick, summed over ticks

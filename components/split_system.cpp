@@ -476,18 +476,23 @@ SplitCost estimateSplit(SplitWorld& w, const SplitBudgetSettings& s, const Split
   const auto* sp = w.world.tryGet<Splitable>(r.target);
   const bool skinned = w.world.has<SkinnedMesh>(r.target);
   const bool ragdoll = skinned && sp && sp->skinnedPieces == SkinnedPieceMode::Ragdoll;
+  double once = 0.0;  // worker time a shatter spends once, not per cell: the decomposition
   cost.worker = s.estimatedWorkerMilliseconds + s.estimatedWorkerMillisecondsPerTriangle * triangles;
   if (ragdoll) {
     cost.main = s.estimatedRagdollMainMilliseconds + s.estimatedSkinnedMainMillisecondsPerTriangle * triangles;
+    cost.worker += s.estimatedRagdollWorkerMillisecondsPerTriangle * triangles;
   } else if (skinned) {
     cost.main = s.estimatedSkinnedMainMilliseconds + s.estimatedSkinnedMainMillisecondsPerTriangle * triangles;
-    cost.worker += s.estimatedDecomposeMillisecondsPerTriangle * triangles;
+    once = s.estimatedDecomposeMillisecondsPerTriangle * triangles;
   } else {
     const double partCount = parts ? double(parts->size()) : 1.0;
     cost.main = s.estimatedMainMilliseconds + s.estimatedMainMillisecondsPerPart * partCount +
                 s.estimatedMainMillisecondsPerTriangle * triangles;
-    cost.worker += parts ? s.estimatedWorkerMillisecondsPerPartWork * geometry::partsWork(*parts)
-                         : s.estimatedDecomposeMillisecondsPerTriangle * triangles;
+    if (parts) {
+      cost.worker += s.estimatedWorkerMillisecondsPerPartWork * geometry::partsWork(*parts);
+    } else {
+      once = s.estimatedDecomposeMillisecondsPerTriangle * triangles;
+    }
   }
   if (r.shatter) {
     // About a piece per cell (a split makes two) and a few plane cuts per cell on shrinking parts.
@@ -495,10 +500,31 @@ SplitCost estimateSplit(SplitWorld& w, const SplitBudgetSettings& s, const Split
     cost.main *= 0.5 * cells;
     cost.worker *= 1.5 * cells;
   }
+  cost.worker += once;
   return cost;
 }
 
 }  // namespace
+
+uint64_t SplitSystem::commitTickFor(uint64_t tick, double workerMilliseconds) const {
+  const SplitBudgetSettings& s = budget_.settings();
+  uint64_t extra = 0;
+  if (s.workerMillisecondsPerCommitTick > 0.0 && workerMilliseconds > s.workerMillisecondsPerCommitTick)
+    extra = uint64_t(std::ceil(workerMilliseconds / s.workerMillisecondsPerCommitTick)) - 1;
+  uint64_t at = tick + s.commitDelayTicks + std::min<uint64_t>(extra, s.maxExtraCommitTicks);
+  for (const Pending& p : pending_) at = std::max(at, p.job->commitTick);  // never before an earlier job
+  return at;
+}
+
+SplitCost SplitSystem::estimate(SplitWorld& w, const SplitRequest& r) const {
+  const geometry::ColliderPartSet* parts = nullptr;
+  if (const auto* cp = w.world.tryGet<ColliderParts>(r.target); cp && cp->parts) {
+    parts = cp->parts.get();
+  } else if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source) {
+    if (const Scratch::Known* k = scratch_->find(mr->source); k && k->parts) parts = k->parts.get();
+  }
+  return estimateSplit(w, budget_.settings(), r, parts);
+}
 
 void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
   const double start = nowMilliseconds();
@@ -509,15 +535,7 @@ void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& 
     return std::any_of(pending_.begin(), pending_.end(), [&](const Pending& p) { return p.job->request.target == e; });
   };
   budget_.setBusyCheck(inFlight);
-  budget_.setCostEstimator([&w, this](const SplitRequest& r) {
-    const geometry::ColliderPartSet* parts = nullptr;
-    if (const auto* cp = w.world.tryGet<ColliderParts>(r.target); cp && cp->parts) {
-      parts = cp->parts.get();
-    } else if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source) {
-      if (const Scratch::Known* k = scratch_->find(mr->source); k && k->parts) parts = k->parts.get();
-    }
-    return estimateSplit(w, budget_.settings(), r, parts);
-  });
+  budget_.setCostEstimator([&w, this](const SplitRequest& r) { return estimate(w, r); });
   budget_.runTick(
       tick, cameraPosition,
       [&](ecs::Entity e) { return w.world.alive(e) && w.world.has<Splitable>(e); },
@@ -574,6 +592,7 @@ void SplitSystem::commitSplits(SplitWorld& w, uint64_t tick) {
   flush(w);
   tickOfMainMs_ = tick;
   tickMainMs_ += nowMilliseconds() - start;
+
 }
 
 void SplitSystem::runSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
@@ -657,7 +676,8 @@ bool SplitSystem::prepare(SplitWorld& w, const SplitRequest& request, uint64_t t
   if (!hierarchy) job.hierarchyParts.clear();
   job.sequence = request.sequence;
   job.preparedTick = tick;
-  job.commitTick = tick + budget_.settings().commitDelayTicks;
+  job.estimatedWorkerMilliseconds = estimate(w, request).worker;
+  job.commitTick = commitTickFor(tick, job.estimatedWorkerMilliseconds);
   job.request = request;
   job.targetName = name ? name->value : std::string();
   job.parent = motionOf(w, target);
@@ -716,6 +736,7 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
   ev.prepareMilliseconds = pending.prepareMilliseconds;
   ev.waitMilliseconds = waited;
   ev.computeMilliseconds = outcome.computeMilliseconds;
+  ev.estimatedWorkerMilliseconds = job.estimatedWorkerMilliseconds;
   ev.setupMilliseconds = outcome.setupMilliseconds;
   ev.geometryMilliseconds = outcome.geometryMilliseconds;
   ev.colliderMilliseconds = outcome.colliderMilliseconds;

@@ -79,6 +79,7 @@ struct SplitEvent {
   double prepareMilliseconds = 0.0;
   double commitMilliseconds = 0.0;
   double computeMilliseconds = 0.0;
+  double estimatedWorkerMilliseconds = 0.0;  // what the budget expected of the compute
   double waitMilliseconds = 0.0;
   double setupMilliseconds = 0.0;     // of compute: container set-up (weld unless known, cut space)
   bool weldKnown = false;             // the mesh's weld was known (a piece, or a mesh cut before)
@@ -162,6 +163,10 @@ class SplitSystem {
     bool weldKnown = false;
     bool partsKnown = false;
   };
+  // The tick a job prepared in `tick` commits in (SplitBudgetSettings::commitDelayTicks and after).
+  uint64_t commitTickFor(uint64_t tick, double workerMilliseconds) const;
+  // The budget's cost estimate of a request (main thread and worker milliseconds).
+  SplitCost estimate(SplitWorld& w, const SplitRequest& r) const;
   // Prepare: reads the world into a job; false with the event filled when the target cannot be split.
   bool prepare(SplitWorld& w, const SplitRequest& request, uint64_t tick, SplitJob& job, SplitEvent& ev);
   // Commit: creates the pieces of a computed job (their structural changes wait in the batch).

@@ -128,6 +128,8 @@ void ArenaGame::dumpFrame(nlohmann::json& line) {
                     {"max_queue", splitStats_.maxQueue},
                     {"max_split_ms", stats.maxSplitMilliseconds},
                     {"max_split_ms_in_a_tick", splitStats_.maxMsInATick},
+                    {"max_split_work_ms_in_a_tick", splitStats_.maxWorkMsInATick},
+                    {"max_split_wait_ms_in_a_tick", splitStats_.maxWaitMsInATick},
                     {"ms_per_tick", splits_->budget().settings().millisecondsPerTick},
                     {"max_splits_per_tick", splits_->budget().settings().maxSplitsPerTick},
                     {"max_charged_ms_in_a_tick", splitStats_.maxChargedMsInATick},

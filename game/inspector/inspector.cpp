@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cleave/components/split_stats.h"
+
 #if CLEAVE_HAVE_IMGUI
 #include <imgui.h>
 #endif
@@ -202,6 +204,8 @@ void Inspector::drawTiming(app::TickContext& c, const InspectorFeed& feed) {
               phase[size_t(app::Phase::PhysicsStep)]);
   ImGui::Text("split %7.2f ms   commit  %6.2f ms", phase[size_t(app::Phase::Split)],
               phase[size_t(app::Phase::Commit)]);
+  const components::SplitTickTimes split = components::splitTickTimes(feed.splits);
+  ImGui::Text("split work %6.2f ms   wait %6.2f ms   workers %6.2f ms", split.work, split.wait, split.workers);
   ImGui::EndGroup();
   markClock();
   drawGraph(feed);

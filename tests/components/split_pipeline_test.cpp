@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: MIT
 // The split pipeline in the engine: prepare, compute on workers, commit at a fixed tick. Threads
-// never change a result; the commit tick is prepare + commitDelayTicks; a target gone before its
+// never change a result; the commit tick is prepare + commitDelayTicks, later for a split estimated
+// longer than a tick; a target gone before its
 // commit leaves nothing behind; a custom handler edits the pieces or keeps the original whole; and
 // pieces carry their collider parts into their own cuts.
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "cleave/geometry/primitives.h"
 #include "tests/components/sim_harness.h"
 
 namespace cleave::components {
@@ -85,6 +88,72 @@ TEST(SplitPipeline, JobsCommitCommitDelayTicksAfterTheirPrepare) {
     ASSERT_GT(committedAt, 0u) << "delay " << delay;
     EXPECT_EQ(preparedAt, 32u);  // fired at 30, its step touches at 30, gathered at 31, prepared at 32
     EXPECT_EQ(committedAt, preparedAt + delay);
+  }
+}
+
+// The torus's split estimated at more worker time than a tick gives (workerMillisecondsPerCommitTick
+// set below its estimate): it commits as many ticks later as the estimate needs, at most
+// maxExtraCommitTicks more, on any number of threads.
+TEST(SplitPipeline, ASplitEstimatedLongerThanATickCommitsLaterByWhatItNeeds) {
+  for (uint32_t threads : {0u, 1u, 3u}) {
+    for (const auto& [slices, cap, extra] : {std::tuple{2.5, 3u, 2u}, std::tuple{10.0, 3u, 3u}, std::tuple{10.0, 0u, 0u}}) {
+      Sim sim;
+      ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.message;
+      setThreads(sim, threads, 1);
+      std::vector<SplitEvent> events = sim.runUntil(60);
+      ASSERT_EQ(events.size(), 1u);
+      const double estimate = events[0].estimatedWorkerMilliseconds;
+      ASSERT_GT(estimate, 0.0);
+      EXPECT_EQ(events[0].tick, events[0].preparedTick + 1) << "within a tick's worth: the next tick";
+      // Again, with a tick's worth of worker time `slices` times smaller than the estimate.
+      Sim slow;
+      ASSERT_TRUE(slow.load(scenePath("torus_cut.json"))) << slow.scene.message;
+      setThreads(slow, threads, 1);
+      SplitBudgetSettings s = slow.splits.budget().settings();
+      s.workerMillisecondsPerCommitTick = estimate / slices;
+      s.maxExtraCommitTicks = cap;
+      slow.splits.budget().setSettings(s);
+      events = slow.runUntil(60);
+      ASSERT_EQ(events.size(), 1u);
+      EXPECT_EQ(events[0].preparedTick, 32u);
+      EXPECT_EQ(events[0].tick, 32u + 1u + extra) << threads << " threads, " << slices << " slices, cap " << cap;
+      EXPECT_EQ(events[0].status, geometry::SplitStatus::Ok);
+    }
+  }
+}
+
+// A sphere of 4,000 triangles and a box of 12 asked for in one tick, the sphere first: the sphere's
+// split is estimated long enough to commit late, and the box's, prepared after it in the
+// same tick, waits for it (commit order is request order) instead of committing the next tick.
+TEST(SplitPipeline, ALateCommitHoldsBackTheSplitsPreparedAfterIt) {
+  for (uint32_t threads : {0u, 2u}) {
+    Sim sim;
+    setThreads(sim, threads, 1);
+    Splitable sp;
+    const ecs::Entity sphere = testing::addSplitableBody(sim, "sphere", geometry::primitives::uvSphere(0.5f, 64, 32), sp,
+                                                         500.0, glm::vec3(0.f, 3.f, 0.f));
+    const ecs::Entity box = testing::addSplitableBody(sim, "box", geometry::primitives::box(glm::vec3(0.3f)), sp, 500.0,
+                                                      glm::vec3(3.f, 3.f, 0.f));
+    for (ecs::Entity target : {sphere, box}) {
+      SplitRequest r;
+      r.target = target;
+      r.planeNormal = glm::dvec3(1.0, 0.0, 0.0);
+      r.planeOffset = double(sim.world.get<ecs::Transform>(target).position.x) + 0.05;
+      r.requestedTick = sim.tick;
+      sim.splits.request(r);
+    }
+    SplitBudgetSettings s = sim.splits.budget().settings();
+    s.workerMillisecondsPerCommitTick = 0.3;
+    sim.splits.budget().setSettings(s);
+    const std::vector<SplitEvent> events = sim.runUntil(sim.tick + 10);
+    ASSERT_EQ(events.size(), 2u);
+    EXPECT_EQ(events[0].original, sphere);
+    EXPECT_EQ(events[1].original, box);
+    EXPECT_EQ(events[0].preparedTick, events[1].preparedTick);
+    ASSERT_GT(events[0].estimatedWorkerMilliseconds, 0.6) << "the sphere must want extra ticks";
+    ASSERT_LT(events[1].estimatedWorkerMilliseconds, 0.3) << "the box must want none";
+    EXPECT_GE(events[0].tick, events[0].preparedTick + 2);
+    EXPECT_EQ(events[1].tick, events[0].tick) << threads << " threads";
   }
 }
 
