@@ -7,11 +7,13 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "cleave/base/detail/slot_pool.h"
+#include "cleave/render/frustum.h"
 #include "cleave/render/shaders.h"
 
 #include <stb_easy_font.h>
@@ -81,7 +83,27 @@ struct GpuMesh {
   GLuint skinVbo = 0;  // joints (4 x uint16) and weights (4 x float) per vertex; 0 without a skin
   std::vector<GpuSubMesh> submeshes;
   uint32_t triangles = 0;
+  glm::vec3 boundCentre{0.f};  // mesh space: a sphere around every vertex
+  float boundRadius = 0.f;
 };
+
+// A sphere around the packed positions: the middle of their box, out to the farthest.
+void boundPositions(const PackedMesh& packed, GpuMesh& g) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (size_t v = 0; v < packed.vertexCount(); ++v) {
+    const glm::vec3 p(packed.vertices[v * 12], packed.vertices[v * 12 + 1], packed.vertices[v * 12 + 2]);
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  g.boundCentre = 0.5f * (lo + hi);
+  float r2 = 0.f;
+  for (size_t v = 0; v < packed.vertexCount(); ++v) {
+    const glm::vec3 p(packed.vertices[v * 12], packed.vertices[v * 12 + 1], packed.vertices[v * 12 + 2]);
+    const glm::vec3 d = p - g.boundCentre;
+    r2 = std::max(r2, glm::dot(d, d));
+  }
+  g.boundRadius = std::sqrt(r2) * 1.0001f + 1e-5f;  // a hair more, for the rounding of the transform
+}
 
 struct GpuTexture {
   GLuint id = 0;
@@ -211,6 +233,13 @@ struct Renderer::Impl {
   void drawWorldLines(const glm::mat4& viewProj);
   void upscaleScene();
   void drawOverlay();
+
+  // Skinned draws are always drawn: the pose may carry vertices far from the bind-pose bounds.
+  static bool inView(const Frustum& f, const DrawItem& d, const GpuMesh& m) {
+    if (d.jointCount > 0 || m.skinVbo) return true;
+    const auto [centre, radius] = worldSphere(d.model, m.boundCentre, m.boundRadius);
+    return f.touchesSphere(centre, radius);
+  }
 
   // Back faces culled for a closed mesh; a mirroring model's front faces wind clockwise, so that
   // culling and gl_FrontFacing (the lit pass flips the normals of back faces) stay right.
@@ -390,6 +419,7 @@ base::Expected<MeshHandle> Renderer::uploadPacked(const PackedMesh& packed) {
   const auto key = impl_->meshes.insert(GpuMesh{});
   GpuMesh& g = *impl_->meshes.get(key.index, key.generation);
   g.triangles = uint32_t(packed.indices.size() / 3);
+  boundPositions(packed, g);
   for (const auto& s : packed.submeshes) g.submeshes.push_back({s.firstIndex, s.indexCount, s.materialId});
   glGenVertexArrays(1, &g.vao);
   glGenBuffers(1, &g.vbo);
@@ -565,9 +595,11 @@ void Renderer::Impl::drawShadowPass(const glm::mat4& lightVp) {
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.5f, 2.f);
   glUseProgram(shadowProgram);
+  const Frustum lightView = Frustum::fromMatrix(lightVp);
   for (const DrawItem& d : draws) {
     const GpuMesh* m = meshes.atIndex(d.mesh);
     if (!m) continue;  // destroyed since it was submitted
+    if (!inView(lightView, d, *m)) continue;
     // The floor (checker material) and materials marked so receive but do not cast.
     const Material& first = materials[d.firstMaterial];
     if (first.shading == Shading::Checker || !first.castsShadow) continue;
@@ -604,9 +636,11 @@ void Renderer::Impl::drawLitPass(const FrameMatrices& fm, FrameStats& stats) {
   glUniform1i(u.shadowMap, 1);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, shadowTexture);
+  const Frustum view = Frustum::fromMatrix(fm.viewProj);
   for (const DrawItem& d : draws) {
     const GpuMesh* m = meshes.atIndex(d.mesh);
     if (!m) continue;  // destroyed since it was submitted
+    if (!inView(view, d, *m)) continue;
     setFaces(d);
     setSkin(d, u.skinned, u.joints);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(d.model)));
