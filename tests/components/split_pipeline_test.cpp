@@ -226,6 +226,63 @@ TEST(SplitPipeline, HandlerEditsThePiecesOrKeepsTheOriginalWhole) {
   }
 }
 
+// Each refusal at commit (no handler of that name, a handler that keeps the original, a handler that
+// gives a piece without a mesh) leaves the world exactly as a split that never happened: the same
+// entities, places and motions as the run whose handler keeps the original, the torus whole with its
+// mass, no piece made, and an event that says why.
+TEST(SplitPipeline, EveryRefusalAtCommitLeavesTheOriginalWholeWithItsMassAndMotion) {
+  enum class Refusal { Keep, UnknownHandler, PieceWithoutMesh };
+  struct Run {
+    uint64_t hash = 0;
+    size_t entities = 0;
+    double mass = 0.0;
+    glm::vec3 velocity{0.f}, spin{0.f};
+    std::string message;
+    geometry::SplitStatus status = geometry::SplitStatus::Ok;
+    uint64_t pieces = 0;
+  };
+  auto run = [](Refusal refusal) {
+    Sim sim;
+    EXPECT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.message;
+    const ecs::Entity torus = sim.scene.find("torus");
+    sim.world.get<Splitable>(torus).handler = refusal == Refusal::UnknownHandler ? "nobody" : "test.handler";
+    sim.splits.registerHandler("test.handler", [refusal](const SplitJob&, SplitOutcome& out) {
+      if (refusal == Refusal::Keep) return HandlerDecision::KeepOriginal;
+      out.pieces.back().mesh = nullptr;
+      return HandlerDecision::Commit;
+    });
+    Run r;
+    for (const SplitEvent& ev : sim.runUntil(60)) {
+      r.status = ev.status;
+      r.message = ev.message;
+    }
+    EXPECT_TRUE(sim.world.alive(torus));
+    r.hash = stateHash(sim);
+    r.entities = sim.world.entities().size();
+    r.mass = sim.world.get<MassInfo>(torus).mass;
+    const auto state = sim.physics.bodyState(sim.world.get<RigidBody>(torus).body);
+    EXPECT_TRUE(state);
+    if (state) r.velocity = state->linearVelocity, r.spin = state->angularVelocity;
+    r.pieces = sim.splits.totalPiecesCreated();
+    return r;
+  };
+  const Run kept = run(Refusal::Keep);
+  EXPECT_EQ(kept.message, "the custom handler kept the original");
+  for (Refusal refusal : {Refusal::UnknownHandler, Refusal::PieceWithoutMesh}) {
+    const Run r = run(refusal);
+    SCOPED_TRACE(r.message);
+    EXPECT_EQ(r.status, geometry::SplitStatus::InvalidInput);
+    EXPECT_NE(r.message.find(refusal == Refusal::UnknownHandler ? "no split handler named 'nobody'" : "without a mesh"),
+              std::string::npos);
+    EXPECT_EQ(r.pieces, 0u);
+    EXPECT_EQ(r.entities, kept.entities);
+    EXPECT_EQ(r.hash, kept.hash);
+    EXPECT_DOUBLE_EQ(r.mass, kept.mass);
+    EXPECT_EQ(r.velocity, kept.velocity);
+    EXPECT_EQ(r.spin, kept.spin);
+  }
+}
+
 TEST(SplitPipeline, ASecondCutOfATargetInFlightWaitsAndRunsIfTheFirstKeptItWhole) {
   Sim sim;
   ASSERT_TRUE(sim.load(scenePath("torus_cut.json"))) << sim.scene.message;

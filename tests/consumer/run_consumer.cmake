@@ -4,12 +4,20 @@
 #   geometry: builds and runs the geometry-only consumer where the other dependencies are hidden
 #   physics:  expects asking for physics to fail in that same configuration
 #   engine:   builds and runs the engine consumer
+# geometry and engine pass only when the program exits with 0 and its output matches -DEXPECT=<regex>.
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "command failed (${rc}): ${ARGN}\n${out}\n${err}")
   endif()
   message(STATUS "${out}")
+  set(run_output "${out}" PARENT_SCOPE)
+endfunction()
+
+function(expect_output)
+  if(NOT run_output MATCHES "${EXPECT}")
+    message(FATAL_ERROR "the consumer's output does not match\n  ${EXPECT}")
+  endif()
 endfunction()
 
 # Everything but GLM and threads out of reach: find_package of the others and pkg-config fail.
@@ -56,6 +64,7 @@ elseif(STEP STREQUAL "geometry")
   endif()
   run(${CMAKE_COMMAND} --build ${WORK}/geometry)
   run(${WORK}/geometry/hello_split)
+  expect_output()
 elseif(STEP STREQUAL "physics")
   configure(physics ${WORK}/physics ${hide_others})
   if(configure_rc EQUAL 0)
@@ -72,6 +81,7 @@ elseif(STEP STREQUAL "engine")
   endif()
   run(${CMAKE_COMMAND} --build ${WORK}/engine)
   run(${WORK}/engine/hello_engine)
+  expect_output()
 else()
   message(FATAL_ERROR "unknown STEP '${STEP}'")
 endif()
