@@ -172,7 +172,10 @@ void SplitSystem::setTaskExecutor(SplitTaskExecutor executor) {
 SplitWorkers& SplitSystem::workers() {
   const uint32_t threads = budget_.settings().threads;
   if (!workers_ || workers_->threads() != threads) {
-    if (workers_) workers_->waitAll();
+    if (workers_) {
+      workers_->waitAll();
+      computedElsewhere_ += workers_->tasksRunElsewhere();
+    }
     workers_ = std::make_unique<SplitWorkers>(threads);
     if (executor_) workers_->setExecutor(executor_);
   }
@@ -180,6 +183,10 @@ SplitWorkers& SplitSystem::workers() {
 }
 
 void SplitSystem::request(const SplitRequest& request) { budget_.enqueue(request); }
+
+uint64_t SplitSystem::jobsComputedOffTheCallingThread() const {
+  return computedElsewhere_ + (workers_ ? workers_->tasksRunElsewhere() : 0);
+}
 
 geometry::SharedColliderParts SplitSystem::colliderParts(const std::shared_ptr<const geometry::MeshData>& mesh,
                                                          ColliderMode mode) {

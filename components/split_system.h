@@ -151,6 +151,9 @@ class SplitSystem {
   const std::vector<SplitEvent>& lastEvents() const { return events_; }
   uint64_t totalPiecesCreated() const { return totalPieces_; }
   size_t jobsInFlight() const { return pending_.size(); }
+  // Split jobs computed on another thread than the one that prepared them, over the system's life:
+  // a test of "the same on N threads" checks it is above 0, so the threads really ran.
+  uint64_t jobsComputedOffTheCallingThread() const;
   // Main-thread milliseconds spent in the split stages in the last tick (prepare + commit).
   double lastTickMainMilliseconds() const { return tickMainMs_; }
 
@@ -185,6 +188,7 @@ class SplitSystem {
   std::vector<SplitEvent> events_;
   std::unique_ptr<Scratch> scratch_;
   std::unique_ptr<SplitWorkers> workers_;
+  uint64_t computedElsewhere_ = 0;  // by pools replaced since (a change of thread count)
   SplitTaskExecutor executor_;
   std::vector<Pending> pending_;  // prepared, in request order
   uint64_t totalPieces_ = 0;

@@ -51,6 +51,7 @@ void SplitWorkers::giveScratch(std::unique_ptr<SplitComputeScratch> scratch) {
 }
 
 void SplitWorkers::run(Task& task) {
+  if (std::this_thread::get_id() != task.submitter) runElsewhere_.fetch_add(1, std::memory_order_relaxed);
   auto scratch = takeScratch();
   try {
     computeSplit(*task.job, *scratch, task.outcome);
@@ -91,6 +92,7 @@ void SplitWorkers::workerLoop() {
 std::shared_ptr<SplitWorkers::Task> SplitWorkers::submit(std::shared_ptr<const SplitJob> job) {
   auto task = std::make_shared<Task>();
   task->job = std::move(job);
+  task->submitter = std::this_thread::get_id();
   inFlight_.push_back(task);
   if (executor_) {
     // A weak pointer: a task the host runs late, after it was waited for, keeps nothing alive.

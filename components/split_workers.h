@@ -9,6 +9,7 @@
 // returns; the destructor waits for every submitted task.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -41,6 +42,7 @@ class SplitWorkers {
     std::condition_variable doneSignal;
     bool started = false;
     bool done = false;
+    std::thread::id submitter;  // the thread that submitted it
   };
 
   // `threads` workers of our own (0: compute inline in submit).
@@ -50,6 +52,10 @@ class SplitWorkers {
   SplitWorkers& operator=(const SplitWorkers&) = delete;
 
   uint32_t threads() const { return uint32_t(threads_.size()); }
+  // Tasks computed on another thread than the one that submitted them, since the pool was made: the
+  // proof that a run "on N threads" used them (0 with no threads, or when every task was run by its
+  // waiting caller).
+  uint64_t tasksRunElsewhere() const { return runElsewhere_.load(std::memory_order_relaxed); }
   // Hands tasks to the host instead of our threads (empty: back to our own). Waits for the tasks
   // in flight first.
   void setExecutor(SplitTaskExecutor executor);
@@ -75,6 +81,7 @@ class SplitWorkers {
   std::deque<std::shared_ptr<Task>> queue_;  // our threads' work, oldest first
   std::vector<std::shared_ptr<Task>> inFlight_;  // submitted and not waited for
   bool stopping_ = false;
+  std::atomic<uint64_t> runElsewhere_{0};
   std::mutex scratchMutex_;
   std::vector<std::unique_ptr<SplitComputeScratch>> scratches_;
 };

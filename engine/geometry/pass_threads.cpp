@@ -44,7 +44,11 @@ uint32_t spinningThreads() {
   return cores > 1 ? cores - 1 : 0;
 }
 
+std::atomic<uint64_t> parkedJobs{0};  // see jobsRunOnParkedThreads
+
 }  // namespace
+
+uint64_t PassThreads::jobsRunOnParkedThreads() { return parkedJobs.load(std::memory_order_relaxed); }
 
 PassThreads::~PassThreads() {
   {
@@ -125,6 +129,7 @@ void PassThreads::park(uint32_t index, uint64_t seen) {
       call = call_;
     }
     call(job, index);
+    parkedJobs.fetch_add(1, std::memory_order_relaxed);
     std::lock_guard lock(mutex_);
     if (--pending_ == 0) done_.notify_one();
   }

@@ -71,6 +71,10 @@ class PassThreads {
   // Threads started so far (for tests).
   size_t started() const { return threads_.size(); }
 
+  // Jobs run on parked threads by every PassThreads of the process, since it started: a test of
+  // "the same bytes on N threads" checks that it grew, so the threads really took part.
+  static uint64_t jobsRunOnParkedThreads();
+
  private:
   using Call = void (*)(void*, uint32_t);
   void runErased(uint32_t count, void* job, Call call);

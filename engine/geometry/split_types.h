@@ -151,6 +151,8 @@ struct SplitResult {
   bool islandsFromSection = false;
   // One side was found to be one island without a search: every loop of the section was an island
   // of its own on the other side, and the mesh is one part, so the loops join all of this side.
+  // Only on one thread: with SplitOptions::threads the two sides are searched at once (the pieces
+  // are the same bytes either way).
   bool islandFromLoops = false;
 };
 

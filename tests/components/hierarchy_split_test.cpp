@@ -3,6 +3,8 @@
 // each side: a box body with a sphere "head" and a rotated, offset box "arm" as child entities.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cleave/components/scene_components.h"
@@ -95,6 +97,41 @@ TEST(HierarchySplit, BodyOfTheWholeSubtreeKeepsChildrenInPlace) {
   const glm::vec3 headCentre(sim.world.get<ecs::WorldTransform>(f.head).matrix *
                              sim.world.get<MeshRenderer>(f.head).meshOffset * glm::vec4(0.f, 0.f, 0.f, 1.f));
   EXPECT_NEAR(glm::distance(headCentre, glm::vec3(0.f, 1.6f, 0.f)), 0.f, 1e-5f);
+}
+
+// A part of the figure changes while its cut computes on a worker (gameplay swaps the head's mesh,
+// or takes the arm off): the commit refuses, and the figure stays whole with its parts, body, mass and
+// motion; nothing is made.
+TEST(HierarchySplit, APartChangedBeforeTheCommitLeavesTheFigureWhole) {
+  for (const char* change : {"head swapped", "arm removed"}) {
+    SCOPED_TRACE(change);
+    Sim sim;
+    SplitBudgetSettings settings = sim.splits.budget().settings();
+    settings.threads = 1;
+    settings.commitDelayTicks = 2;
+    sim.splits.budget().setSettings(settings);
+    const Figure f = makeFigure(sim);
+    const physics::BodyId body = sim.world.get<RigidBody>(f.root).body;
+    sim.requestCut(f.root, glm::dvec3(1.0, 0.0, 0.0), 0.05);
+    while (sim.splits.jobsInFlight() == 0 && sim.tick < 10) sim.step();
+    ASSERT_EQ(sim.splits.jobsInFlight(), 1u);
+    if (std::string(change) == "head swapped") {
+      sim.world.get<MeshRenderer>(f.head).source =
+          std::make_shared<geometry::MeshData>(geometry::primitives::uvSphere(0.1f, 12, 6));
+    } else {
+      sim.world.destroy(f.arm);
+    }
+    const auto before = sim.physics.bodyState(body);
+    ASSERT_TRUE(before);
+    const InFlightTarget held = inFlightTarget(sim, f.root);
+    expectRefusedAtCommit(sim, held, sim.runUntil(sim.tick + 4), "a part of the target changed");
+    EXPECT_TRUE(sim.world.alive(f.head));
+    EXPECT_EQ(ecs::parentOf(sim.world, f.head), f.root);
+    // Still falling as one body: the refusal changed nothing of its motion.
+    const auto after = sim.physics.bodyState(body);
+    ASSERT_TRUE(after);
+    EXPECT_LT(after->transform.position.y, before->transform.position.y);
+  }
 }
 
 TEST(HierarchySplit, ParentAndChildrenAreCutTogetherAndCopiedToEachSide) {

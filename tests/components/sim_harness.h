@@ -171,4 +171,32 @@ inline double relativeError(const glm::dvec3& a, const glm::dvec3& b) {
   return glm::length(a - b) / std::max(glm::length(b), 1e-300);
 }
 
+// What a target whose split is in flight holds before a change made to it by gameplay, and the
+// check that the commit then refused: one event naming `reason`, no piece made, the target alive
+// with the same body and mass, the world's entity count unchanged.
+struct InFlightTarget {
+  ecs::Entity target;
+  physics::BodyId body;
+  double mass = 0.0;
+  size_t entities = 0;
+};
+
+inline InFlightTarget inFlightTarget(Sim& sim, ecs::Entity target) {
+  return {target, sim.world.get<RigidBody>(target).body, sim.world.get<MassInfo>(target).mass,
+          sim.world.entities().size()};
+}
+
+inline void expectRefusedAtCommit(Sim& sim, const InFlightTarget& before, const std::vector<SplitEvent>& events,
+                                  const std::string& reason) {
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].status, geometry::SplitStatus::InvalidInput);
+  EXPECT_NE(events[0].message.find(reason), std::string::npos) << events[0].message;
+  EXPECT_TRUE(events[0].pieces.empty());
+  EXPECT_EQ(sim.splits.totalPiecesCreated(), 0u);
+  ASSERT_TRUE(sim.world.alive(before.target));
+  EXPECT_EQ(sim.world.entities().size(), before.entities);
+  EXPECT_EQ(sim.world.get<RigidBody>(before.target).body, before.body);
+  EXPECT_DOUBLE_EQ(sim.world.get<MassInfo>(before.target).mass, before.mass);
+}
+
 }  // namespace cleave::components::testing

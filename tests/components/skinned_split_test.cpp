@@ -115,6 +115,31 @@ bool isUpperJoint(const std::string& name) {
          name.find("hand") != std::string::npos;
 }
 
+// A character whose skin is taken away while its cut computes on a worker is refused at commit: it
+// stays whole, with its body, mass and motion, and nothing is made.
+TEST(SkinnedSplit, ACharacterThatLostItsSkinBeforeTheCommitStaysWhole) {
+  Sim sim;
+  addFloor(sim);
+  SplitBudgetSettings settings = sim.splits.budget().settings();
+  settings.threads = 1;
+  settings.commitDelayTicks = 2;
+  sim.splits.budget().setSettings(settings);
+  const ecs::Entity e = spawnCharacter(sim, SkinnedPieceMode::Bake);
+  const physics::BodyId body = sim.world.get<RigidBody>(e).body;
+  sim.splits.request(waistCut(e));
+  while (sim.splits.jobsInFlight() == 0 && sim.tick < 10) sim.step();
+  ASSERT_EQ(sim.splits.jobsInFlight(), 1u);
+  ASSERT_TRUE(sim.world.remove<SkinnedMesh>(e));
+  const auto before = sim.physics.bodyState(body);
+  ASSERT_TRUE(before);
+  const testing::InFlightTarget held = testing::inFlightTarget(sim, e);
+  testing::expectRefusedAtCommit(sim, held, sim.runUntil(sim.tick + 4), "lost its skin");
+  const auto after = sim.physics.bodyState(body);
+  ASSERT_TRUE(after);
+  EXPECT_EQ(after->linearVelocity, before->linearVelocity);  // kinematic: it stands as it stood
+  EXPECT_EQ(after->transform.position, before->transform.position);
+}
+
 TEST(SkinnedSplit, KeepAnimatingPiecesPlayOnInSyncWithAnUncutAnimator) {
   Sim sim;
   addFloor(sim);

@@ -164,6 +164,61 @@ TEST(SplitBudget, OverCapacityDropsTheLowestPriority) {
   EXPECT_EQ(f.executed, (std::vector<uint32_t>{2, 3}));
 }
 
+// The worker-time limit: splits whose compute is estimated at 3 ms each stop the tick after the one
+// that reaches 8 ms of worker time, though the main thread has time left; the rest run next tick.
+TEST(SplitBudget, WorkerTimeLimitStopsAfterTheSplitThatReachesIt) {
+  SplitBudgetSettings s;
+  s.millisecondsPerTick = 1000.0;
+  s.maxSplitsPerTick = 100;
+  s.workerMillisecondsPerTick = 8.0;
+  s.deterministic = true;
+  Fixture f(s);
+  f.budget.setCostEstimator([](const SplitRequest&) { return SplitCost{0.1, 3.0}; });
+  for (uint32_t i = 1; i <= 7; ++i) f.add(i, {double(i), 0, 0}, false, 0);
+  f.run(1);
+  EXPECT_EQ(f.executed, (std::vector<uint32_t>{1, 2, 3}));
+  EXPECT_DOUBLE_EQ(f.budget.stats().workerMillisecondsCharged, 9.0);
+  EXPECT_EQ(f.budget.stats().deferred, 4u);
+  f.run(2);
+  EXPECT_EQ(f.executed, (std::vector<uint32_t>{1, 2, 3, 4, 5, 6}));
+  f.run(3);
+  EXPECT_EQ(f.executed.size(), 7u);
+  // One split alone over the worker limit still runs (and only it).
+  f.budget.setCostEstimator([](const SplitRequest&) { return SplitCost{0.1, 50.0}; });
+  f.add(8, {0, 0, 0}, false, 3);
+  f.add(9, {1, 0, 0}, false, 3);
+  f.run(4);
+  EXPECT_EQ(f.executed.size(), 8u);
+  EXPECT_EQ(f.executed.back(), 8u);
+}
+
+// A busy target (its split in flight) keeps its request queued while the others run; it runs once
+// free, and a busy target that is gone meanwhile has its request dropped as stale.
+TEST(SplitBudget, BusyTargetWaitsUntilFreeAndIsDroppedOnceGone) {
+  SplitBudgetSettings s;
+  s.millisecondsPerTick = 1000.0;
+  Fixture f(s);
+  std::map<uint32_t, bool> busy;
+  f.budget.setBusyCheck([&](ecs::Entity e) { return busy[e.index]; });
+  busy[1] = true;
+  busy[3] = true;
+  f.add(1, {0, 0, 0}, false, 0);
+  f.add(2, {1, 0, 0}, false, 0);
+  f.add(3, {2, 0, 0}, false, 0);
+  f.run(1);
+  EXPECT_EQ(f.executed, (std::vector<uint32_t>{2}));
+  EXPECT_EQ(f.budget.stats().deferred, 2u);
+  f.run(2);
+  EXPECT_EQ(f.executed, (std::vector<uint32_t>{2}));  // still busy: still waiting, not dropped
+  EXPECT_EQ(f.budget.queueLength(), 2u);
+  busy[1] = false;
+  f.alive[3] = false;
+  f.run(3);
+  EXPECT_EQ(f.executed, (std::vector<uint32_t>{2, 1}));
+  EXPECT_EQ(f.budget.stats().dropped, 1u);
+  EXPECT_EQ(f.budget.queueLength(), 0u);
+}
+
 TEST(SplitBudget, ActivationsAtMostNPerTickInCreationOrder) {
   SplitBudgetSettings s;
   s.maxActivationsPerTick = 16;

@@ -4,9 +4,12 @@
 // longer than a tick; a target gone before its
 // commit leaves nothing behind; a custom handler edits the pieces or keeps the original whole; and
 // pieces carry their collider parts into their own cuts.
+#include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -50,13 +53,28 @@ TEST(SplitPipeline, ThreadsNeverChangeTheOutcome) {
   std::vector<uint64_t> hashes;
   std::vector<size_t> pieces;
   for (uint32_t threads : {0u, 1u, 3u}) {
+    uint64_t offThread = 0;  // jobs computed by a worker, over the three scenes
     for (const char* scene : {"fifty_cubes.json", "torus_cut.json", "u_shape.json"}) {
       Sim sim;
       ASSERT_TRUE(sim.load(scenePath(scene))) << sim.scene.message;
       setThreads(sim, threads);
-      sim.runUntil(120);
+      // Each tick leaves the workers a moment (they run at a lower priority and, on a loaded
+      // machine, would otherwise find every job taken by the main thread's wait).
+      while (sim.tick < 120) {
+        sim.step();
+        if (threads > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
       hashes.push_back(stateHash(sim));
       pieces.push_back(size_t(sim.splits.totalPiecesCreated()));
+      offThread += sim.splits.jobsComputedOffTheCallingThread();
+    }
+    // The threads really ran: with workers, jobs were computed off the main thread.
+    std::printf("[threads] %u: %llu jobs computed off the main thread\n", threads,
+                static_cast<unsigned long long>(offThread));
+    if (threads == 0) {
+      EXPECT_EQ(offThread, 0u);
+    } else {
+      EXPECT_GT(offThread, 0u) << threads << " threads";
     }
   }
   for (size_t i = 3; i < hashes.size(); ++i) {

@@ -5,9 +5,12 @@
 // shared plane covering the same area, and the same bytes from the same seed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -20,6 +23,13 @@
 
 namespace cleave::geometry {
 namespace {
+
+// The volume a mesh encloses by this test's own arithmetic (signed tetrahedra about the centre of
+// its bounds), not the library's mass integration: the pieces' volumes are checked against it.
+double ownVolume(const MeshData& mesh) {
+  std::vector<glm::dvec3> p(mesh.positions.begin(), mesh.positions.end());
+  return testing::signedVolume(p, mesh.indices);
+}
 
 struct Fractured {
   FractureResult result;
@@ -39,7 +49,7 @@ Fractured fractureMesh(const MeshData& mesh, uint32_t cellCount, uint64_t seed,
   f.boundsSize = hi - lo;
   f.cells = voronoiCells(fractureSeeds(cellCount, seed, lo, hi), lo - margin, hi + margin);
   f.result = fracture(container, f.cells, SplitOptions{}, method);
-  f.volume = computeMassProperties(mesh).volume;
+  f.volume = ownVolume(mesh);
   return f;
 }
 
@@ -67,7 +77,10 @@ void expectFractureInvariants(const char* name, const MeshData& mesh, uint32_t c
     EXPECT_GT(piece.mass.volume, 0.0);
     EXPECT_TRUE(piece.mass.closed);
     ASSERT_EQ(piece.sourceTriangles.size(), piece.mesh.indices.size() / 3);
-    sum += piece.mass.volume;
+    // The piece's mass volume is what its mesh encloses, and the meshes add up to the input.
+    const double own = ownVolume(piece.mesh);
+    EXPECT_NEAR(piece.mass.volume, own, 1e-6 * f.volume) << "cell " << piece.cell;
+    sum += own;
     ++perCell[piece.cell];
     // Inside its cell: no vertex above any of the cell's planes (beyond float rounding).
     const ConvexCell& cell = f.cells[piece.cell];
@@ -270,6 +283,20 @@ TEST(Fracture, SameSeedGivesTheSameBytesAndAnotherSeedOtherCells) {
     EXPECT_EQ(x.indices, y.indices);
   }
   EXPECT_NE(a.cells[0].seed, c.cells[0].seed);
+  // Another seed breaks the torus otherwise: other pieces, adding up to the same volume.
+  auto volumes = [](const Fractured& f) {
+    std::vector<double> v;
+    for (const FracturePiece& piece : f.result.pieces) v.push_back(ownVolume(piece.mesh));
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  const std::vector<double> va = volumes(a), vc = volumes(c);
+  EXPECT_NE(va, vc);
+  size_t shared = 0;  // pieces of one volume (to 1e-9 of the torus's) in both
+  for (double v : vc)
+    shared += std::any_of(va.begin(), va.end(), [&](double w) { return std::abs(v - w) < 1e-9 * a.volume; });
+  EXPECT_LT(shared, vc.size() / 2) << "most pieces of seed 4 are pieces of seed 3";
+  EXPECT_NEAR(std::accumulate(vc.begin(), vc.end(), 0.0), c.volume, 1e-6 * c.volume);
 }
 
 TEST(Fracture, OneCellIsTheWholeMeshAndAnEmptyCellGivesNothing) {

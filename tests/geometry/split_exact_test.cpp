@@ -15,6 +15,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cleave/geometry/mesh_splitter.h"
+#include "cleave/geometry/pass_threads.h"
 #include "cleave/geometry/primitives.h"
 #include "cleave/geometry/whole_blocks.h"
 #include "tests/geometry/test_meshes.h"
@@ -821,33 +822,89 @@ TEST(ConvexSplitter, GivesTheSameVolumesAndCapsAsTheConcavePath) {
   for (const SplitPiece& piece : cube.result.pieces) expectClosed(piece.mesh);
 }
 
+// Every field of a split's result, bit for bit. Each struct is taken apart with a structured binding
+// of all its members, so a field added to SplitResult, SplitPiece, MeshData, MeshWeld or
+// MassProperties stops this from compiling until it is compared here too.
+template <typename T>
+bool sameArray(const std::vector<T>& x, const std::vector<T>& y) {
+  return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(T)) == 0);
+}
+
+template <typename T>
+bool sameValue(const T& x, const T& y) {
+  return std::memcmp(&x, &y, sizeof(T)) == 0;
+}
+
+bool sameBytes(const MeshData& a, const MeshData& b) {
+  const auto& [positions, normals, tangents, uv0, uv1, colors, joints, weights, indices, submeshes] = a;
+  return sameArray(positions, b.positions) && sameArray(normals, b.normals) && sameArray(tangents, b.tangents) &&
+         sameArray(uv0, b.uv0) && sameArray(uv1, b.uv1) && sameArray(colors, b.colors) &&
+         sameArray(joints, b.joints) && sameArray(weights, b.weights) && sameArray(indices, b.indices) &&
+         sameArray(submeshes, b.submeshes);
+}
+
+bool sameBytes(const MassProperties& a, const MassProperties& b) {
+  const auto& [volume, centerOfMass, inertia, closed, fromConvexHull] = a;
+  return sameValue(volume, b.volume) && sameValue(centerOfMass, b.centerOfMass) && sameValue(inertia, b.inertia) &&
+         closed == b.closed && fromConvexHull == b.fromConvexHull;
+}
+
+bool sameBytes(const MeshWeld& a, const MeshWeld& b) {
+  const auto& [positionIds, representatives, closed, inverted, connected] = a;
+  return sameArray(positionIds, b.positionIds) && sameArray(representatives, b.representatives) &&
+         closed == b.closed && inverted == b.inverted && connected == b.connected;
+}
+
+bool sameBytes(const SplitPiece& a, const SplitPiece& b) {
+  const auto& [mesh, weld, side, capTriangles, capLoops, mass, joints, reached, sourceTriangles] = a;
+  return sameBytes(mesh, b.mesh) && sameBytes(weld, b.weld) && side == b.side && capTriangles == b.capTriangles &&
+         capLoops == b.capLoops && sameBytes(mass, b.mass) && sameArray(joints, b.joints) && reached == b.reached &&
+         sameArray(sourceTriangles, b.sourceTriangles);
+}
+
 bool sameBytes(const SplitResult& a, const SplitResult& b) {
-  auto same = [](const auto& x, const auto& y) {
-    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0);
-  };
-  if (a.status != b.status || a.pieces.size() != b.pieces.size() || a.sectionLoops != b.sectionLoops) return false;
-  for (size_t k = 0; k < a.pieces.size(); ++k) {
-    const MeshData &x = a.pieces[k].mesh, &y = b.pieces[k].mesh;
-    if (!same(x.positions, y.positions) || !same(x.normals, y.normals) || !same(x.tangents, y.tangents) ||
-        !same(x.uv0, y.uv0) || !same(x.uv1, y.uv1) || !same(x.colors, y.colors) || !same(x.joints, y.joints) ||
-        !same(x.weights, y.weights) || !same(x.indices, y.indices) || !same(x.submeshes, y.submeshes)) {
-      return false;
-    }
-    const MassProperties &p = a.pieces[k].mass, &q = b.pieces[k].mass;
-    if (std::memcmp(&p.volume, &q.volume, sizeof p.volume) != 0 ||
-        std::memcmp(&p.centerOfMass, &q.centerOfMass, sizeof p.centerOfMass) != 0 ||
-        std::memcmp(&p.inertia, &q.inertia, sizeof p.inertia) != 0 || a.pieces[k].capLoops != b.pieces[k].capLoops ||
-        a.pieces[k].capTriangles != b.pieces[k].capTriangles || a.pieces[k].side != b.pieces[k].side) {
-      return false;
-    }
-    if (!same(a.pieces[k].sourceTriangles, b.pieces[k].sourceTriangles)) return false;
-    const MeshWeld &u = a.pieces[k].weld, &v = b.pieces[k].weld;
-    if (!same(u.positionIds, v.positionIds) || !same(u.representatives, v.representatives) ||
-        u.closed != v.closed || u.inverted != v.inverted) {
-      return false;
-    }
+  const auto& [status, message, pieces, sectionLoops, openChains, bridgedChains, uncappedLoops, sidesDisagree,
+               islandsFromSection, islandFromLoops] = a;
+  if (status != b.status || message != b.message || pieces.size() != b.pieces.size() ||
+      sectionLoops != b.sectionLoops || openChains != b.openChains || bridgedChains != b.bridgedChains ||
+      uncappedLoops != b.uncappedLoops || sidesDisagree != b.sidesDisagree ||
+      islandsFromSection != b.islandsFromSection || islandFromLoops != b.islandFromLoops) {
+    return false;
   }
+  for (size_t k = 0; k < pieces.size(); ++k)
+    if (!sameBytes(pieces[k], b.pieces[k])) return false;
   return true;
+}
+
+// sameBytes sees a change in any one field.
+TEST(ConcaveSplitter, SameBytesSeesEveryField) {
+  const Split base = run(primitives::torus(1.f, 0.3f, 16, 8), planeOf({0.1, 1, 0.05}, 0.02));
+  ASSERT_EQ(base.status, SplitStatus::Ok);
+  ASSERT_TRUE(sameBytes(base.result, base.result));
+  const std::vector<void (*)(SplitResult&)> changes = {
+      [](SplitResult& r) { r.message.push_back('x'); },
+      [](SplitResult& r) { ++r.sectionLoops; },
+      [](SplitResult& r) { ++r.openChains; },
+      [](SplitResult& r) { ++r.bridgedChains; },
+      [](SplitResult& r) { ++r.uncappedLoops; },
+      [](SplitResult& r) { r.sidesDisagree = !r.sidesDisagree; },
+      [](SplitResult& r) { r.islandsFromSection = !r.islandsFromSection; },
+      [](SplitResult& r) { r.islandFromLoops = !r.islandFromLoops; },
+      [](SplitResult& r) { r.pieces[1].mesh.uv0.at(0).x += 1.f; },
+      [](SplitResult& r) { r.pieces[1].weld.connected = !r.pieces[1].weld.connected; },
+      [](SplitResult& r) { r.pieces[1].weld.positionIds.at(0) += 1; },
+      [](SplitResult& r) { r.pieces[1].mass.fromConvexHull = !r.pieces[1].mass.fromConvexHull; },
+      [](SplitResult& r) { r.pieces[1].mass.inertia[2][1] += 1e-12; },
+      [](SplitResult& r) { r.pieces[1].joints.push_back(3); },
+      [](SplitResult& r) { r.pieces[1].reached = !r.pieces[1].reached; },
+      [](SplitResult& r) { r.pieces[1].sourceTriangles.at(0) ^= 1u; },
+      [](SplitResult& r) { ++r.pieces[1].capLoops; },
+  };
+  for (size_t k = 0; k < changes.size(); ++k) {
+    SplitResult changed = base.result;
+    changes[k](changed);
+    EXPECT_FALSE(sameBytes(base.result, changed)) << "change " << k;
+  }
 }
 
 TEST(ConcaveSplitter, SameInputGivesTheSameBytes) {
@@ -887,15 +944,24 @@ TEST(ConcaveSplitter, ThreadsGiveTheSameBytesAsOneThread) {
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     ASSERT_GE(c.mesh.indices.size() / 3, 50000u);
+    const uint64_t parkedBeforeOne = detail::PassThreads::jobsRunOnParkedThreads();
     Split one = run(c.mesh, c.plane);
     ASSERT_EQ(one.status, SplitStatus::Ok) << one.result.message;
     ASSERT_GE(one.result.pieces.size(), 2u);
+    EXPECT_EQ(detail::PassThreads::jobsRunOnParkedThreads(), parkedBeforeOne) << "one thread uses no other";
     for (uint32_t threads : {2u, 3u, 8u}) {
       SplitOptions options;
       options.threads = threads;
+      const uint64_t parkedBefore = detail::PassThreads::jobsRunOnParkedThreads();
       Split many = run(c.mesh, c.plane, options);
       ASSERT_EQ(many.status, SplitStatus::Ok) << many.result.message;
+      // islandFromLoops tells how the islands were found, not what they are: the threaded path labels
+      // both sides at once and never takes that shortcut. Every other field is the same bytes.
+      EXPECT_FALSE(many.result.islandFromLoops);
+      many.result.islandFromLoops = one.result.islandFromLoops;
       EXPECT_TRUE(sameBytes(one.result, many.result)) << threads << " threads";
+      // The threads took part: passes of this split ran on threads beside the caller's.
+      EXPECT_GT(detail::PassThreads::jobsRunOnParkedThreads(), parkedBefore) << threads << " threads";
     }
   }
   // The comb: one piece per tooth above the plane, the spine below.

@@ -24,10 +24,12 @@ struct RunResult {
   std::string output;  // stdout and stderr
 };
 
-// Runs `executable arguments` through the shell with stderr folded into stdout.
-inline RunResult runExecutable(const std::string& executable, const std::string& arguments) {
+// Runs `executable arguments` through the shell with stderr folded into stdout; `prefix`, when
+// given, goes before the executable (environment assignments, a wrapper such as setarch).
+inline RunResult runExecutable(const std::string& executable, const std::string& arguments,
+                               const std::string& prefix = {}) {
   RunResult result;
-  const std::string command = "\"" + executable + "\" " + arguments + " 2>&1";
+  const std::string command = prefix + (prefix.empty() ? "" : " ") + "\"" + executable + "\" " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
   std::array<char, 4096> buffer{};
@@ -37,6 +39,12 @@ inline RunResult runExecutable(const std::string& executable, const std::string&
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
 }
+
+// A run under conditions that must not change a result: glibc fills every allocation and every
+// freed block with a garbage byte (a read of memory never written then differs), and the process's
+// addresses are laid out without randomization (an order taken from pointers then differs from a
+// randomized run's). Compared against a plain run, it sees what running one binary twice cannot.
+inline const char* kPerturbedRun = "MALLOC_PERTURB_=165 setarch \"$(uname -m)\" -R";
 
 // build/test-output/<suite>/<name>, emptied.
 inline std::filesystem::path scratchDir(const std::string& suite, const std::string& name) {
@@ -57,8 +65,9 @@ inline std::string stateHash(const std::string& output) {
 // The state hash each bundled replay ends with is recorded per build configuration (build type,
 // compiler and version, processor: floating-point results may differ between them) in
 // tests/support/state_hashes.txt, one "configuration replay hash" per line, so that a change that
-// alters results is seen in review. A configuration without a record is skipped with how to add
-// one: CLEAVE_UPDATE_HASHES=1 rewrites the lines of this configuration with the hashes found.
+// alters results is seen in review. A configuration without a record fails, with how to add one
+// (CLEAVE_UPDATE_HASHES=1 rewrites the lines of this configuration with the hashes found, in a run
+// that still compares 0, 1 and 3 threads): another compiler keeps a check that can fail.
 inline std::filesystem::path stateHashFile() {
   return std::filesystem::path(CLEAVE_SOURCE_DIR) / "tests" / "support" / "state_hashes.txt";
 }
@@ -85,8 +94,10 @@ inline void expectRecordedStateHash(const std::string& replay, const std::string
     return;
   }
   if (recorded.empty()) {
-    std::printf("[hashes ] no recorded state hash of %s for %s (CLEAVE_UPDATE_HASHES=1 records it)\n", replay.c_str(),
-                configuration.c_str());
+    ADD_FAILURE() << "no recorded state hash of " << replay << " for the build configuration " << configuration
+                  << " in " << stateHashFile() << " (this run ends in " << hash
+                  << "): record this configuration's hashes with CLEAVE_UPDATE_HASHES=1 and ctest -j1, and "
+                  << "commit them";
     return;
   }
   EXPECT_EQ(hash, recorded) << replay << " ends in another state than recorded for " << configuration
