@@ -83,8 +83,8 @@ void StaticBatches::setSettings(const StaticBatchSettings& settings) {
   if (rebuild) release();
 }
 
-void StaticBatches::release() {
-  for (auto& [key, cell] : cells_) dissolve(cell);
+void StaticBatches::release(PieceMeshes pieces) {
+  for (auto& [key, cell] : cells_) dissolve(cell, pieces);
   cells_.clear();
   coveredBy_.clear();
   stats_.batches = stats_.pieces = 0;
@@ -97,15 +97,30 @@ StaticBatches::CellKey StaticBatches::cellOf(const ecs::World& world, ecs::Entit
 
 void StaticBatches::update(ecs::World& world, uint64_t tick) {
   if (!renderer_ || !settings_.enabled) return;
+  world_ = &world;
   tick_ = tick;
   dissolveBroken(world);
   countWaiting(world);
   buildSettled(world);
 }
 
-void StaticBatches::dissolve(Cell& cell) {
+// The batch's pieces still there, with the mesh they had when merged, get their storage back
+// (but those in `except`, merged again at once).
+void StaticBatches::restorePieces(const Batch& b, const std::vector<ecs::Entity>& except) {
+  if (!renderer_ || !world_) return;
+  for (size_t i = 0; i < b.pieces.size(); ++i) {
+    const ecs::Entity e = b.pieces[i];
+    if (std::find(except.begin(), except.end(), e) != except.end()) continue;
+    const auto* mr = world_->alive(e) ? world_->tryGet<MeshRenderer>(e) : nullptr;
+    if (!mr || !mr->source || mr->gpu != b.pieceMeshes[i] || renderer_->isResident(mr->gpu)) continue;
+    if (renderer_->restoreMesh(mr->gpu, render::packMesh(*mr->source)).ok()) stats_.restored++;
+  }
+}
+
+void StaticBatches::dissolve(Cell& cell, PieceMeshes pieces) {
   Batch& b = cell.batch;
   if (!b.gpu.valid()) return;
+  if (pieces == PieceMeshes::Restore) restorePieces(b);
   if (renderer_) renderer_->destroyMesh(b.gpu);
   for (ecs::Entity e : b.pieces)
     if (covers(e)) coveredBy_[e.index] = ecs::kNullEntity;
@@ -187,14 +202,19 @@ void StaticBatches::build(ecs::World& world, const CellKey& key, Cell& cell) {
     merged.submeshes.push_back({uint32_t(merged.indices.size()), uint32_t(indicesByMaterial[m].size()), m});
     merged.indices.insert(merged.indices.end(), indicesByMaterial[m].begin(), indicesByMaterial[m].end());
   }
-  dissolve(cell);
+  // The old batch's pieces merged again keep their storage evicted; any other gets it back.
+  auto gpu = b.pieces.empty() ? base::Expected<render::MeshHandle>::failure(base::StatusCode::InvalidArgument, "")
+                              : renderer_->uploadPacked(merged);
+  restorePieces(cell.batch, gpu.ok() ? b.pieces : std::vector<ecs::Entity>{});
+  dissolve(cell, PieceMeshes::Drop);
   cell.waiting = 0;
-  auto gpu = renderer_->uploadPacked(merged);
-  if (!gpu.ok() || b.pieces.empty()) return;
+  if (!gpu.ok()) return;
   b.gpu = gpu.value();
-  for (ecs::Entity e : b.pieces) {
+  for (size_t i = 0; i < b.pieces.size(); ++i) {
+    const ecs::Entity e = b.pieces[i];
     if (coveredBy_.size() <= e.index) coveredBy_.resize(e.index + 1, ecs::kNullEntity);
     coveredBy_[e.index] = e;
+    renderer_->evictMesh(b.pieceMeshes[i]);
   }
   stats_.batches++;
   stats_.pieces += uint32_t(b.pieces.size());

@@ -15,9 +15,15 @@
 // state hash are the same with it on or off. Pieces skinned, invisible, or whose first material
 // casts no shadow or is a checker (the shadow pass reads a draw's first material) stay single.
 //
+// Memory: while a piece is drawn by a batch its own GPU mesh is evicted (Renderer::evictMesh: the
+// handle stays, the vertex storage goes; on a software rasterizer that storage is process memory,
+// and a session's thousand frozen pieces would otherwise be held twice). When the batch dissolves,
+// each of its pieces still there gets its storage back, packed again from its MeshRenderer::source.
+//
 // Ownership: the batches' GPU meshes belong to this object; they are freed when a batch dissolves,
 // by release(), by setRenderer() (on the old renderer) and by the destructor. The renderer must
-// outlive the batches or be taken away with setRenderer(nullptr) first.
+// outlive the batches or be taken away with setRenderer(nullptr) first, and the world given to
+// update() must outlive them (a Simulation's does).
 #pragma once
 
 #include <cstdint>
@@ -43,7 +49,13 @@ struct StaticBatchStats {
   uint32_t pieces = 0;       // frozen pieces drawn through a batch now
   uint64_t builds = 0;       // over the run
   uint64_t dissolved = 0;    // batches dissolved over the run
+  uint64_t restored = 0;     // pieces given their own mesh back when their batch dissolved, over the run
 };
+
+// What release() does with the batched pieces' own meshes: give them back (the pieces are drawn one
+// by one from now on), or leave them evicted because the world is about to be cleared (its entities'
+// meshes are destroyed with them, evicted or not).
+enum class PieceMeshes { Restore, Drop };
 
 class StaticBatches {
  public:
@@ -64,8 +76,8 @@ class StaticBatches {
   bool covers(ecs::Entity e) const { return e.index < coveredBy_.size() && coveredBy_[e.index] == e; }
   // Submits every built batch to the renderer (between its beginFrame and endFrame).
   void submit() const;
-  // Frees every batch (a level unloading, a game releasing its world).
-  void release();
+  // Frees every batch (batching turned off, a level unloading, a game releasing its world).
+  void release(PieceMeshes pieces = PieceMeshes::Restore);
 
  private:
   using CellKey = std::pair<int32_t, int32_t>;
@@ -87,9 +99,11 @@ class StaticBatches {
   void countWaiting(ecs::World& world);
   void buildSettled(ecs::World& world);
   void build(ecs::World& world, const CellKey& key, Cell& cell);
-  void dissolve(Cell& cell);
+  void dissolve(Cell& cell, PieceMeshes pieces = PieceMeshes::Restore);
+  void restorePieces(const Batch& batch, const std::vector<ecs::Entity>& except = {});
 
   render::Renderer* renderer_ = nullptr;
+  ecs::World* world_ = nullptr;  // the world of the last update: its pieces' meshes are restored
   StaticBatchSettings settings_;
   StaticBatchStats stats_;
   std::map<CellKey, Cell> cells_;

@@ -116,6 +116,45 @@ void deleteGpuMesh(GpuMesh& m) {
   if (m.skinVbo) glDeleteBuffers(1, &m.skinVbo);
 }
 
+// The vertex array and buffers of a packed mesh (and its skin), into g.
+void createBuffers(const PackedMesh& packed, GpuMesh& g) {
+  glGenVertexArrays(1, &g.vao);
+  glGenBuffers(1, &g.vbo);
+  glGenBuffers(1, &g.ibo);
+  glBindVertexArray(g.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, g.vbo);
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(packed.vertices.size() * sizeof(float)), packed.vertices.data(),
+               GL_STATIC_DRAW);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.ibo);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(packed.indices.size() * sizeof(uint32_t)),
+               packed.indices.data(), GL_STATIC_DRAW);
+  const GLsizei stride = 12 * sizeof(float);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(3 * sizeof(float)));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(6 * sizeof(float)));
+  glEnableVertexAttribArray(3);
+  glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(8 * sizeof(float)));
+  g.skinVbo = 0;
+  if (!packed.skin.empty()) {
+    // Skin: 4 unsigned shorts of joints, then 4 floats of weights, per vertex (24 bytes).
+    using SkinVertex = PackedMesh::SkinVertex;
+    static_assert(sizeof(SkinVertex) == 24);
+    glGenBuffers(1, &g.skinVbo);
+    glBindBuffer(GL_ARRAY_BUFFER, g.skinVbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(packed.skin.size() * sizeof(SkinVertex)), packed.skin.data(),
+                 GL_STATIC_DRAW);
+    glEnableVertexAttribArray(4);
+    glVertexAttribIPointer(4, 4, GL_UNSIGNED_SHORT, sizeof(SkinVertex), nullptr);
+    glEnableVertexAttribArray(5);
+    glVertexAttribPointer(5, 4, GL_FLOAT, GL_FALSE, sizeof(SkinVertex),
+                          reinterpret_cast<void*>(offsetof(SkinVertex, weights)));
+  }
+  glBindVertexArray(0);
+}
+
 struct DrawItem {
   uint32_t mesh;
   glm::mat4 model;
@@ -421,42 +460,29 @@ base::Expected<MeshHandle> Renderer::uploadPacked(const PackedMesh& packed) {
   g.triangles = uint32_t(packed.indices.size() / 3);
   boundPositions(packed, g);
   for (const auto& s : packed.submeshes) g.submeshes.push_back({s.firstIndex, s.indexCount, s.materialId});
-  glGenVertexArrays(1, &g.vao);
-  glGenBuffers(1, &g.vbo);
-  glGenBuffers(1, &g.ibo);
-  glBindVertexArray(g.vao);
-  glBindBuffer(GL_ARRAY_BUFFER, g.vbo);
-  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(packed.vertices.size() * sizeof(float)), packed.vertices.data(),
-               GL_STATIC_DRAW);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.ibo);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(packed.indices.size() * sizeof(uint32_t)),
-               packed.indices.data(), GL_STATIC_DRAW);
-  const GLsizei stride = 12 * sizeof(float);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(3 * sizeof(float)));
-  glEnableVertexAttribArray(2);
-  glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(6 * sizeof(float)));
-  glEnableVertexAttribArray(3);
-  glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(8 * sizeof(float)));
-  g.skinVbo = 0;
-  if (!packed.skin.empty()) {
-    // Skin: 4 unsigned shorts of joints, then 4 floats of weights, per vertex (24 bytes).
-    using SkinVertex = PackedMesh::SkinVertex;
-    static_assert(sizeof(SkinVertex) == 24);
-    glGenBuffers(1, &g.skinVbo);
-    glBindBuffer(GL_ARRAY_BUFFER, g.skinVbo);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(packed.skin.size() * sizeof(SkinVertex)), packed.skin.data(),
-                 GL_STATIC_DRAW);
-    glEnableVertexAttribArray(4);
-    glVertexAttribIPointer(4, 4, GL_UNSIGNED_SHORT, sizeof(SkinVertex), nullptr);
-    glEnableVertexAttribArray(5);
-    glVertexAttribPointer(5, 4, GL_FLOAT, GL_FALSE, sizeof(SkinVertex),
-                          reinterpret_cast<void*>(offsetof(SkinVertex, weights)));
-  }
-  glBindVertexArray(0);
+  createBuffers(packed, g);
   return MeshHandle{key.index, key.generation};
+}
+
+void Renderer::evictMesh(MeshHandle handle) {
+  GpuMesh* m = impl_->mesh(handle);
+  if (!m || m->vao == 0) return;
+  deleteGpuMesh(*m);
+  m->vao = m->vbo = m->ibo = m->skinVbo = 0;
+}
+
+base::Status Renderer::restoreMesh(MeshHandle handle, const PackedMesh& packed) {
+  GpuMesh* m = impl_->mesh(handle);
+  if (!m || m->vao != 0) return {};
+  if (!packed.ok()) return base::Status(packed);
+  if (packed.vertices.empty()) return base::Status::failure(base::StatusCode::InvalidArgument, "mesh has no triangles");
+  createBuffers(packed, *m);
+  return {};
+}
+
+bool Renderer::isResident(MeshHandle handle) const {
+  const GpuMesh* m = impl_->mesh(handle);
+  return m && m->vao != 0;
 }
 
 void Renderer::destroyMesh(MeshHandle handle) {
@@ -528,7 +554,8 @@ void Renderer::beginFrame(int width, int height, const Camera& camera, const Lig
 
 void Renderer::submit(MeshHandle mesh, const glm::mat4& model, std::span<const Material> materials, bool closed) {
   Impl& r = *impl_;
-  if (!r.mesh(mesh) || materials.empty()) return;
+  const GpuMesh* m = r.mesh(mesh);
+  if (!m || m->vao == 0 || materials.empty()) return;  // destroyed, stale or evicted: nothing drawn
   const uint32_t first = uint32_t(r.materials.size());
   r.materials.insert(r.materials.end(), materials.begin(), materials.end());
   const bool mirrored = glm::determinant(glm::mat3(model)) < 0.f;
@@ -539,7 +566,7 @@ void Renderer::submitSkinned(MeshHandle mesh, const glm::mat4& model, std::span<
                              std::span<const Material> materials) {
   Impl& r = *impl_;
   const GpuMesh* m = r.mesh(mesh);
-  if (!m || materials.empty()) return;
+  if (!m || m->vao == 0 || materials.empty()) return;
   submit(mesh, model, materials);
   if (!m->skinVbo || jointMatrices.empty()) return;
   DrawItem& draw = r.draws.back();

@@ -122,6 +122,15 @@ class Renderer {
   // The same for a mesh packed before (packMesh, on any thread): only the GL buffers are made here.
   base::Expected<MeshHandle> uploadPacked(const PackedMesh& packed);
   void destroyMesh(MeshHandle mesh);
+  // Frees a mesh's vertex and index storage and keeps its handle, bounds and submeshes, for a cache
+  // that draws the mesh another way for a while (static batches): on a software rasterizer the
+  // storage is process memory. An evicted mesh submitted draws nothing. restoreMesh gives it storage
+  // again from a packing of the same mesh (InvalidArgument when the packing is malformed or empty;
+  // the mesh stays evicted). Both ignore an invalid handle; restoring a resident mesh does nothing.
+  void evictMesh(MeshHandle mesh);
+  base::Status restoreMesh(MeshHandle mesh, const PackedMesh& packed);
+  // Valid and holding its storage (not evicted).
+  bool isResident(MeshHandle mesh) const;
   uint32_t liveMeshCount() const;
   uint32_t liveTextureCount() const;
   // False for a null, destroyed or stale handle (slots are reused with a new generation).

@@ -481,7 +481,7 @@ components::ResourceCounts ArenaGame::resources() const {
 
 void ArenaGame::releaseAll() {
   if (!app_) return;
-  if (sim_) sim_->batches().release();
+  if (sim_) sim_->batches().release(components::PieceMeshes::Drop);  // the world is cleared next
   app_->world().clear();
   for (physics::BodyId body : staticBodies_) physics_->destroyBody(body);
   for (physics::ShapeId shape : staticShapes_) physics_->destroyShape(shape);

@@ -170,7 +170,7 @@ components::ResourceCounts DemoGame::resources() const {
 }
 
 void DemoGame::releaseAll() {
-  if (sim_) sim_->batches().release();
+  if (sim_) sim_->batches().release(components::PieceMeshes::Drop);  // the world is cleared next
   if (app_) app_->world().clear();
 }
 

@@ -144,6 +144,43 @@ TEST_F(BatchScene, APieceThatThawsOrGoesDissolvesItsBatchInThatUpdate) {
   EXPECT_EQ(batches_.stats().dissolved, 2u);
 }
 
+// While batched, a piece's own GPU mesh holds no storage (the batch draws it); when the batch
+// dissolves, every piece still there draws from its own mesh again, and the frame is the one drawn
+// before any batch. release() gives the storage back too; release(Drop) leaves it to the world.
+TEST_F(BatchScene, BatchedPiecesLendTheirMeshStorageAndGetItBackWhenTheBatchDissolves) {
+  std::vector<ecs::Entity> heap = addHeap();
+  auto resident = [&] {
+    size_t n = 0;
+    for (ecs::Entity e : heap)
+      if (world_.alive(e)) n += renderer_.isResident(world_.get<MeshRenderer>(e).gpu);
+    return n;
+  };
+  uint32_t draws = 0;
+  const std::vector<uint8_t> single = draw(draws);
+  for (uint64_t tick = 0; tick <= 30; ++tick) update(tick);
+  ASSERT_EQ(batches_.stats().pieces, 12u);
+  EXPECT_EQ(resident(), 0u);
+  for (ecs::Entity e : heap) EXPECT_TRUE(renderer_.isValid(world_.get<MeshRenderer>(e).gpu)) << "the handle stays";
+  world_.remove<Frozen>(heap[3]);
+  update(31);
+  EXPECT_EQ(resident(), 12u);
+  EXPECT_EQ(batches_.stats().restored, 12u);
+  const std::vector<uint8_t> again = draw(draws);
+  EXPECT_EQ(draws, 12u);
+  const testing::ImageComparison same = testing::compareImages(single, again, kWidth, kHeight, {0, 0.0});
+  EXPECT_TRUE(same.ok) << same.differingShare << " of the pixels differ, by up to " << same.largestDifference;
+  // Settled again without the thawed piece: eleven lend their storage; release() gives it back.
+  for (uint64_t tick = 32; tick <= 61; ++tick) update(tick);
+  ASSERT_EQ(batches_.stats().pieces, 11u);
+  EXPECT_EQ(resident(), 1u);
+  batches_.release();
+  EXPECT_EQ(resident(), 12u);
+  for (uint64_t tick = 62; tick <= 92; ++tick) update(tick);
+  ASSERT_EQ(batches_.stats().pieces, 11u);
+  batches_.release(PieceMeshes::Drop);  // the world is cleared next
+  EXPECT_EQ(resident(), 1u);
+}
+
 TEST_F(BatchScene, ReleaseAndTheDestructorFreeTheBatchMeshes) {
   addHeap();
   const uint32_t pieces = renderer_.liveMeshCount();
