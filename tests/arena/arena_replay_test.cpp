@@ -141,7 +141,9 @@ TEST(ArenaReplay, SkinnedEnemiesFallAsRagdollHalves) {
   EXPECT_GE(skinned.at("spin").get<int>(), 1) << kills.dump();
   EXPECT_GE(kills.at("gladiator").at("total").get<int>(), 12) << kills.dump();
   // Each skinned kill is a cut of the whole character in its pose: at least two pieces that share
-  // its mass (by posed volume) within 2e-6 relative.
+  // its mass (by posed volume) within 2e-6 relative. The masses add up by construction (each piece
+  // takes its share of the parent's); the volumes are the check: the pieces' add up to the posed
+  // character's, integrated on its own.
   size_t skinnedCuts = 0;
   for (const auto& s : dump.at("splits")) {
     if (s.at("original") != "skinned warrior" || s.at("status") != "Ok") continue;
@@ -151,6 +153,10 @@ TEST(ArenaReplay, SkinnedEnemiesFallAsRagdollHalves) {
     const double pieces = s.at("pieces_mass").get<double>();
     EXPECT_GT(parent, 30.0) << s.dump();  // a whole character (about 76 kg), not a scrap
     EXPECT_LE(std::abs(pieces - parent), 2e-6 * parent) << s.dump();
+    ASSERT_TRUE(s.contains("posed_volume")) << s.dump();
+    const double posed = s.at("posed_volume").get<double>();
+    EXPECT_GT(posed, 0.03) << s.dump();  // about 76 litres
+    EXPECT_NEAR(s.at("pieces_volume").get<double>() / posed, 1.0, 1e-6) << s.dump();
   }
   EXPECT_EQ(skinnedCuts, size_t(skinned.at("total").get<int>()));
   // The halves are ragdolls: they appear in the dump after the first skinned kill (with their bones),
