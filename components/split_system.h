@@ -201,55 +201,8 @@ class SplitSystem {
 uint64_t toUserData(ecs::Entity e);
 ecs::Entity fromUserData(uint64_t v);
 
-// Creates a splitter entity (Name, Transform, WorldTransform and `splitter`, whose lifetime and
-// player flag are kept) with a trigger of `shape` at `position`/`rotation`: persistent for a
-// persistent splitter, one-shot otherwise. Its plane is the local +Y axis through `position`.
-// Returns kNullEntity, creating nothing, when the shape cannot be built.
-ecs::Entity createSplitter(SplitWorld& w, const std::string& name, const physics::ShapeDef& shape,
-                           const glm::vec3& position, const glm::quat& rotation, Splitter splitter);
-
-// Creates the rigid body and collider for an authored object with a MeshRenderer, from its mesh's
-// exact mass properties (density from its Splitable, or `density`). Sets RigidBody, MassInfo and the
-// mesh offset so the body origin is the centre of mass. InvalidArgument with a reason on failure
-// (no mesh, no volume, no collider, a body the bridge refuses).
-// With `splits`, the collider parts come from its cache (shared by every instance of the mesh) and
-// the entity keeps them (ColliderParts) for its cuts.
-base::Status makeDynamicBody(SplitWorld& w, ecs::Entity e, double density, ColliderMode collider,
-                             SplitSystem* splits = nullptr);
-
-// The physics shape of a planned collider (hulls: one prepared hull or a compound of them; or the
-// concave mesh). The bridge's status with the reason when none can be built (DegenerateShape when
-// there is no part at all).
-physics::Result<physics::ShapeId> createPlannedShape(physics::PhysicsWorld& physics,
-                                                     const std::vector<HullSpec>& hulls,
-                                                     const std::vector<glm::vec3>& concavePositions,
-                                                     const std::vector<uint32_t>& concaveIndices);
-
-// Puts an authored entity on the body just made for it: its Transform moves to the body's pose
-// (unit scale) and it gets RigidBody and MassInfo (mass, volume, density, closed from `props`).
-// The mesh offset is the caller's.
-void placeOnBody(SplitWorld& w, ecs::Entity e, const physics::BodyDef& def, physics::BodyId body,
-                 physics::ShapeId shape, double mass, const geometry::MassProperties& props, double density);
-
-// Physics sync (PhysicsSync phase): entity transforms follow their bodies.
-void syncTransformsFromBodies(SplitWorld& w);
-
-class StaticBatches;  // static_batches.h
-
-// Render phase: submits every visible MeshRenderer at WorldTransform x meshOffset; with `batches`,
-// its built batches, and not the pieces they cover.
-void submitMeshes(SplitWorld& w, const StaticBatches* batches = nullptr);
-
-// Debris: pieces without collider fall under gravity, come to rest on the first body at rest their
-// path meets (the floor, a frozen or sleeping piece: a ray along each step's motion), shrink away in their last half second
-// and vanish after a while.
-struct Debris {
-  glm::vec3 velocity{0.f};
-  glm::vec3 angularVelocity{0.f};
-  float secondsLeft = 3.f;
-  float radius = 0.f;     // m, of a ball of the piece's volume: how far above a surface it rests
-  bool landed = false;
-};
-void updateDebris(SplitWorld& w, float dt);
-
 }  // namespace cleave::components
+
+// The helpers that build what splits work on, and the systems that run beside them.
+#include "cleave/components/authoring.h"
+#include "cleave/components/world_systems.h"
