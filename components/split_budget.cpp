@@ -18,23 +18,10 @@ void SplitBudget::enqueue(SplitRequest request) {
 
 void SplitBudget::clear() {
   queue_.clear();
-  activations_.clear();
   stats_ = {};
 }
 
-std::vector<physics::BodyId> SplitBudget::takeActivations() {
-  const size_t n = std::min<size_t>(activations_.size(), settings_.maxActivationsPerTick);
-  std::vector<physics::BodyId> taken(activations_.begin(), activations_.begin() + n);
-  activations_.erase(activations_.begin(), activations_.begin() + n);
-  stats_.pendingActivations = uint32_t(activations_.size());
-  return taken;
-}
-
-void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition,
-                          const std::function<bool(ecs::Entity)>& isAlive,
-                          const std::function<glm::dvec3(ecs::Entity)>& positionOf,
-                          const std::function<bool(const SplitRequest&)>& execute,
-                          const std::function<double()>& nowMilliseconds) {
+void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition, SplitBudgetHost& host) {
   stats_.executed = 0;
   stats_.deferred = 0;
   stats_.dropped = 0;
@@ -45,7 +32,7 @@ void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition
 
   // Stale requests (the entity is gone, e.g. already split or destroyed by gameplay) are dropped.
   const size_t before = queue_.size();
-  std::erase_if(queue_, [&](const SplitRequest& r) { return !isAlive(r.target); });
+  std::erase_if(queue_, [&](const SplitRequest& r) { return !host.isAlive(r.target); });
   stats_.dropped += uint32_t(before - queue_.size());
 
   // Priority: player-caused first, then nearer to the camera, then older.
@@ -59,7 +46,7 @@ void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition
   order.reserve(queue_.size());
   for (size_t i = 0; i < queue_.size(); ++i) {
     const SplitRequest& r = queue_[i];
-    order.push_back({r.playerCaused, glm::length(positionOf(r.target) - cameraPosition), r.sequence, i});
+    order.push_back({r.playerCaused, glm::length(host.positionOf(r.target) - cameraPosition), r.sequence, i});
   }
   std::sort(order.begin(), order.end(), [](const Keyed& a, const Keyed& b) {
     if (a.player != b.player) return a.player;
@@ -87,11 +74,11 @@ void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition
     // A second request for a target split this tick waits; next tick its target is gone and the
     // request is dropped as stale (the pieces are new entities).
     if (std::find(splitThisTick.begin(), splitThisTick.end(), r.target) != splitThisTick.end()) continue;
-    if (busy_ && busy_(r.target)) continue;  // its split is in flight: it waits
-    const SplitCost estimate = estimator_ ? estimator_(r) : SplitCost{settings_.millisecondsPerTick, 0.0};
-    const double start = nowMilliseconds();
-    const bool ok = execute(r);
-    const double spent = nowMilliseconds() - start;
+    if (host.isBusy(r.target)) continue;  // its split is in flight: it waits
+    const SplitCost estimate = host.estimate(r);
+    const double start = host.nowMilliseconds();
+    const bool ok = host.execute(r);
+    const double spent = host.nowMilliseconds() - start;
     stats_.millisecondsUsed += spent;
     stats_.workerMillisecondsCharged += std::max(0.0, estimate.worker);
     if (settings_.deterministic) {
@@ -116,7 +103,6 @@ void SplitBudget::runTick(uint64_t currentTick, const glm::dvec3& cameraPosition
   queue_.swap(remaining);
   stats_.deferred = uint32_t(queue_.size());
   stats_.queueLength = uint32_t(queue_.size());
-  stats_.pendingActivations = uint32_t(activations_.size());
 }
 
 }  // namespace cleave::components

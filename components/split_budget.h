@@ -1,23 +1,22 @@
 // SPDX-License-Identifier: MIT
 // SplitBudget: the resource manager the thesis left as future work. Split requests wait in a
 // priority queue; each tick the split system takes them in order while the tick's time and count
-// budgets last, and the rest wait for later ticks. Requests whose entity is gone are dropped.
-// Newly created bodies are activated at most `maxActivationsPerTick` per tick so a burst of pieces
-// does not wake the whole solver at once.
+// budgets last, and the rest wait for later ticks. Requests whose entity is gone are dropped. What
+// the budget needs of the world (is a target alive, where is it, is its split in flight, what will
+// its split cost, do it, what time is it) it asks through one SplitBudgetHost per tick.
+// (Newly created bodies are woken a few per tick by the ActivationThrottle, activation_throttle.h.)
 //
 // Priority: player-caused requests first, then by distance to the camera (near first), then by
 // arrival order (older first). The order is total and deterministic.
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "cleave/components/shatter.h"
 #include "cleave/ecs/entity.h"
-#include "cleave/physics/physics_ids.h"
 
 namespace cleave::components {
 
@@ -89,6 +88,25 @@ struct SplitBudgetSettings {
   double estimatedRagdollWorkerMillisecondsPerTriangle = 0.0006;  // planning each piece's bones
 };
 
+// What the budget asks of the world it schedules, for one tick (SplitBudget::runTick).
+class SplitBudgetHost {
+ public:
+  virtual ~SplitBudgetHost() = default;
+  // The target still exists (a request for a target that does not is dropped as stale).
+  virtual bool isAlive(ecs::Entity target) const = 0;
+  // Where the target is (non-player requests run nearest to the camera first).
+  virtual glm::dvec3 positionOf(ecs::Entity target) const = 0;
+  // Its split is in flight: the request waits, queued, until it is free (or gone).
+  virtual bool isBusy(ecs::Entity target) const = 0;
+  // The estimated cost of the split per stage (charged on the main thread when deterministic, on the
+  // workers always).
+  virtual SplitCost estimate(const SplitRequest& request) const = 0;
+  // Performs the split (its main-thread part); false when it failed.
+  virtual bool execute(const SplitRequest& request) = 0;
+  // A clock in milliseconds, for the measured main-thread time.
+  virtual double nowMilliseconds() const = 0;
+};
+
 struct SplitBudgetStats {
   uint32_t executed = 0;      // splits done this tick
   uint32_t deferred = 0;      // requests left waiting at the end of this tick
@@ -101,7 +119,6 @@ struct SplitBudgetStats {
   double maxSplitMilliseconds = 0.0;  // over the whole run
   double maxChargeMilliseconds = 0.0; // the largest main-thread charge of one split, whole run
   uint32_t queueLength = 0;
-  uint32_t pendingActivations = 0;
   uint64_t totalExecuted = 0;
 };
 
@@ -116,31 +133,9 @@ class SplitBudget {
   // planes cut; the second one applies to the pieces that no longer exist and is dropped then).
   void enqueue(SplitRequest request);
 
-  // Runs one tick's worth of requests gathered before `currentTick`. `isAlive` tells whether a
-  // target still exists; `cameraPosition` and `positionOf` order non-player requests by distance;
-  // `execute` performs one split and returns false if it failed. `nowMilliseconds` is a clock.
-  void runTick(uint64_t currentTick, const glm::dvec3& cameraPosition,
-               const std::function<bool(ecs::Entity)>& isAlive,
-               const std::function<glm::dvec3(ecs::Entity)>& positionOf,
-               const std::function<bool(const SplitRequest&)>& execute,
-               const std::function<double()>& nowMilliseconds);
-
-  // Estimated cost of one request per stage. The main-thread part is charged when
-  // settings().deterministic is true, the worker part always. Without an estimator every split is
-  // charged millisecondsPerTick (one split per tick).
-  void setCostEstimator(std::function<SplitCost(const SplitRequest&)> estimator) {
-    estimator_ = std::move(estimator);
-  }
-
-  // A target that is busy (its split is in flight) keeps its further requests queued: they run once
-  // it is free (or are dropped as stale once it is gone). Without a check nothing is busy.
-  void setBusyCheck(std::function<bool(ecs::Entity)> busy) { busy_ = std::move(busy); }
-
-  // Bodies created by splits wait here and are activated by takeActivations, a few per tick.
-  void queueActivation(physics::BodyId body) { activations_.push_back(body); }
-  // Returns up to maxActivationsPerTick bodies in creation order and removes them from the queue
-  // (a body destroyed meanwhile comes back as a stale handle, which activation ignores).
-  std::vector<physics::BodyId> takeActivations();
+  // Runs one tick's worth of requests gathered before `currentTick`, asking `host` what it needs;
+  // `cameraPosition` orders non-player requests by distance.
+  void runTick(uint64_t currentTick, const glm::dvec3& cameraPosition, SplitBudgetHost& host);
 
   // A split that was executed (prepared) but failed later, at commit: counted in this tick's stats.
   void recordFailure() { stats_.failed++; }
@@ -153,11 +148,7 @@ class SplitBudget {
   SplitBudgetSettings settings_;
   SplitBudgetStats stats_;
   std::vector<SplitRequest> queue_;
-  std::vector<physics::BodyId> activations_;
   uint64_t nextSequence_ = 0;
-  std::function<SplitCost(const SplitRequest&)> estimator_;
-  std::function<bool(ecs::Entity)> busy_;
-  double chargedMilliseconds_ = 0.0;
 };
 
 }  // namespace cleave::components

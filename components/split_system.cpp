@@ -18,6 +18,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "cleave/components/split_compute.h"
+#include "cleave/components/split_budget.h"
 #include "cleave/ecs/command_buffer.h"
 #include "cleave/ecs/hierarchy.h"
 #include "cleave/geometry/mass_properties.h"
@@ -91,34 +92,7 @@ struct SplitSystem::Scratch {
   // Structural changes of the current batch; made for the world of the first call.
   std::unique_ptr<ecs::CommandBuffer> commands;
   ecs::World* commandsWorld = nullptr;
-  uint32_t activationsThisTick = 0;
-  // What is known of the meshes the system has cut or made, by mesh: its weld, and its collider
-  // parts. A mesh cut again (every piece, and an authored mesh that many objects share) is neither
-  // welded nor decomposed again. An entry is valid while its mesh lives (the weak pointer still
-  // points at it); dead entries are dropped when the table grows.
-  struct Known {
-    std::weak_ptr<const geometry::MeshData> mesh;
-    std::shared_ptr<const geometry::MeshWeld> weld;
-    geometry::SharedColliderParts parts;
-  };
-  std::unordered_map<const geometry::MeshData*, Known> known;
-  size_t prunedAt = 64;
   SplitComputeScratch inlineCompute;  // splitNow
-
-  const Known* find(const std::shared_ptr<const geometry::MeshData>& mesh) const {
-    const auto it = known.find(mesh.get());
-    if (it == known.end() || it->second.mesh.lock() != mesh) return nullptr;
-    return &it->second;
-  }
-  Known& entry(const std::shared_ptr<const geometry::MeshData>& mesh) {
-    if (known.size() >= prunedAt) {
-      std::erase_if(known, [](const auto& e) { return e.second.mesh.expired(); });
-      prunedAt = std::max<size_t>(64, 2 * known.size());
-    }
-    Known& e = known[mesh.get()];
-    if (e.mesh.lock() != mesh) e = Known{mesh, nullptr, nullptr};
-    return e;
-  }
 };
 
 SplitSystem::SplitSystem(SplitBudgetSettings budget)
@@ -175,9 +149,9 @@ uint64_t SplitSystem::jobsComputedOffTheCallingThread() const {
 geometry::SharedColliderParts SplitSystem::colliderParts(const std::shared_ptr<const geometry::MeshData>& mesh,
                                                          ColliderMode mode) {
   if (!mesh) return nullptr;
-  if (const Scratch::Known* k = scratch_->find(mesh); k && k->parts) return k->parts;
+  if (const MeshKnowledge::Entry* k = knowledge_.find(mesh); k && k->parts) return k->parts;
   const ColliderPlan plan = planCollider(*mesh, glm::dmat4(1.0), mode, false, nullptr, *scratch_->inlineCompute.concave);
-  scratch_->entry(mesh).parts = plan.parts;
+  knowledge_.remember(mesh).parts = plan.parts;
   return plan.parts;
 }
 
@@ -280,9 +254,8 @@ void SplitSystem::settlePieces(SplitWorld& w, uint64_t tick, double dt) {
 void SplitSystem::activatePending(SplitWorld& w) {
   // Bodies woken here count against this tick's activations, so pieces created awake by this tick's
   // splits and the queued ones together stay within maxActivationsPerTick.
-  const std::vector<physics::BodyId> bodies = budget_.takeActivations();
-  scratch_->activationsThisTick = uint32_t(bodies.size());
-  for (physics::BodyId body : bodies) w.physics.activate(body);
+  for (physics::BodyId body : activations_.beginTick(budget_.settings().maxActivationsPerTick))
+    w.physics.activate(body);
 }
 
 namespace {
@@ -341,9 +314,54 @@ SplitCost SplitSystem::estimate(SplitWorld& w, const SplitRequest& r) const {
   if (const auto* cp = w.world.tryGet<ColliderParts>(r.target); cp && cp->parts) {
     parts = cp->parts.get();
   } else if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source) {
-    if (const Scratch::Known* k = scratch_->find(mr->source); k && k->parts) parts = k->parts.get();
+    if (const MeshKnowledge::Entry* k = knowledge_.find(mr->source); k && k->parts) parts = k->parts.get();
   }
   return estimateSplit(w, budget_.settings(), r, parts);
+}
+
+// The world as the budget sees it for one tick's prepare.
+class SplitSystem::Host final : public SplitBudgetHost {
+ public:
+  Host(SplitSystem& system, SplitWorld& w, uint64_t tick) : system_(system), w_(w), tick_(tick) {}
+
+  bool isAlive(ecs::Entity e) const override { return w_.world.alive(e) && w_.world.has<Splitable>(e); }
+  glm::dvec3 positionOf(ecs::Entity e) const override {
+    const auto* t = w_.world.tryGet<ecs::Transform>(e);
+    return t ? glm::dvec3(t->position) : glm::dvec3(0.0);
+  }
+  bool isBusy(ecs::Entity e) const override {
+    return std::any_of(system_.pending_.begin(), system_.pending_.end(),
+                       [&](const Pending& p) { return p.job->request.target == e; });
+  }
+  SplitCost estimate(const SplitRequest& r) const override { return system_.estimate(w_, r); }
+  bool execute(const SplitRequest& r) override { return system_.startSplit(w_, r, tick_); }
+  double nowMilliseconds() const override { return components::nowMilliseconds(); }
+
+ private:
+  SplitSystem& system_;
+  SplitWorld& w_;
+  uint64_t tick_;
+};
+
+// Prepares one split and hands its compute to the workers; false (with its event) when prepare
+// refused it.
+bool SplitSystem::startSplit(SplitWorld& w, const SplitRequest& r, uint64_t tick) {
+  const double prepareStart = nowMilliseconds();
+  auto job = std::make_shared<SplitJob>();
+  SplitEvent failed;
+  if (!prepare(w, r, tick, *job, failed)) {
+    failed.prepareMilliseconds = failed.mainMilliseconds = failed.milliseconds = nowMilliseconds() - prepareStart;
+    events_.push_back(std::move(failed));
+    return false;
+  }
+  Pending p;
+  p.weldKnown = job->weld != nullptr;
+  p.partsKnown = job->parts != nullptr;
+  p.job = job;
+  p.prepareMilliseconds = nowMilliseconds() - prepareStart;  // without an inline compute
+  p.task = workers().submit(std::move(job));
+  pending_.push_back(std::move(p));
+  return true;
 }
 
 void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& cameraPosition) {
@@ -351,39 +369,8 @@ void SplitSystem::prepareSplits(SplitWorld& w, uint64_t tick, const glm::dvec3& 
   events_.clear();
   camera_ = cameraPosition;
   activatePending(w);
-  auto inFlight = [this](ecs::Entity e) {
-    return std::any_of(pending_.begin(), pending_.end(), [&](const Pending& p) { return p.job->request.target == e; });
-  };
-  budget_.setBusyCheck(inFlight);
-  budget_.setCostEstimator([&w, this](const SplitRequest& r) { return estimate(w, r); });
-  budget_.runTick(
-      tick, cameraPosition,
-      [&](ecs::Entity e) { return w.world.alive(e) && w.world.has<Splitable>(e); },
-      [&](ecs::Entity e) {
-        const auto* t = w.world.tryGet<ecs::Transform>(e);
-        return t ? glm::dvec3(t->position) : glm::dvec3(0.0);
-      },
-      [&](const SplitRequest& r) {
-        const double prepareStart = nowMilliseconds();
-        auto job = std::make_shared<SplitJob>();
-        SplitEvent failed;
-        if (!prepare(w, r, tick, *job, failed)) {
-          failed.prepareMilliseconds = failed.mainMilliseconds = failed.milliseconds = nowMilliseconds() - prepareStart;
-          events_.push_back(std::move(failed));
-          return false;
-        }
-        Pending p;
-        p.weldKnown = job->weld != nullptr;
-        p.partsKnown = job->parts != nullptr;
-        p.job = job;
-        p.prepareMilliseconds = nowMilliseconds() - prepareStart;  // without an inline compute
-        p.task = workers().submit(std::move(job));
-        pending_.push_back(std::move(p));
-        return true;
-      },
-      nowMilliseconds);
-  budget_.setCostEstimator({});  // it refers to `w`, which only lives for this call
-  budget_.setBusyCheck({});
+  Host host(*this, w, tick);
+  budget_.runTick(tick, cameraPosition, host);
   flush(w);
   if (tickOfMainMs_ != tick) tickMainMs_ = 0.0;
   tickOfMainMs_ = tick;
@@ -508,7 +495,7 @@ bool SplitSystem::prepare(SplitWorld& w, const SplitRequest& request, uint64_t t
   job.model = hierarchy ? entityToWorld : entityToWorld * glm::dmat4(mr->meshOffset);
   if (!hierarchy) {
     job.mesh = mr->source;
-    if (const Scratch::Known* k = scratch_->find(mr->source)) {
+    if (const MeshKnowledge::Entry* k = knowledge_.find(mr->source)) {
       job.weld = k->weld;
       job.parts = k->parts;
     }
@@ -565,7 +552,7 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
   ev.piecesVolume = outcome.piecesVolume;
   // What compute worked out for the source is kept whatever happens next.
   if (job.mesh && (outcome.sourceWeld || outcome.sourceParts)) {
-    Scratch::Known& k = scratch_->entry(job.mesh);
+    MeshKnowledge::Entry& k = knowledge_.remember(job.mesh);
     if (outcome.sourceWeld) k.weld = outcome.sourceWeld;
     if (outcome.sourceParts) k.parts = outcome.sourceParts;
   }
@@ -786,7 +773,7 @@ RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs
   const double radius = ballRadius(std::max(spec.volume, 1e-12));
   def.sleepAngularSpeed = float(std::max(1.0, 0.08 / radius));
   if (radius < 0.05) def.angularDamping = 0.2f;
-  const bool awakeNow = scratch_->activationsThisTick < budget_.settings().maxActivationsPerTick;
+  const bool awakeNow = activations_.admitAwake(budget_.settings().maxActivationsPerTick);
   def.startAwake = awakeNow;
   auto created = w.physics.createBody(def);
   if (!created.ok()) {
@@ -794,11 +781,7 @@ RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs
     return {};
   }
   const physics::BodyId body = created.value();
-  if (awakeNow) {
-    scratch_->activationsThisTick++;
-  } else {
-    budget_.queueActivation(body);
-  }
+  if (!awakeNow) activations_.queue(body);
   return RigidBody{body, shape};
 }
 
@@ -838,7 +821,7 @@ void SplitSystem::commitPiece(CommitContext& c, PieceSpec& spec) {
       c.commands.add<Splitable>(e, c.job.settings);
       if (spec.parts) c.commands.add<ColliderParts>(e, ColliderParts{spec.parts});
       if (spec.weld || spec.parts) {  // known when the piece is cut: no weld, no decomposition
-        Scratch::Known& k = scratch_->entry(spec.mesh);
+        MeshKnowledge::Entry& k = knowledge_.remember(spec.mesh);
         k.weld = spec.weld;
         k.parts = spec.parts;
       }

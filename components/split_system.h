@@ -29,6 +29,8 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include "cleave/components/activation_throttle.h"
+#include "cleave/components/mesh_knowledge.h"
 #include "cleave/components/piece_budget.h"
 #include "cleave/components/scene_components.h"
 #include "cleave/components/split_budget.h"
@@ -159,6 +161,7 @@ class SplitSystem {
 
  private:
   struct Scratch;
+  class Host;  // the world as the budget sees it, for one tick's prepare
   struct Pending {
     std::shared_ptr<SplitWorkers::Task> task;
     std::shared_ptr<const SplitJob> job;
@@ -170,6 +173,8 @@ class SplitSystem {
   uint64_t commitTickFor(uint64_t tick, double workerMilliseconds) const;
   // The budget's cost estimate of a request (main thread and worker milliseconds).
   SplitCost estimate(SplitWorld& w, const SplitRequest& r) const;
+  // Prepares a split and submits its compute (the budget's execute); false when prepare refused it.
+  bool startSplit(SplitWorld& w, const SplitRequest& request, uint64_t tick);
   // Prepare: reads the world into a job; false with the event filled when the target cannot be split.
   bool prepare(SplitWorld& w, const SplitRequest& request, uint64_t tick, SplitJob& job, SplitEvent& ev);
   // Commit: creates the pieces of a computed job (their structural changes wait in the batch).
@@ -182,6 +187,8 @@ class SplitSystem {
   // Applies the batch (the destroyed entities' hooks free what they held, resource_hooks.h).
   void flush(SplitWorld& w);
   SplitBudget budget_;
+  ActivationThrottle activations_;
+  MeshKnowledge knowledge_;
   PieceBudget pieces_;
   glm::dvec3 camera_{0.0};  // of the last prepare
   std::map<std::string, SplitHandler> handlers_;

@@ -35,7 +35,7 @@ MUTATIONS = [
      ")",
      "SplitBudget"),
     ("busy target not waited for", "components/split_budget.cpp",
-     "    if (busy_ && busy_(r.target)) continue;", "",
+     "    if (host.isBusy(r.target)) continue;", "",
      "SplitBudget"),
     ("lost skin committed", "components/split_system.cpp",
      "  if (job.skinned() && !w.world.has<SkinnedMesh>(target))", "  if (false)",

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "cleave/components/activation_throttle.h"
 #include "cleave/components/split_budget.h"
 
 #include <map>
@@ -11,18 +12,30 @@ namespace {
 
 ecs::Entity entity(uint32_t index) { return ecs::Entity{index, 1}; }
 
-// A queue driven by hand: positions per entity, a set of live entities, and the order of execution.
-struct Fixture {
+// A queue driven by hand: positions per entity, a set of live entities, the busy ones, a cost per
+// split, and the order of execution.
+struct Fixture : SplitBudgetHost {
   SplitBudget budget;
   std::map<uint32_t, glm::dvec3> positions;
   std::map<uint32_t, bool> alive;
+  std::map<uint32_t, bool> busy;
   std::vector<uint32_t> executed;
   double clock = 0.0;
+  double msPerSplit = 0.1;  // measured main-thread time of one split
+  SplitCost cost{0.1, 0.0};  // every split is estimated at 0.1 ms unless a test says otherwise (the default budget is 4 ms)
 
-  // Every split is estimated at 0.1 ms unless a test says otherwise (the default budget is 4 ms).
-  explicit Fixture(SplitBudgetSettings s = {}) : budget(s) {
-    budget.setCostEstimator([](const SplitRequest&) { return SplitCost{0.1, 0.0}; });
+  explicit Fixture(SplitBudgetSettings s = {}) : budget(s) {}
+
+  bool isAlive(ecs::Entity e) const override { return alive.count(e.index) && alive.at(e.index); }
+  glm::dvec3 positionOf(ecs::Entity e) const override { return positions.at(e.index); }
+  bool isBusy(ecs::Entity e) const override { return busy.count(e.index) && busy.at(e.index); }
+  SplitCost estimate(const SplitRequest&) const override { return cost; }
+  bool execute(const SplitRequest& r) override {
+    executed.push_back(r.target.index);
+    clock += msPerSplit;
+    return true;
   }
+  double nowMilliseconds() const override { return clock; }
 
   void add(uint32_t index, glm::dvec3 position, bool player, uint64_t tick) {
     positions[index] = position;
@@ -33,16 +46,9 @@ struct Fixture {
     r.requestedTick = tick;
     budget.enqueue(r);
   }
-  void run(uint64_t tick, double msPerSplit = 0.1) {
-    budget.runTick(
-        tick, glm::dvec3(0.0), [&](ecs::Entity e) { return alive[e.index]; },
-        [&](ecs::Entity e) { return positions[e.index]; },
-        [&](const SplitRequest& r) {
-          executed.push_back(r.target.index);
-          clock += msPerSplit;
-          return true;
-        },
-        [&] { return clock; });
+  void run(uint64_t tick, double measuredPerSplit = 0.1) {
+    msPerSplit = measuredPerSplit;
+    budget.runTick(tick, glm::dvec3(0.0), *this);
   }
 };
 
@@ -87,7 +93,7 @@ TEST(SplitBudget, DeterministicBudgetStopsAfterTheSplitThatReachesIt) {
   s.maxSplitsPerTick = 100;
   s.deterministic = true;
   Fixture f(s);
-  f.budget.setCostEstimator([](const SplitRequest&) { return SplitCost{1.0, 0.0}; });
+  f.cost = SplitCost{1.0, 0.0};
   for (uint32_t i = 1; i <= 7; ++i) f.add(i, {double(i), 0, 0}, false, 0);
   f.run(1, /*msPerSplit=*/50.0);  // measured time is ignored when deterministic
   EXPECT_EQ(f.executed.size(), 3u);
@@ -103,7 +109,7 @@ TEST(SplitBudget, AtLeastOneSplitRunsEvenIfItAloneIsOverBudget) {
   SplitBudgetSettings s;
   s.millisecondsPerTick = 1.0;
   Fixture f(s);
-  f.budget.setCostEstimator([](const SplitRequest&) { return SplitCost{5.0, 0.0}; });
+  f.cost = SplitCost{5.0, 0.0};
   f.add(1, {0, 0, 0}, false, 0);
   f.add(2, {1, 0, 0}, false, 0);
   f.run(1);
@@ -173,7 +179,7 @@ TEST(SplitBudget, WorkerTimeLimitStopsAfterTheSplitThatReachesIt) {
   s.workerMillisecondsPerTick = 8.0;
   s.deterministic = true;
   Fixture f(s);
-  f.budget.setCostEstimator([](const SplitRequest&) { return SplitCost{0.1, 3.0}; });
+  f.cost = SplitCost{0.1, 3.0};
   for (uint32_t i = 1; i <= 7; ++i) f.add(i, {double(i), 0, 0}, false, 0);
   f.run(1);
   EXPECT_EQ(f.executed, (std::vector<uint32_t>{1, 2, 3}));
@@ -184,7 +190,7 @@ TEST(SplitBudget, WorkerTimeLimitStopsAfterTheSplitThatReachesIt) {
   f.run(3);
   EXPECT_EQ(f.executed.size(), 7u);
   // One split alone over the worker limit still runs (and only it).
-  f.budget.setCostEstimator([](const SplitRequest&) { return SplitCost{0.1, 50.0}; });
+  f.cost = SplitCost{0.1, 50.0};
   f.add(8, {0, 0, 0}, false, 3);
   f.add(9, {1, 0, 0}, false, 3);
   f.run(4);
@@ -198,10 +204,8 @@ TEST(SplitBudget, BusyTargetWaitsUntilFreeAndIsDroppedOnceGone) {
   SplitBudgetSettings s;
   s.millisecondsPerTick = 1000.0;
   Fixture f(s);
-  std::map<uint32_t, bool> busy;
-  f.budget.setBusyCheck([&](ecs::Entity e) { return busy[e.index]; });
-  busy[1] = true;
-  busy[3] = true;
+  f.busy[1] = true;
+  f.busy[3] = true;
   f.add(1, {0, 0, 0}, false, 0);
   f.add(2, {1, 0, 0}, false, 0);
   f.add(3, {2, 0, 0}, false, 0);
@@ -211,7 +215,7 @@ TEST(SplitBudget, BusyTargetWaitsUntilFreeAndIsDroppedOnceGone) {
   f.run(2);
   EXPECT_EQ(f.executed, (std::vector<uint32_t>{2}));  // still busy: still waiting, not dropped
   EXPECT_EQ(f.budget.queueLength(), 2u);
-  busy[1] = false;
+  f.busy[1] = false;
   f.alive[3] = false;
   f.run(3);
   EXPECT_EQ(f.executed, (std::vector<uint32_t>{2, 1}));
@@ -219,21 +223,33 @@ TEST(SplitBudget, BusyTargetWaitsUntilFreeAndIsDroppedOnceGone) {
   EXPECT_EQ(f.budget.queueLength(), 0u);
 }
 
-TEST(SplitBudget, ActivationsAtMostNPerTickInCreationOrder) {
-  SplitBudgetSettings s;
-  s.maxActivationsPerTick = 16;
-  SplitBudget budget(s);
-  for (uint32_t k = 0; k < 40; ++k) budget.queueActivation(physics::BodyId{k, 1});
-  const auto first = budget.takeActivations();
-  const auto second = budget.takeActivations();
-  const auto third = budget.takeActivations();
+TEST(ActivationThrottle, AtMostNPerTickInCreationOrder) {
+  ActivationThrottle throttle;
+  for (uint32_t k = 0; k < 40; ++k) throttle.queue(physics::BodyId{k, 1});
+  const auto first = throttle.beginTick(16);
+  const auto second = throttle.beginTick(16);
+  const auto third = throttle.beginTick(16);
   ASSERT_EQ(first.size(), 16u);
   ASSERT_EQ(second.size(), 16u);
   ASSERT_EQ(third.size(), 8u);
   EXPECT_EQ(first.front(), (physics::BodyId{0, 1}));
   EXPECT_EQ(second.front(), (physics::BodyId{16, 1}));
   EXPECT_EQ(third.back(), (physics::BodyId{39, 1}));
-  EXPECT_TRUE(budget.takeActivations().empty());
+  EXPECT_TRUE(throttle.beginTick(16).empty());
+}
+
+// Queued bodies woken at the start of a tick take its room first; new bodies start awake while room
+// is left and are queued after.
+TEST(ActivationThrottle, WokenBodiesAndNewOnesShareTheTicksRoom) {
+  ActivationThrottle throttle;
+  for (uint32_t k = 0; k < 3; ++k) throttle.queue(physics::BodyId{k, 1});
+  EXPECT_EQ(throttle.beginTick(4).size(), 3u);
+  EXPECT_TRUE(throttle.admitAwake(4));
+  EXPECT_FALSE(throttle.admitAwake(4));
+  throttle.queue(physics::BodyId{9, 1});
+  EXPECT_EQ(throttle.queued(), 1u);
+  EXPECT_EQ(throttle.beginTick(4).size(), 1u);  // the next tick: room again
+  EXPECT_TRUE(throttle.admitAwake(4));
 }
 
 }  // namespace
