@@ -148,9 +148,8 @@ class SceneRunner {
 // Creates the entity and trigger of a splitter now (used by the loader and the runner).
 ecs::Entity createSplitterEntity(SplitWorld& w, const ScheduledSplitter& s);
 
-// One whole headless tick in the App's phase order: Gameplay (runner.update), Triggers
-// (gatherTriggerRequests), Split and Commit (runSplits, which activates queued bodies first),
-// PhysicsStep, PhysicsSync (syncTransformsFromBodies, updateDebris, settlePieces). A request gathered in tick N is executed in tick N+1.
+// One whole headless tick: Gameplay (runner.update), then every stage of the one tick order
+// (simulation.h's kTickOrder). A request gathered in tick N is executed in tick N+1.
 void runSceneTick(SplitWorld& w, SplitSystem& splits, SceneRunner& runner, uint64_t tick, double dt,
                   const glm::dvec3& cameraPosition);
 

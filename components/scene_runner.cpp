@@ -4,6 +4,7 @@
 #include "cleave/components/scene_loader.h"
 
 #include "cleave/components/scene_components.h"
+#include "cleave/components/simulation.h"
 
 namespace cleave::components {
 
@@ -43,13 +44,8 @@ void SceneRunner::update(SplitWorld& w, uint64_t tick, double dt) {
 
 void runSceneTick(SplitWorld& w, SplitSystem& splits, SceneRunner& runner, uint64_t tick, double dt,
                   const glm::dvec3& cameraPosition) {
-  runner.update(w, tick, dt);                  // Gameplay
-  splits.gatherTriggerRequests(w, tick);       // Triggers
-  splits.runSplits(w, tick, cameraPosition);   // Split (activations first), Commit
-  w.physics.step(dt);                          // PhysicsStep
-  syncTransformsFromBodies(w);                 // PhysicsSync
-  updateDebris(w, float(dt));
-  splits.settlePieces(w, tick, dt);
+  runner.update(w, tick, dt);  // Gameplay
+  for (const TickStageInfo& s : kTickOrder) runTickStage(s.stage, w, splits, tick, dt, cameraPosition);
 }
 
 }  // namespace cleave::components

@@ -16,66 +16,50 @@ void Simulation::submitMeshes(uint64_t tick) {
   components::submitMeshes(w, &batches_);
 }
 
-void Simulation::gather(uint64_t tick) {
-  SplitWorld w = splitWorld();
-  splits_.gatherTriggerRequests(w, tick);
+void runTickStage(TickStage stage, SplitWorld& w, SplitSystem& splits, uint64_t tick, double dt,
+                  const glm::dvec3& camera) {
+  switch (stage) {
+    case TickStage::Gather: splits.gatherTriggerRequests(w, tick); break;
+    case TickStage::Prepare: splits.prepareSplits(w, tick, camera); break;
+    case TickStage::Commit: splits.commitSplits(w, tick); break;
+    case TickStage::PhysicsStep: w.physics.step(dt); break;
+    case TickStage::Sync:
+      syncTransformsFromBodies(w);
+      updateDebris(w, float(dt));
+      break;
+    case TickStage::Settle: splits.settlePieces(w, tick, dt); break;
+    case TickStage::Animate: updateAnimations(w, float(dt)); break;
+  }
 }
 
-void Simulation::prepare(uint64_t tick, const glm::dvec3& camera) {
+void Simulation::run(TickStage stage, uint64_t tick, double dt, const glm::dvec3& camera) {
   SplitWorld w = splitWorld();
-  splits_.prepareSplits(w, tick, camera);
+  runTickStage(stage, w, splits_, tick, dt, camera);
 }
 
-void Simulation::commit(uint64_t tick) {
-  SplitWorld w = splitWorld();
-  splits_.commitSplits(w, tick);
-}
-
-void Simulation::stepPhysics(double dt) { physics_.step(dt); }
-
-void Simulation::sync(double dt) {
-  SplitWorld w = splitWorld();
-  syncTransformsFromBodies(w);
-  updateDebris(w, float(dt));
-}
-
-void Simulation::settle(uint64_t tick, double dt) {
-  SplitWorld w = splitWorld();
-  splits_.settlePieces(w, tick, dt);
-}
-
-void Simulation::animate(double dt) {
-  SplitWorld w = splitWorld();
-  updateAnimations(w, float(dt));
-}
+void Simulation::gather(uint64_t tick) { run(TickStage::Gather, tick, 0.0, glm::dvec3(0.0)); }
+void Simulation::prepare(uint64_t tick, const glm::dvec3& camera) { run(TickStage::Prepare, tick, 0.0, camera); }
+void Simulation::commit(uint64_t tick) { run(TickStage::Commit, tick, 0.0, glm::dvec3(0.0)); }
+void Simulation::stepPhysics(double dt) { run(TickStage::PhysicsStep, 0, dt, glm::dvec3(0.0)); }
+void Simulation::sync(double dt) { run(TickStage::Sync, 0, dt, glm::dvec3(0.0)); }
+void Simulation::settle(uint64_t tick, double dt) { run(TickStage::Settle, tick, dt, glm::dvec3(0.0)); }
+void Simulation::animate(double dt) { run(TickStage::Animate, 0, dt, glm::dvec3(0.0)); }
 
 void Simulation::step(uint64_t tick, double dt, const glm::dvec3& camera) {
-  gather(tick);
-  prepare(tick, camera);
-  commit(tick);
-  stepPhysics(dt);
-  sync(dt);
-  settle(tick, dt);
-  animate(dt);
+  for (const TickStageInfo& s : kTickOrder) run(s.stage, tick, dt, camera);
 }
 
 void installSplitting(app::App& app, Simulation& sim, SplittingHooks hooks) {
   sim.setRenderer(&app.renderer());
   std::function<glm::dvec3()> camera = hooks.camera;
   if (!camera) camera = [] { return glm::dvec3(0.0); };
-  app.addSystem(app::Phase::Triggers, "split.gather", [&sim](app::TickContext& c) { sim.gather(c.tick); });
-  app.addSystem(app::Phase::Split, "split.prepare",
-                [&sim, camera](app::TickContext& c) { sim.prepare(c.tick, camera()); });
-  app.addSystem(app::Phase::Commit, "split.commit", [&sim, committed = hooks.committed](app::TickContext& c) {
-    sim.commit(c.tick);
-    if (committed) committed(c, sim.splits().lastEvents());
-  });
-  app.addSystem(app::Phase::PhysicsStep, "physics.step", [&sim](app::TickContext& c) { sim.stepPhysics(c.dt); });
-  app.addSystem(app::Phase::PhysicsSync, "physics.sync", [&sim](app::TickContext& c) {
-    sim.sync(c.dt);
-    sim.settle(c.tick, c.dt);
-  });
-  app.addSystem(app::Phase::Animation, "animation", [&sim](app::TickContext& c) { sim.animate(c.dt); });
+  for (const TickStageInfo& s : kTickOrder) {
+    const TickStage stage = s.stage;
+    app.addSystem(s.phase, s.name, [&sim, stage, camera, committed = hooks.committed](app::TickContext& c) {
+      sim.run(stage, c.tick, c.dt, stage == TickStage::Prepare ? camera() : glm::dvec3(0.0));
+      if (stage == TickStage::Commit && committed) committed(c, sim.splits().lastEvents());
+    });
+  }
 }
 
 }  // namespace cleave::components

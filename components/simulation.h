@@ -22,9 +22,34 @@
 #include "cleave/app/app.h"
 #include "cleave/ecs/world.h"
 #include "cleave/physics/physics_world.h"
+
+#include <array>
 #include "cleave/render/renderer.h"
 
 namespace cleave::components {
+
+// The stages of one tick, in the one order every runner takes them in (Simulation::step,
+// installSplitting, runSceneTick, the session benchmark), with the App phase each runs in.
+enum class TickStage : uint8_t { Gather, Prepare, Commit, PhysicsStep, Sync, Settle, Animate };
+struct TickStageInfo {
+  TickStage stage;
+  app::Phase phase;
+  const char* name;  // the App system's name
+};
+inline constexpr std::array<TickStageInfo, 7> kTickOrder = {{
+    {TickStage::Gather, app::Phase::Triggers, "split.gather"},
+    {TickStage::Prepare, app::Phase::Split, "split.prepare"},
+    {TickStage::Commit, app::Phase::Commit, "split.commit"},
+    {TickStage::PhysicsStep, app::Phase::PhysicsStep, "physics.step"},
+    {TickStage::Sync, app::Phase::PhysicsSync, "physics.sync"},
+    {TickStage::Settle, app::Phase::PhysicsSync, "pieces.settle"},
+    {TickStage::Animate, app::Phase::Animation, "animation"},
+}};
+
+// One stage on the bare parts (a world, its physics and renderer, a split system): what a runner
+// without a Simulation calls (runSceneTick); a Simulation runs the same on its own parts.
+void runTickStage(TickStage stage, SplitWorld& w, SplitSystem& splits, uint64_t tick, double dt,
+                  const glm::dvec3& camera);
 
 class Simulation {
  public:
@@ -54,7 +79,9 @@ class Simulation {
   void sync(double dt);                                   // PhysicsSync
   void settle(uint64_t tick, double dt);                  // PhysicsSync, after sync: the piece budget
   void animate(double dt);                                // Animation
-  // One whole tick without an App (gameplay is the caller's, before this).
+  // One stage of the tick (kTickOrder).
+  void run(TickStage stage, uint64_t tick, double dt, const glm::dvec3& camera);
+  // One whole tick without an App, every stage of kTickOrder (gameplay is the caller's, before this).
   void step(uint64_t tick, double dt, const glm::dvec3& camera);
 
  private:
@@ -72,8 +99,7 @@ struct SplittingHooks {
   std::function<void(app::TickContext&, const std::vector<SplitEvent>&)> committed;
 };
 
-// Registers the simulation's stages in the App's phases (Triggers, Split, Commit, PhysicsStep,
-// PhysicsSync, Animation), once. Systems a game registers in the same phases afterwards run after
+// Registers the simulation's stages in the App's phases (kTickOrder), once. Systems a game registers in the same phases afterwards run after
 // these. The simulation must outlive the App's runs.
 void installSplitting(app::App& app, Simulation& sim, SplittingHooks hooks = {});
 

@@ -19,6 +19,7 @@
 
 #include "cleave/components/split_compute.h"
 #include "cleave/components/split_budget.h"
+#include "cleave/components/split_cost.h"
 #include "cleave/ecs/command_buffer.h"
 #include "cleave/ecs/hierarchy.h"
 #include "cleave/geometry/mass_properties.h"
@@ -258,55 +259,10 @@ void SplitSystem::activatePending(SplitWorld& w) {
     w.physics.activate(body);
 }
 
-namespace {
-
-SplitCost estimateSplit(SplitWorld& w, const SplitBudgetSettings& s, const SplitRequest& r,
-                        const geometry::ColliderPartSet* parts) {
-  SplitCost cost;
-  double triangles = 0.0;
-  if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source)
-    triangles = double(mr->source->indices.size() / 3);
-  const auto* sp = w.world.tryGet<Splitable>(r.target);
-  const bool skinned = w.world.has<SkinnedMesh>(r.target);
-  const bool ragdoll = skinned && sp && sp->skinnedPieces == SkinnedPieceMode::Ragdoll;
-  double once = 0.0;  // worker time a shatter spends once, not per cell: the decomposition
-  cost.worker = s.estimatedWorkerMilliseconds + s.estimatedWorkerMillisecondsPerTriangle * triangles;
-  if (ragdoll) {
-    cost.main = s.estimatedRagdollMainMilliseconds + s.estimatedSkinnedMainMillisecondsPerTriangle * triangles;
-    cost.worker += s.estimatedRagdollWorkerMillisecondsPerTriangle * triangles;
-  } else if (skinned) {
-    cost.main = s.estimatedSkinnedMainMilliseconds + s.estimatedSkinnedMainMillisecondsPerTriangle * triangles;
-    once = s.estimatedDecomposeMillisecondsPerTriangle * triangles;
-  } else {
-    const double partCount = parts ? double(parts->size()) : 1.0;
-    cost.main = s.estimatedMainMilliseconds + s.estimatedMainMillisecondsPerPart * partCount +
-                s.estimatedMainMillisecondsPerTriangle * triangles;
-    if (parts) {
-      cost.worker += s.estimatedWorkerMillisecondsPerPartWork * geometry::partsWork(*parts);
-    } else {
-      once = s.estimatedDecomposeMillisecondsPerTriangle * triangles;
-    }
-  }
-  if (r.shatter) {
-    // About a piece per cell (a split makes two) and a few plane cuts per cell on shrinking parts.
-    const double cells = double(std::max<uint32_t>(r.shatterSpec.cells, 1));
-    cost.main *= 0.5 * cells;
-    cost.worker *= 1.5 * cells;
-  }
-  cost.worker += once;
-  return cost;
-}
-
-}  // namespace
-
 uint64_t SplitSystem::commitTickFor(uint64_t tick, double workerMilliseconds) const {
-  const SplitBudgetSettings& s = budget_.settings();
-  uint64_t extra = 0;
-  if (s.workerMillisecondsPerCommitTick > 0.0 && workerMilliseconds > s.workerMillisecondsPerCommitTick)
-    extra = uint64_t(std::ceil(workerMilliseconds / s.workerMillisecondsPerCommitTick)) - 1;
-  uint64_t at = tick + s.commitDelayTicks + std::min<uint64_t>(extra, s.maxExtraCommitTicks);
-  for (const Pending& p : pending_) at = std::max(at, p.job->commitTick);  // never before an earlier job
-  return at;
+  uint64_t latest = 0;
+  for (const Pending& p : pending_) latest = std::max(latest, p.job->commitTick);
+  return components::commitTickFor(budget_.settings(), tick, workerMilliseconds, latest);
 }
 
 SplitCost SplitSystem::estimate(SplitWorld& w, const SplitRequest& r) const {
@@ -316,7 +272,15 @@ SplitCost SplitSystem::estimate(SplitWorld& w, const SplitRequest& r) const {
   } else if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source) {
     if (const MeshKnowledge::Entry* k = knowledge_.find(mr->source); k && k->parts) parts = k->parts.get();
   }
-  return estimateSplit(w, budget_.settings(), r, parts);
+  SplitCostInputs in;
+  in.parts = parts;
+  if (const auto* mr = w.world.tryGet<MeshRenderer>(r.target); mr && mr->source)
+    in.triangles = double(mr->source->indices.size() / 3);
+  const auto* sp = w.world.tryGet<Splitable>(r.target);
+  in.skinned = w.world.has<SkinnedMesh>(r.target);
+  in.ragdoll = in.skinned && sp && sp->skinnedPieces == SkinnedPieceMode::Ragdoll;
+  in.shatterCells = r.shatter ? std::max<uint32_t>(r.shatterSpec.cells, 1) : 0;
+  return estimateSplitCost(budget_.settings(), in);
 }
 
 // The world as the budget sees it for one tick's prepare.

@@ -153,6 +153,8 @@ class SplitSystem {
   const std::vector<SplitEvent>& lastEvents() const { return events_; }
   uint64_t totalPiecesCreated() const { return totalPieces_; }
   size_t jobsInFlight() const { return pending_.size(); }
+  // Bodies of pieces made asleep and waiting to be woken (activation_throttle.h).
+  size_t activationsQueued() const { return activations_.queued(); }
   // Split jobs computed on another thread than the one that prepared them, over the system's life:
   // a test of "the same on N threads" checks it is above 0, so the threads really ran.
   uint64_t jobsComputedOffTheCallingThread() const;

@@ -199,16 +199,14 @@ void printRetired(const components::SplitSystem& splits) {
 
 // One tick of the session in the simulation's phase order, timed by stage into the minute's figures.
 void timedTick(components::Simulation& sim, uint64_t tick, const glm::dvec3& camera, bool trace, Minute& m) {
+  // t1: the splits done (after Commit); t2: the physics step done; t3: the tick done.
   const double t0 = components::nowMilliseconds();
-  sim.gather(tick);
-  sim.prepare(tick, camera);
-  sim.commit(tick);
-  const double t1 = components::nowMilliseconds();
-  sim.stepPhysics(app::kTickSeconds);
-  const double t2 = components::nowMilliseconds();
-  sim.sync(app::kTickSeconds);
-  sim.settle(tick, app::kTickSeconds);
-  sim.animate(app::kTickSeconds);
+  double t1 = t0, t2 = t0;
+  for (const components::TickStageInfo& s : components::kTickOrder) {
+    sim.run(s.stage, tick, app::kTickSeconds, camera);
+    if (s.stage == components::TickStage::Commit) t1 = components::nowMilliseconds();
+    if (s.stage == components::TickStage::PhysicsStep) t2 = components::nowMilliseconds();
+  }
   const double t3 = components::nowMilliseconds();
   const components::PieceBudgetStats& s = sim.splits().pieces().stats();
   components::SplitWorld sw = sim.splitWorld();

@@ -468,6 +468,40 @@ Snapshot runForDeterminism() {
   return snap;
 }
 
+// Every runner takes the tick in the one order (kTickOrder): a shatter's sixteen cells, over a limit
+// of two wakings a tick, are woken two a tick by runSceneTick as by Simulation::step, never more (a
+// runner that woke the queue twice in a tick would wake four).
+TEST(TickOrder, EveryRunnerWakesQueuedPiecesAtMostTheLimitATick) {
+  for (const bool sceneTick : {true, false}) {
+    SCOPED_TRACE(sceneTick ? "runSceneTick" : "Simulation::step");
+    Sim sim;
+    ASSERT_TRUE(sim.load(scenePath("shatter_block.json"))) << sim.scene.message;
+    SplitBudgetSettings s = sim.splits.budget().settings();
+    s.maxActivationsPerTick = 2;
+    sim.splits.budget().setSettings(s);
+    SplitWorld w = sim.sw();
+    size_t queuedBefore = 0, mostQueued = 0, woken = 0;
+    for (; sim.tick < 60; ++sim.tick) {
+      if (sceneTick) {
+        runSceneTick(w, sim.splits, sim.runner, sim.tick, kDt, sim.camera);
+      } else {
+        sim.runner.update(w, sim.tick, kDt);
+        sim.simulation.step(sim.tick, kDt, sim.camera);
+      }
+      const size_t queued = sim.splits.activationsQueued();
+      if (queued < queuedBefore) {
+        EXPECT_LE(queuedBefore - queued, 2u) << "tick " << sim.tick;
+        woken += queuedBefore - queued;
+      }
+      mostQueued = std::max(mostQueued, queued);
+      queuedBefore = queued;
+    }
+    EXPECT_GE(mostQueued, 10u) << "the shatter's cells were not throttled";
+    EXPECT_EQ(woken, mostQueued);
+    EXPECT_EQ(queuedBefore, 0u);
+  }
+}
+
 TEST(SplitDeterminism, SplitSceneTwiceGivesTheSameBits) {
   const Snapshot a = runForDeterminism();
   const Snapshot b = runForDeterminism();
