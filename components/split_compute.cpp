@@ -3,6 +3,8 @@
 // (carried parts clipped by the plane, hulls shrunk by their margin) and, for skinned ragdoll pieces,
 // its bones and joints planned. Nothing here touches the world, physics or the renderer.
 #include "cleave/components/split_compute.h"
+
+#include "cleave/components/piece_kind.h"
 #include "cleave/components/split_clock.h"
 
 #include <algorithm>
@@ -88,22 +90,6 @@ struct PieceContext {
   bool shatter = false;                   // cells, not a cut: skinned pieces are baked
 };
 
-void planRagdollPiece(const PieceContext& c, const geometry::SplitPiece& piece, const geometry::MeshData& posed,
-                      PieceSpec& spec) {
-  const std::vector<glm::vec3> world = transformedPoints(posed, c.job.model);
-  if (!planRagdoll(piece.mesh, world, piece.joints, c.job.skin->skeleton, c.globals, std::max(spec.mass, 1e-6),
-                   spec.ragdoll)
-           .ok()) {
-    spec.kind = PieceKind::KeepAnimating;  // too few vertices for any bone
-    return;
-  }
-  const RagdollBoneSpec& anchor = spec.ragdoll.bones[spec.ragdoll.anchor];
-  const glm::dmat4 toAnchor =
-      glm::inverse(glm::translate(glm::dmat4(1.0), anchor.centre) * glm::mat4_cast(anchor.rotation)) * c.job.model;
-  spec.ragdoll.jointMatrices.reserve(c.job.jointMatrices.size());
-  for (const glm::mat4& m : c.job.jointMatrices) spec.ragdoll.jointMatrices.push_back(glm::mat4(toAnchor * glm::dmat4(m)));
-}
-
 void planHierarchyChildren(const PieceContext& c, const geometry::MeshData& whole,
                            std::span<const uint32_t> sourceTriangles, PieceSpec& spec) {
   for (size_t part = 0; part < c.job.hierarchyParts.size(); ++part) {
@@ -152,10 +138,11 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
   spec.name = (job.targetName.empty() ? std::string("piece") : job.targetName) + "/" + (piece.side > 0 ? "a" : "b") +
               std::to_string(k);
 
-  // What the piece becomes. Skinned pieces: the posed mesh gives the collider; baked and small ones
-  // are drawn from it too, the others keep their skin (bind space).
+  // What the piece becomes (piece_kind.h), and what its kind plans for it. Skinned pieces: the posed
+  // mesh gives the collider; baked and small ones are drawn from it too, the others keep their skin
+  // (bind space).
   geometry::MeshData posed;
-  spec.kind = small ? PieceKind::Debris : PieceKind::Rigid;
+  spec.kind = small ? PieceKind::Debris : sp.rigidPieces;
   if (job.skinned()) {
     bakeSkin(piece.mesh, job.jointMatrices, posed);
     const SkinnedPieceMode mode = small || c.shatter ? SkinnedPieceMode::Bake : sp.skinnedPieces;
@@ -163,9 +150,10 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
                 : mode == SkinnedPieceMode::Bake ? PieceKind::Baked
                 : mode == SkinnedPieceMode::Ragdoll ? PieceKind::Ragdoll
                                                     : PieceKind::KeepAnimating;
-    if (spec.kind == PieceKind::Ragdoll) planRagdollPiece(c, piece, posed, spec);
   }
-  const bool keepSkin = spec.kind == PieceKind::KeepAnimating || spec.kind == PieceKind::Ragdoll;
+  pieceKind(spec.kind).plan(PiecePlan{job, piece, posed, c.globals}, spec);
+  const PieceKindStrategy& kind = pieceKind(spec.kind);  // the plan may have changed it
+  const bool keepSkin = kind.keepsSkin();
   geometry::MeshData whole;
   if (job.hierarchy()) {
     whole = std::move(piece.mesh);
@@ -183,10 +171,10 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
     spec.packed = std::make_shared<render::PackedMesh>(render::packMesh(*drawn));
     spec.packedFrom = drawn.get();
   }
-  if (spec.kind == PieceKind::Debris || spec.kind == PieceKind::Ragdoll) return true;
+  if (!kind.hasCollider()) return true;
 
   // The collider: carried parts for rigid pieces of a static mesh, planned from the mesh otherwise.
-  const geometry::MeshData& colliderMesh = job.hierarchy() ? whole : spec.kind == PieceKind::KeepAnimating ? posed : *drawn;
+  const geometry::MeshData& colliderMesh = job.hierarchy() ? whole : kind.colliderFromPose() ? posed : *drawn;
   geometry::SharedColliderParts carried;
   if (c.carried) carried = std::make_shared<const geometry::ColliderPartSet>(std::move(c.clipped[index]));
   ColliderPlan plan = planCollider(colliderMesh, spec.frame.meshOffset, sp.collider, sp.convexHint, std::move(carried),
@@ -203,8 +191,7 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
   spec.concaveIndices = std::move(plan.concaveIndices);
   spec.colliderVolume = plan.colliderVolume;
   // Parts stay with the piece when they are in the space of the mesh it draws.
-  if (spec.kind == PieceKind::Rigid && !job.hierarchy()) spec.parts = std::move(plan.parts);
-  if (spec.kind == PieceKind::Baked) spec.parts = std::move(plan.parts);
+  if (kind.keepsParts(job.hierarchy())) spec.parts = std::move(plan.parts);
   if (spec.hulls.empty() && spec.concavePositions.empty()) spec.kind = PieceKind::Debris;  // a flat sliver
   return true;
 }
@@ -321,17 +308,6 @@ std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const g
   points.reserve(mesh.positions.size());
   for (const glm::vec3& p : mesh.positions) points.push_back(glm::vec3(m * glm::dvec4(p, 1.0)));
   return points;
-}
-
-const char* toString(PieceKind kind) {
-  switch (kind) {
-    case PieceKind::Rigid: return "rigid";
-    case PieceKind::Debris: return "debris";
-    case PieceKind::KeepAnimating: return "keep-animating";
-    case PieceKind::Ragdoll: return "ragdoll";
-    case PieceKind::Baked: return "baked";
-  }
-  return "unknown";
 }
 
 uint32_t MergedParts::partOf(uint32_t triangle) const {

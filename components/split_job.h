@@ -49,15 +49,7 @@ BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const
 // The mesh's positions mapped by `m` (a body frame's mesh offset, or a model matrix), as floats.
 std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const glm::dmat4& m);
 
-// What a piece becomes at commit.
-enum class PieceKind : uint8_t {
-  Rigid,          // a dynamic rigid body with the spec's collider
-  Debris,         // render-only, falls and fades (small pieces, or no collider could hold it)
-  KeepAnimating,  // a skinned piece on a rigid body, its animator copied from the parent
-  Ragdoll,        // a skinned piece on capsule bones joined by joints
-  Baked,          // a skinned piece baked into its pose: a static-mesh rigid piece
-};
-const char* toString(PieceKind kind);
+// PieceKind (splitable.h): what a piece becomes; each kind is a strategy of piece_kind.h.
 
 // The parent's frame and motion at prepare (the body is authoritative when there is one).
 struct ParentMotion {

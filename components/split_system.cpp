@@ -17,6 +17,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "cleave/components/piece_kind.h"
 #include "cleave/components/split_compute.h"
 #include "cleave/components/split_budget.h"
 #include "cleave/components/split_cost.h"
@@ -567,68 +568,37 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
   return finish(geometry::SplitStatus::Ok, {});
 }
 
-namespace detail {
-
-// The parent's motion from prepare to commit, applied to the specs' prepare-tick poses.
-struct Moved {
-  ParentMotion now;
-  glm::dmat4 motion{1.0};
-  glm::dmat3 turn{1.0};
-  bool moved = false;
-
-  glm::dvec3 position(const glm::dvec3& p) const { return moved ? glm::dvec3(motion * glm::dvec4(p, 1.0)) : p; }
-  glm::dquat rotation(const glm::dquat& q) const {
-    return moved ? glm::normalize(glm::quat_cast(turn) * q) : q;
-  }
-  // The parent's velocity now at the piece, plus its impulse (both turned with the parent).
-  glm::dvec3 velocity(const PieceSpec& spec) const {
-    return now.velocity + glm::cross(now.angularVelocity, turn * spec.offsetFromParent) + turn * spec.impulse;
-  }
-};
-
-// What the pieces of one commit share.
-struct CommitContext {
-  SplitWorld& w;
-  const SplitJob& job;
-  ecs::CommandBuffer& commands;
-  Moved m;
-  const SkinnedMesh* skin = nullptr;  // the target's, for skinned jobs
-  SplitEvent& ev;
-};
-
-}  // namespace detail
-
 namespace {
 
-using detail::CommitContext;
-
-// A ragdoll piece: its bones and joints; the entity frame is the anchor bone's body frame and the
-// joint matrices are relative to it. False (nothing created) when no bone could be made.
-bool attachRagdoll(CommitContext& c, const PieceSpec& spec, ecs::Entity e, ecs::Transform& transform,
-                   MeshRenderer& renderer, RigidBody& rb) {
-  RagdollDef def;
-  def.motion = c.m.motion;
-  def.velocity = c.m.now.velocity;
-  def.angularVelocity = c.m.now.angularVelocity;
-  def.parentCentre = c.m.now.centre;
-  def.userData = toUserData(e);
-  def.collisionGroup = toUserData(e) | (1ull << 63);
-  Ragdoll ragdoll;
-  if (!createRagdoll(c.w.physics, spec.ragdoll, def, ragdoll)) return false;
-  const RagdollBone& anchor = ragdoll.bones[ragdoll.anchor];
-  const physics::BodyTransform at = *c.w.physics.bodyTransform(anchor.body);
-  transform.position = at.position;
-  transform.rotation = at.rotation;
-  renderer.meshOffset = glm::mat4(1.f);
-  rb = RigidBody{anchor.body, anchor.shape};
-  SkinnedMesh pieceSkin = *c.skin;
-  pieceSkin.jointMatrices = spec.ragdoll.jointMatrices;
-  c.commands.add<SkinnedMesh>(e, std::move(pieceSkin));
-  c.commands.add<Ragdoll>(e, std::move(ragdoll));
-  return true;
+// The components every piece gets, then those of its kind.
+void addPieceComponents(PieceCommit& c, const PieceSpec& spec, const PieceKindStrategy& kind, ecs::Entity e,
+                        const ecs::Transform& transform, MeshRenderer renderer, const glm::dvec3& velocity) {
+  c.commands.add<ecs::Transform>(e, transform);
+  c.commands.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(transform)});
+  c.commands.add<ecs::Name>(e, ecs::Name{spec.name});
+  c.commands.add<MeshRenderer>(e, std::move(renderer));
+  MassInfo info;
+  info.mass = spec.mass;
+  info.volume = spec.volume;
+  info.density = spec.volume > 0.0 ? spec.mass / spec.volume : 0.0;
+  info.closed = spec.closed;
+  c.commands.add<MassInfo>(e, info);
+  SplitOrigin so;
+  so.parent = c.job.request.target;
+  so.parentId = toUserData(c.job.request.target);
+  so.generation = c.job.depth;
+  so.tick = c.ev.tick;
+  so.retirement = c.job.settings.retirement;
+  c.commands.add<SplitOrigin>(e, so);
+  if (kind.hasBody()) c.commands.add<PieceMotion>(e, PieceMotion{});
+  if (c.job.hasMaterialChoice) c.commands.add<MaterialChoice>(e, MaterialChoice{c.job.materialChoice});
+  // A piece drawn with its skin (KeepAnimating, or debris a handler made of a ragdoll piece): the
+  // copy of the animator keeps playing in the body's frame.
+  if (!kind.skinnedByBones() && c.skin && !spec.mesh->joints.empty()) c.commands.add<SkinnedMesh>(e, *c.skin);
+  kind.addComponents(c, spec, e, velocity);
 }
 
-void addHierarchyChildren(CommitContext& c, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform) {
+void addHierarchyChildren(PieceCommit& c, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform) {
   std::vector<ecs::Entity> children;
   const size_t slash = spec.name.rfind('/');
   const std::string suffix = slash == std::string::npos ? std::string() : spec.name.substr(slash);
@@ -657,99 +627,9 @@ void addHierarchyChildren(CommitContext& c, const PieceSpec& spec, ecs::Entity e
   c.commands.add<ecs::Children>(e, ecs::Children{std::move(children)});
 }
 
-// The radius of a ball of `volume` (m^3): the size of a piece for its sleep threshold and of a
-// debris piece for where it comes to rest.
-double ballRadius(double volume) { return std::cbrt(3.0 * std::max(volume, 0.0) / (4.0 * glm::pi<double>())); }
-
-// The components every piece gets (and a debris piece's motion).
-void addPieceComponents(CommitContext& c, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform,
-                        MeshRenderer renderer, const glm::dvec3& velocity) {
-  c.commands.add<ecs::Transform>(e, transform);
-  c.commands.add<ecs::WorldTransform>(e, ecs::WorldTransform{ecs::localMatrix(transform)});
-  c.commands.add<ecs::Name>(e, ecs::Name{spec.name});
-  c.commands.add<MeshRenderer>(e, std::move(renderer));
-  MassInfo info;
-  info.mass = spec.mass;
-  info.volume = spec.volume;
-  info.density = spec.volume > 0.0 ? spec.mass / spec.volume : 0.0;
-  info.closed = spec.closed;
-  c.commands.add<MassInfo>(e, info);
-  SplitOrigin so;
-  so.parent = c.job.request.target;
-  so.parentId = toUserData(c.job.request.target);
-  so.generation = c.job.depth;
-  so.tick = c.ev.tick;
-  so.retirement = c.job.settings.retirement;
-  c.commands.add<SplitOrigin>(e, so);
-  if (spec.kind != PieceKind::Debris) c.commands.add<PieceMotion>(e, PieceMotion{});
-  if (c.job.hasMaterialChoice) c.commands.add<MaterialChoice>(e, MaterialChoice{c.job.materialChoice});
-  // A piece drawn with its skin (KeepAnimating, or debris a handler made of a ragdoll piece): the
-  // copy of the animator keeps playing in the body's frame.
-  if (spec.kind != PieceKind::Ragdoll && c.skin && !spec.mesh->joints.empty()) c.commands.add<SkinnedMesh>(e, *c.skin);
-  if (spec.kind == PieceKind::Debris) {
-    Debris d;
-    d.velocity = glm::vec3(velocity);
-    d.angularVelocity = glm::vec3(c.m.now.angularVelocity);
-    d.radius = float(ballRadius(spec.volume));
-    c.commands.add<Debris>(e, d);
-  }
-}
-
 }  // namespace
 
-namespace {
-
-// Continuous collision for small pieces (shatter cells, chips): a piece under 15 cm across is swept
-// as a sphere of a third of its smallest extent, so that it does not pass through the floor.
-float smallPieceCcdRadius(const PieceSpec& spec) {
-  glm::vec3 lo(INFINITY), hi(-INFINITY);
-  for (const HullSpec& hull : spec.hulls)
-    for (const glm::vec3& p : hull.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  if (!(lo.x <= hi.x)) return 0.f;
-  const glm::vec3 size = hi - lo;
-  const float largest = std::max({size.x, size.y, size.z});
-  const float smallest = std::min({size.x, size.y, size.z});
-  return largest < 0.15f ? smallest / 3.f : 0.f;
-}
-
-}  // namespace
-
-// The rigid body of a piece with a collider, woken now or queued for a later tick. Null (and no
-// shape left behind) when the bridge refuses it.
-RigidBody SplitSystem::createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs::Entity e,
-                                       const ecs::Transform& transform, const glm::dvec3& velocity,
-                                       const glm::dvec3& angularVelocity) {
-  const physics::ShapeId shape =
-      createPlannedShape(w.physics, spec.hulls, spec.concavePositions, spec.concaveIndices).valueOr({});
-  if (shape.isNull()) return {};  // a flat sliver: no hull can hold it
-  physics::BodyDef def;
-  def.shape = shape;
-  def.mass = float(std::max(spec.mass, 1e-6));
-  def.position = transform.position;
-  def.rotation = transform.rotation;
-  def.linearVelocity = glm::vec3(velocity);
-  def.angularVelocity = glm::vec3(angularVelocity);
-  def.localInertia = glm::vec3(spec.frame.moments);
-  def.userData = toUserData(e);
-  def.ccdRadius = smallPieceCcdRadius(spec);
-  // Small pieces: sleep when their surface barely moves (a 1 cm chip turning at 5 rad/s looks still),
-  // and a little damping of the spin the solver gives slivers at contacts.
-  const double radius = ballRadius(std::max(spec.volume, 1e-12));
-  def.sleepAngularSpeed = float(std::max(1.0, 0.08 / radius));
-  if (radius < 0.05) def.angularDamping = 0.2f;
-  const bool awakeNow = activations_.admitAwake(budget_.settings().maxActivationsPerTick);
-  def.startAwake = awakeNow;
-  auto created = w.physics.createBody(def);
-  if (!created.ok()) {
-    w.physics.destroyShape(shape);
-    return {};
-  }
-  const physics::BodyId body = created.value();
-  if (!awakeNow) activations_.queue(body);
-  return RigidBody{body, shape};
-}
-
-void SplitSystem::commitPiece(CommitContext& c, PieceSpec& spec) {
+void SplitSystem::commitPiece(PieceCommit& c, PieceSpec& spec) {
   const ecs::Entity e = c.commands.create();
   const glm::dvec3 velocity = c.m.velocity(spec);
   ecs::Transform transform;
@@ -762,12 +642,9 @@ void SplitSystem::commitPiece(CommitContext& c, PieceSpec& spec) {
   renderer.meshOffset = glm::mat4(spec.frame.meshOffset);
   RigidBody rb;
   const double shapeStart = nowMilliseconds();
-  if (spec.kind == PieceKind::Ragdoll) {
-    if (!attachRagdoll(c, spec, e, transform, renderer, rb)) spec.kind = PieceKind::Debris;  // the skin falls
-  } else if (spec.kind != PieceKind::Debris) {
-    rb = createPieceBody(c.w, spec, e, transform, velocity, c.m.now.angularVelocity);
-    if (rb.body.isNull()) spec.kind = PieceKind::Debris;
-  }
+  // Its body (or bones); a piece nothing could hold falls as debris.
+  if (!pieceKind(spec.kind).attach(c, spec, e, transform, renderer, rb, velocity)) spec.kind = PieceKind::Debris;
+  const PieceKindStrategy& kind = pieceKind(spec.kind);
   c.ev.shapeMilliseconds += nowMilliseconds() - shapeStart;
   if (c.w.renderer) {
     const double uploadStart = nowMilliseconds();
@@ -775,8 +652,8 @@ void SplitSystem::commitPiece(CommitContext& c, PieceSpec& spec) {
     renderer.gpu = (packed ? c.w.renderer->uploadPacked(*spec.packed) : c.w.renderer->uploadMesh(*spec.mesh)).valueOr({});
     c.ev.uploadMilliseconds += nowMilliseconds() - uploadStart;
   }
-  addPieceComponents(c, spec, e, transform, std::move(renderer), velocity);
-  if (spec.kind != PieceKind::Debris) {
+  addPieceComponents(c, spec, kind, e, transform, std::move(renderer), velocity);
+  if (kind.hasBody()) {
     c.commands.add<RigidBody>(e, rb);
     // The cells of a shattered posed skinned mesh are final: the pose may pass through itself at the
     // joints, and a cell cut from such a surface does not keep its mass exactly when cut again.
@@ -795,14 +672,15 @@ void SplitSystem::commitPiece(CommitContext& c, PieceSpec& spec) {
   c.ev.pieces.push_back(e);
   c.ev.capLoops.push_back(spec.capLoops);
   c.ev.kinds.push_back(spec.kind);
-  c.ev.colliderFit.push_back(spec.volume > 0.0 && spec.kind != PieceKind::Debris ? spec.colliderVolume / spec.volume : 0.0);
+  c.ev.colliderFit.push_back(spec.volume > 0.0 && kind.hasBody() ? spec.colliderVolume / spec.volume : 0.0);
   c.ev.piecesMass += spec.mass;
 }
 
 void SplitSystem::commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome& outcome, SplitEvent& ev) {
   Scratch& s = *scratch_;
   const ecs::Entity target = job.request.target;
-  CommitContext c{w, job, commandsFor(s.commands, s.commandsWorld, w.world), detail::Moved{}, nullptr, ev};
+  PieceCommit c{w, job, commandsFor(s.commands, s.commandsWorld, w.world), ParentMoved{}, nullptr, ev, activations_,
+                budget_.settings().maxActivationsPerTick};
   c.m.now = motionOf(w, target);
   c.m.motion = motionBetween(job.parent, c.m.now);
   c.m.moved = c.m.motion != glm::dmat4(1.0);

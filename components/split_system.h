@@ -92,8 +92,8 @@ struct SplitEvent {
   double uploadMilliseconds = 0.0;    // of commit: GPU mesh upload
 };
 
+struct PieceCommit;  // piece_kind.h
 namespace detail {
-struct CommitContext;  // split_system.cpp
 }
 
 class SplitSystem {
@@ -182,9 +182,7 @@ class SplitSystem {
   // Commit: creates the pieces of a computed job (their structural changes wait in the batch).
   SplitEvent commit(SplitWorld& w, Pending& pending, uint64_t tick);
   void commitPieces(SplitWorld& w, const SplitJob& job, SplitOutcome& outcome, SplitEvent& ev);
-  void commitPiece(detail::CommitContext& c, PieceSpec& spec);
-  RigidBody createPieceBody(SplitWorld& w, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform,
-                            const glm::dvec3& velocity, const glm::dvec3& angularVelocity);
+  void commitPiece(PieceCommit& c, PieceSpec& spec);
   SplitWorkers& workers();
   // Applies the batch (the destroyed entities' hooks free what they held, resource_hooks.h).
   void flush(SplitWorld& w);

@@ -54,6 +54,17 @@ enum class SkinnedPieceMode : uint8_t {
   Bake,
 };
 
+// What a piece becomes at commit. Each kind is a strategy (piece_kind.h) with its plan (compute)
+// and its commit; a game or a test adds kinds of its own with registerPieceKind, numbered after these.
+enum class PieceKind : uint8_t {
+  Rigid,          // a dynamic rigid body with the spec's collider (piece_rigid.cpp)
+  Debris,         // render-only, falls and fades (small pieces, or no collider could hold it; piece_debris.cpp)
+  KeepAnimating,  // a skinned piece on a rigid body, its animator copied from the parent (piece_skinned.cpp)
+  Ragdoll,        // a skinned piece on capsule bones joined by joints (piece_ragdoll.cpp)
+  Baked,          // a skinned piece baked into its pose: a static-mesh rigid piece (piece_skinned.cpp)
+};
+const char* toString(PieceKind kind);
+
 struct Splitable {
   bool convexHint = false;                  // the mesh is convex: use the convex splitter (fan caps)
   bool cap = true;                          // false: hollow pieces (open or thin objects)
@@ -79,6 +90,9 @@ struct Splitable {
   uint32_t maxDepth = 12;                   // pieces this many cuts deep are no longer splitable
   std::string handler;                      // a custom split handler registered under this name
   SkinnedPieceMode skinnedPieces = SkinnedPieceMode::Ragdoll;  // skinned meshes only
+  // What the pieces of a static mesh become when big enough for a body: Rigid, or a kind a game
+  // registered (piece_kind.h). Small pieces are debris whatever this says.
+  PieceKind rigidPieces = PieceKind::Rigid;
   // How the piece budget retires this object's pieces when a limit is passed (piece_budget.h);
   // Default: the budget's policy.
   PieceRetirement retirement = PieceRetirement::Default;
