@@ -454,10 +454,10 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
   MergedParts merged;
   if (job.hierarchy()) merged = mergeHierarchyParts(job.hierarchyParts);
   if (!setUpContainer(job, job.hierarchy() ? &merged.mesh : nullptr, s, out)) {
-    out.computeMilliseconds = out.setupMilliseconds = nowMilliseconds() - start;
+    out.times.total = out.times.setup = nowMilliseconds() - start;
     return;
   }
-  out.setupMilliseconds = nowMilliseconds() - start;
+  out.times.setup = nowMilliseconds() - start;
   const double geometryStart = nowMilliseconds();
   geometry::IMeshSplitter& splitter = job.settings.convexHint ? *s.convex : *s.concave;
   if (job.skinned() && s.container.closed()) {  // closed on the container's weld: no weld again
@@ -475,10 +475,10 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
     out.status = splitter.split(s.container, job.plane, job.options, s.result);
   }
   s.container.release();  // do not keep the (doomed) target's mesh alive
-  out.geometryMilliseconds = nowMilliseconds() - geometryStart;
+  out.times.geometry = nowMilliseconds() - geometryStart;
   if (out.status != geometry::SplitStatus::Ok) {
     out.message = job.request.shatter ? shatterMessage : s.result.message;
-    out.computeMilliseconds = nowMilliseconds() - start;
+    out.times.total = nowMilliseconds() - start;
     return;
   }
   out.openChains = s.result.openChains;
@@ -489,7 +489,7 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
   if (!(c.totalVolume > 0.0)) {
     out.status = geometry::SplitStatus::InvalidInput;
     out.message = "pieces enclose no volume";
-    out.computeMilliseconds = nowMilliseconds() - start;
+    out.times.total = nowMilliseconds() - start;
     return;
   }
   const double colliderStart = nowMilliseconds();
@@ -512,8 +512,8 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
     out.pieces.push_back(std::move(spec));
     ++k;
   }
-  out.colliderMilliseconds = nowMilliseconds() - colliderStart;
-  out.computeMilliseconds = nowMilliseconds() - start;
+  out.times.collider = nowMilliseconds() - colliderStart;
+  out.times.total = nowMilliseconds() - start;
 }
 
 }  // namespace cleave::components

@@ -22,6 +22,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "cleave/components/split_budget.h"
+#include "cleave/components/split_times.h"
 #include "cleave/components/splitable.h"
 #include "cleave/ecs/entity.h"
 #include "cleave/geometry/collider_parts.h"
@@ -179,10 +180,7 @@ struct SplitOutcome {
   // Worked out for the source in compute, for the split system to keep (null: nothing new).
   std::shared_ptr<const geometry::MeshWeld> sourceWeld;
   geometry::SharedColliderParts sourceParts;
-  double computeMilliseconds = 0.0;   // the whole compute stage
-  double setupMilliseconds = 0.0;     // of which: container set-up
-  double geometryMilliseconds = 0.0;  // of which: cut, caps, islands, mass properties
-  double colliderMilliseconds = 0.0;  // of which: clipping or decomposing parts, hulls, ragdoll fits
+  ComputeTimes times;  // split_times.h
 };
 
 }  // namespace cleave::components

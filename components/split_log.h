@@ -45,4 +45,11 @@ class SplitLog {
   std::vector<SplitLogEntry> entries_;
 };
 
+// Writes the mesh of a failed split (an OBJ in mesh space with the model matrix and the plane in its
+// header, so the case replays bit for bit with cleave-split or a unit test) into `directory` as
+// split_failure_tick<T>_e<index>.obj, and logs where.
+void writeFailureCase(const std::string& directory, const std::string& name, uint64_t tick, ecs::Entity target,
+                      const geometry::MeshData& mesh, const glm::dmat4& model, const geometry::Plane& plane,
+                      const char* status, const std::string& message);
+
 }  // namespace cleave::components

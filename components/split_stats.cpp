@@ -9,8 +9,8 @@ namespace cleave::components {
 SplitTickTimes splitTickTimes(const SplitSystem& splits) {
   SplitTickTimes t;
   for (const SplitEvent& ev : splits.lastEvents()) {
-    t.wait += ev.waitMilliseconds;
-    t.workers += ev.computeMilliseconds;
+    t.wait += ev.times.wait;
+    t.workers += ev.times.compute.total;
   }
   t.work = std::max(0.0, splits.lastTickMainMilliseconds() - t.wait);
   return t;

@@ -19,6 +19,7 @@
 
 #include "cleave/components/piece_kind.h"
 #include "cleave/components/split_compute.h"
+#include "cleave/components/split_log.h"
 #include "cleave/components/split_budget.h"
 #include "cleave/components/split_cost.h"
 #include "cleave/ecs/command_buffer.h"
@@ -29,36 +30,6 @@
 namespace cleave::components {
 
 namespace {
-
-// Writes the mesh of a failed split in cut space (an OBJ with the plane in its header) so the case
-// can be reproduced with cleave-split or a unit test.
-void writeFailureCase(const std::string& directory, const std::string& name, uint64_t tick,
-                      ecs::Entity target, const geometry::MeshData& mesh, const glm::dmat4& model,
-                      const geometry::Plane& plane, const char* status, const std::string& message) {
-  std::error_code ec;
-  std::filesystem::create_directories(directory, ec);
-  const std::string path = (std::filesystem::path(directory) /
-                            ("split_failure_tick" + std::to_string(tick) + "_e" +
-                             std::to_string(target.index) + ".obj")).string();
-  std::ofstream out(path);
-  if (!out) return;
-  out.precision(17);
-  out << "# split failure: " << (name.empty() ? "unnamed" : name) << ", tick " << tick << ", " << status
-      << ": " << message << "\n";
-  out << "# plane (cut space = world, after the model matrix): normal " << plane.normal.x << " " << plane.normal.y << " "
-      << plane.normal.z << " offset " << plane.offset << "\n";
-  // Vertices in mesh space exactly as stored (floats print exactly with 9 digits), and the model
-  // matrix (column-major) that takes them to cut space, so the failing case replays bit for bit.
-  out << "# model";
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) out << " " << float(model[c][r]);
-  out << "\n";
-  out.precision(9);
-  for (const glm::vec3& p : mesh.positions) out << "v " << p.x << " " << p.y << " " << p.z << "\n";
-  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
-    out << "f " << mesh.indices[i] + 1 << " " << mesh.indices[i + 1] + 1 << " " << mesh.indices[i + 2] + 1 << "\n";
-  log::warning("cleave", "failed split written to %s", path.c_str());
-}
 
 // The frame and motion of an entity now: its body's when it has one, else its Transform's.
 ParentMotion motionOf(SplitWorld& w, ecs::Entity e) {
@@ -315,7 +286,7 @@ bool SplitSystem::startSplit(SplitWorld& w, const SplitRequest& r, uint64_t tick
   auto job = std::make_shared<SplitJob>();
   SplitEvent failed;
   if (!prepare(w, r, tick, *job, failed)) {
-    failed.prepareMilliseconds = failed.mainMilliseconds = failed.milliseconds = nowMilliseconds() - prepareStart;
+    failed.times.prepare = nowMilliseconds() - prepareStart;
     events_.push_back(std::move(failed));
     return false;
   }
@@ -383,7 +354,7 @@ SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitR
   SplitRequest r = request;
   r.target = target;
   if (!prepare(w, r, tick, *job, ev)) {
-    ev.prepareMilliseconds = ev.mainMilliseconds = ev.milliseconds = nowMilliseconds() - start;
+    ev.times.prepare = nowMilliseconds() - start;
     return ev;
   }
   job->commitTick = tick;
@@ -399,9 +370,7 @@ SplitEvent SplitSystem::splitNow(SplitWorld& w, ecs::Entity target, const SplitR
   const double flushStart = nowMilliseconds();
   flush(w);
   const double flushMs = nowMilliseconds() - flushStart;
-  ev.commitMilliseconds += flushMs;
-  ev.mainMilliseconds += flushMs;
-  ev.milliseconds += flushMs;
+  ev.times.commit += flushMs;
   return ev;
 }
 
@@ -505,13 +474,11 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
   ev.parentMass = job.parent.mass;
   ev.weldKnown = pending.weldKnown;
   ev.partsKnown = pending.partsKnown;
-  ev.prepareMilliseconds = pending.prepareMilliseconds;
-  ev.waitMilliseconds = waited;
-  ev.computeMilliseconds = outcome.computeMilliseconds;
+  ev.times.prepare = pending.prepareMilliseconds;
+  ev.times.wait = waited;
+  ev.times.compute = outcome.times;
   ev.estimatedWorkerMilliseconds = job.estimatedWorkerMilliseconds;
-  ev.setupMilliseconds = outcome.setupMilliseconds;
-  ev.geometryMilliseconds = outcome.geometryMilliseconds;
-  ev.colliderMilliseconds = outcome.colliderMilliseconds;
+
   ev.openChains = outcome.openChains;
   ev.posedVolume = outcome.posedVolume;
   ev.piecesVolume = outcome.piecesVolume;
@@ -528,9 +495,7 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
       log::warning("cleave", "split of %s (entity %u) at tick %llu kept whole: %s",
                    ev.originalName.empty() ? "an object" : ev.originalName.c_str(), ev.original.index,
                    static_cast<unsigned long long>(tick), message.c_str());
-    ev.commitMilliseconds = nowMilliseconds() - start - waited;
-    ev.mainMilliseconds = ev.prepareMilliseconds + ev.commitMilliseconds;
-    ev.milliseconds = ev.mainMilliseconds + ev.computeMilliseconds;
+    ev.times.commit = nowMilliseconds() - start - waited;
     return ev;
   };
   if (outcome.status != geometry::SplitStatus::Ok) {
@@ -615,7 +580,7 @@ void addHierarchyChildren(PieceCommit& c, const PieceSpec& spec, ecs::Entity e, 
       renderer.gpu = childSpec.packed && childSpec.packedFrom == childSpec.mesh.get()
                          ? c.w.renderer->uploadPacked(*childSpec.packed).valueOr({})
                          : c.w.renderer->uploadMesh(*childSpec.mesh).valueOr({});
-      c.ev.uploadMilliseconds += nowMilliseconds() - uploadStart;
+      c.ev.times.uploads += nowMilliseconds() - uploadStart;
     }
     c.commands.add<ecs::Transform>(child, ecs::Transform{});
     c.commands.add<ecs::WorldTransform>(child, ecs::WorldTransform{ecs::localMatrix(transform)});
@@ -645,12 +610,12 @@ void SplitSystem::commitPiece(PieceCommit& c, PieceSpec& spec) {
   // Its body (or bones); a piece nothing could hold falls as debris.
   if (!pieceKind(spec.kind).attach(c, spec, e, transform, renderer, rb, velocity)) spec.kind = PieceKind::Debris;
   const PieceKindStrategy& kind = pieceKind(spec.kind);
-  c.ev.shapeMilliseconds += nowMilliseconds() - shapeStart;
+  c.ev.times.shapes += nowMilliseconds() - shapeStart;
   if (c.w.renderer) {
     const double uploadStart = nowMilliseconds();
     const bool packed = spec.packed && spec.packedFrom == spec.mesh.get();
     renderer.gpu = (packed ? c.w.renderer->uploadPacked(*spec.packed) : c.w.renderer->uploadMesh(*spec.mesh)).valueOr({});
-    c.ev.uploadMilliseconds += nowMilliseconds() - uploadStart;
+    c.ev.times.uploads += nowMilliseconds() - uploadStart;
   }
   addPieceComponents(c, spec, kind, e, transform, std::move(renderer), velocity);
   if (kind.hasBody()) {

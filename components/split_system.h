@@ -35,6 +35,7 @@
 #include "cleave/components/scene_components.h"
 #include "cleave/components/split_budget.h"
 #include "cleave/components/split_job.h"
+#include "cleave/components/split_times.h"
 #include "cleave/components/split_workers.h"
 #include "cleave/components/splitable.h"
 #include "cleave/ecs/hierarchy.h"
@@ -74,22 +75,10 @@ struct SplitEvent {
   double piecesMass = 0.0;      // sum over pieces kept with colliders and debris
   double posedVolume = 0.0;     // skinned: see SplitOutcome::posedVolume (0: not known)
   double piecesVolume = 0.0;    // the pieces' volumes as the split found them
-  // Milliseconds. main = prepare + commit on the main thread; the compute stage ran on a worker
-  // (or inline with 0 threads) and the main thread waited `waitMilliseconds` for it at commit.
-  double milliseconds = 0.0;          // main + compute: the whole work of the split
-  double mainMilliseconds = 0.0;
-  double prepareMilliseconds = 0.0;
-  double commitMilliseconds = 0.0;
-  double computeMilliseconds = 0.0;
+  SplitTimes times;                   // by stage (split_times.h)
   double estimatedWorkerMilliseconds = 0.0;  // what the budget expected of the compute
-  double waitMilliseconds = 0.0;
-  double setupMilliseconds = 0.0;     // of compute: container set-up (weld unless known, cut space)
   bool weldKnown = false;             // the mesh's weld was known (a piece, or a mesh cut before)
   bool partsKnown = false;            // the mesh's collider parts were known (carried or cached)
-  double geometryMilliseconds = 0.0;  // of compute: cut, caps, islands, mass properties
-  double colliderMilliseconds = 0.0;  // of compute: parts clipped, hulls shrunk, ragdolls planned
-  double shapeMilliseconds = 0.0;     // of commit: physics shapes and bodies
-  double uploadMilliseconds = 0.0;    // of commit: GPU mesh upload
 };
 
 struct PieceCommit;  // piece_kind.h

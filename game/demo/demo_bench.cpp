@@ -74,9 +74,9 @@ void DemoGame::benchmarkSplits(int repeats, bool json) {
       request.shatterSpec.cells = cells;
       request.shatterSpec.impactPoint = centre;
       const components::SplitEvent ev = splits_->splitNow(sw, e, request, 0);
-      run.mainMs.push_back(ev.mainMilliseconds);
-      run.workerMs.push_back(ev.computeMilliseconds);
-      run.colliderMs.push_back(ev.colliderMilliseconds + ev.shapeMilliseconds);
+      run.mainMs.push_back(ev.times.main());
+      run.workerMs.push_back(ev.times.compute.total);
+      run.colliderMs.push_back(ev.times.compute.collider + ev.times.shapes);
       run.fit.push_back(ev.colliderFit.empty() ? 0.0 : *std::max_element(ev.colliderFit.begin(), ev.colliderFit.end()));
       run.pieces = ev.pieces.size();
       for (ecs::Entity piece : ev.pieces) world.destroy(piece);
@@ -133,17 +133,17 @@ void DemoGame::benchmarkBurst(bool json) {
       if (std::getenv("CLEAVE_BENCH_TRACE")) {
         double shapes = 0.0, uploads = 0.0, commits = 0.0, waits = 0.0;
         for (const components::SplitEvent& ev : splits_->lastEvents()) {
-          shapes += ev.shapeMilliseconds;
-          uploads += ev.uploadMilliseconds;
-          commits += ev.commitMilliseconds;
-          waits += ev.waitMilliseconds;
+          shapes += ev.times.shapes;
+          uploads += ev.times.uploads;
+          commits += ev.times.commit;
+          waits += ev.times.wait;
         }
         std::fprintf(stderr, "tick %llu prepare %.3f commit %.3f (events %zu: commit %.3f shapes %.3f uploads %.3f waits %.3f)\n",
                      (unsigned long long)tick, t1 - t0, t2 - t1, splits_->lastEvents().size(), commits, shapes, uploads, waits);
       }
       double waited = 0.0;
       for (const components::SplitEvent& ev : splits_->lastEvents()) {
-        waited += ev.waitMilliseconds;
+        waited += ev.times.wait;
         ++run.splits;
         run.pieces += ev.pieces.size();
       }
