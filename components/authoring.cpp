@@ -7,6 +7,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "cleave/components/split_compute.h"
+#include "cleave/components/split_hierarchy.h"
 #include "cleave/components/split_system.h"
 #include "cleave/ecs/hierarchy.h"
 #include "cleave/geometry/mass_properties.h"
@@ -31,48 +32,6 @@ ecs::Transform toTransform(const glm::dmat4& m) {
 }
 
 }  // namespace
-
-// Collects the target's own mesh (if any) and the meshes of its descendants (those without a body
-// of their own). Returns false when the subtree has no descendant with a mesh (the plain
-// single-mesh path applies).
-bool gatherParts(const ecs::World& world, ecs::Entity root, std::vector<HierarchyPartData>& parts) {
-  parts.clear();
-  auto add = [&](ecs::Entity e, const MeshRenderer& mr, const glm::dmat4& toParent) {
-    HierarchyPartData part;
-    part.entity = e;
-    part.mesh = mr.source;
-    part.toParent = toParent * glm::dmat4(mr.meshOffset);
-    part.materials = mr.materials;
-    part.visible = mr.visible;
-    if (const auto* n = world.tryGet<ecs::Name>(e)) part.name = n->value;
-    parts.push_back(std::move(part));
-  };
-  if (const auto* mr = world.tryGet<MeshRenderer>(root); mr && mr->source) add(root, *mr, glm::dmat4(1.0));
-  const size_t own = parts.size();
-  struct Item {
-    ecs::Entity entity;
-    glm::dmat4 toParent;
-    int depth;
-  };
-  std::vector<Item> stack;
-  if (const auto* children = world.tryGet<ecs::Children>(root))
-    for (auto it = children->entities.rbegin(); it != children->entities.rend(); ++it)
-      stack.push_back({*it, glm::dmat4(1.0), 1});
-  while (!stack.empty()) {
-    const Item item = stack.back();
-    stack.pop_back();
-    if (!world.alive(item.entity) || item.depth > 64) continue;
-    if (ecs::parentOf(world, item.entity) == ecs::kNullEntity) continue;
-    if (world.has<RigidBody>(item.entity)) continue;  // a body of its own: an object of its own
-    const auto* t = world.tryGet<ecs::Transform>(item.entity);
-    const glm::dmat4 toParent = item.toParent * (t ? glm::dmat4(ecs::localMatrix(*t)) : glm::dmat4(1.0));
-    if (const auto* mr = world.tryGet<MeshRenderer>(item.entity); mr && mr->source) add(item.entity, *mr, toParent);
-    if (const auto* children = world.tryGet<ecs::Children>(item.entity))
-      for (auto it = children->entities.rbegin(); it != children->entities.rend(); ++it)
-        stack.push_back({*it, toParent, item.depth + 1});
-  }
-  return parts.size() > own;
-}
 
 void placeOnBody(SplitWorld& w, ecs::Entity e, const physics::BodyDef& def, physics::BodyId body,
                  physics::ShapeId shape, double mass, const geometry::MassProperties& props, double density) {

@@ -54,9 +54,4 @@ physics::Result<physics::ShapeId> createPlannedShape(physics::PhysicsWorld& phys
 void placeOnBody(SplitWorld& w, ecs::Entity e, const physics::BodyDef& def, physics::BodyId body,
                  physics::ShapeId shape, double mass, const geometry::MassProperties& props, double density);
 
-// Collects the entity's own mesh (if any) and the meshes of its descendants without a body of their
-// own, each with its transform to the entity. False when no descendant has a mesh (the plain
-// single-mesh path applies).
-bool gatherParts(const ecs::World& world, ecs::Entity root, std::vector<HierarchyPartData>& parts);
-
 }  // namespace cleave::components

@@ -5,6 +5,8 @@
 #include "cleave/components/split_compute.h"
 
 #include "cleave/components/piece_kind.h"
+#include "cleave/components/split_hierarchy.h"
+#include "cleave/components/split_shatter.h"
 #include "cleave/components/split_clock.h"
 
 #include <algorithm>
@@ -27,26 +29,7 @@ namespace cleave::components {
 namespace {
 
 constexpr double kMinPartWidth = 1e-5;  // metres: flatter parts hold nothing
-constexpr uint32_t kNoPart = ~0u;      // extractPart: no part's triangles, the caps only
 constexpr uint32_t kMaxHullVertices = 48;  // per collider hull, as the bridge would reduce it
-
-// The triangles of the merged `piece` that come from part `part` (and the caps of this cut, for
-// `withCaps`), by the piece's provenance.
-geometry::MeshData extractPart(const geometry::MeshData& piece, std::span<const uint32_t> sourceTriangles,
-                               const MergedParts& merged, uint32_t part, bool withCaps) {
-  std::vector<uint32_t> triangles;
-  for (uint32_t t = 0; t < sourceTriangles.size(); ++t) {
-    const uint32_t source = sourceTriangles[t];
-    const bool cap = (source & geometry::kFromCap) != 0;
-    if (cap ? withCaps : merged.partOf(source) == part) triangles.push_back(t);
-  }
-  geometry::MeshData out;
-  if (triangles.empty()) return out;
-  geometry::MeshContainer container;
-  if (!container.setMesh(piece).ok()) return out;
-  container.extractTriangles(triangles, out);
-  return out;
-}
 
 // Sets the container up for the job: the shared mesh (with its weld when known) or the merged
 // hierarchy, then the cut space (model matrix, or the pose). Returns false with out.message.
@@ -89,20 +72,6 @@ struct PieceContext {
   bool carried = false;                   // `clipped` is meaningful
   bool shatter = false;                   // cells, not a cut: skinned pieces are baked
 };
-
-void planHierarchyChildren(const PieceContext& c, const geometry::MeshData& whole,
-                           std::span<const uint32_t> sourceTriangles, PieceSpec& spec) {
-  for (size_t part = 0; part < c.job.hierarchyParts.size(); ++part) {
-    if (c.job.hierarchyParts[part].entity == c.job.request.target) continue;
-    geometry::MeshData child = extractPart(whole, sourceTriangles, *c.merged, uint32_t(part), false);
-    if (child.indices.empty()) continue;
-    auto mesh = std::make_shared<geometry::MeshData>(std::move(child));
-    std::shared_ptr<const render::PackedMesh> packed;
-    if (c.job.packForGpu) packed = std::make_shared<render::PackedMesh>(render::packMesh(*mesh));
-    const geometry::MeshData* from = packed ? mesh.get() : nullptr;
-    spec.children.push_back({part, std::move(mesh), std::move(packed), from});
-  }
-}
 
 // True when the mesh, seen in its body frame (principal axes), is thinner than `thickness` along
 // one of the axes.
@@ -161,7 +130,7 @@ bool planPiece(PieceContext& c, size_t index, geometry::SplitPiece& piece, uint3
     // caps only (its parts are its children).
     const bool ownMesh = job.hierarchyParts[0].entity == job.request.target;
     piece.mesh = extractPart(whole, piece.sourceTriangles, *c.merged, ownMesh ? 0u : kNoPart, true);
-    planHierarchyChildren(c, whole, piece.sourceTriangles, spec);
+    planHierarchyChildren(job, *c.merged, whole, piece.sourceTriangles, spec);
   }
   const bool weldKnown = !job.hierarchy() && (keepSkin || !job.skinned()) && !piece.weld.positionIds.empty();
   if (weldKnown && job.depth < sp.maxDepth) spec.weld = std::make_shared<geometry::MeshWeld>(std::move(piece.weld));
@@ -228,65 +197,6 @@ void clipCarriedParts(PieceContext& c, SplitOutcome& out) {
   c.carried = true;
 }
 
-struct PieceBounds {
-  glm::dvec3 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
-};
-
-// Of the pieces `mates` (one cell's), the one whose bounds are nearest `point` (0 inside them); the
-// larger piece on a tie.
-size_t ownerOf(const std::vector<geometry::SplitPiece>& pieces, std::span<const PieceBounds> bounds,
-               std::span<const size_t> mates, const glm::dvec3& point) {
-  size_t owner = mates.front();
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t j : mates) {
-    const glm::dvec3 lo = bounds[j].lo, hi = bounds[j].hi;
-    const double d = glm::length(glm::max(glm::max(lo - point, point - hi), glm::dvec3(0.0)));
-    if (d < best || (d == best && pieces[j].mass.volume > pieces[owner].mass.volume)) {
-      best = d;
-      owner = j;
-    }
-  }
-  return owner;
-}
-
-// Shatter: the carried parts clipped by each piece's cell (mesh space: exact, no hull computed);
-// a part of a cell with several pieces goes to the piece whose bounds hold its centroid.
-void clipCarriedPartsToCells(PieceContext& c, SplitOutcome& out, std::span<const geometry::ConvexCell> cells,
-                             std::span<const uint32_t> pieceCell) {
-  const geometry::SharedColliderParts parts = carriedParts(c, out);
-  if (!parts) return;
-  const std::vector<geometry::SplitPiece>& pieces = c.scratch.result.pieces;
-  c.clipped.assign(pieces.size(), {});
-  std::vector<PieceBounds> bounds(pieces.size());
-  std::vector<geometry::HalfSpace> halfSpaces;
-  for (size_t i = 0; i < pieces.size(); ++i)
-    for (const glm::vec3& p : pieces[i].mesh.positions)
-      bounds[i].lo = glm::min(bounds[i].lo, glm::dvec3(p)), bounds[i].hi = glm::max(bounds[i].hi, glm::dvec3(p));
-  std::vector<char> cellDone(cells.size(), 0);  // its parts went to its pieces with an earlier piece
-  for (size_t i = 0; i < pieces.size(); ++i) {
-    if (cellDone[pieceCell[i]]) continue;
-    cellDone[pieceCell[i]] = 1;
-    const geometry::ConvexCell& cell = cells[pieceCell[i]];
-    std::vector<size_t> mates;
-    for (size_t j = i; j < pieces.size(); ++j)
-      if (pieceCell[j] == pieceCell[i]) mates.push_back(j);
-    halfSpaces.clear();
-    for (const geometry::Plane& world : cell.planes) {
-      const geometry::Plane plane = planeInMeshSpace(world, c.job.model);
-      halfSpaces.push_back({plane.normal, plane.offset});
-    }
-    for (const geometry::ConvexPolytope& part : *parts) {
-      geometry::ConvexPolytope clipped;
-      geometry::clipPolytope(part, halfSpaces, 1e-9, clipped);
-      if (clipped.empty()) continue;
-      const size_t owner =
-          mates.size() == 1 ? i : ownerOf(pieces, bounds, mates, geometry::polytopeCentroid(clipped));
-      c.clipped[owner].push_back(std::move(clipped));
-    }
-  }
-  c.carried = true;
-}
-
 }  // namespace
 
 BodyFrame bodyFrameFor(const geometry::MassProperties& props, double mass, const glm::dmat4& model) {
@@ -308,24 +218,6 @@ std::vector<glm::vec3> transformedPoints(const geometry::MeshData& mesh, const g
   points.reserve(mesh.positions.size());
   for (const glm::vec3& p : mesh.positions) points.push_back(glm::vec3(m * glm::dvec4(p, 1.0)));
   return points;
-}
-
-uint32_t MergedParts::partOf(uint32_t triangle) const {
-  const auto it = std::upper_bound(firstTriangle.begin(), firstTriangle.end(), triangle);
-  return static_cast<uint32_t>(it - firstTriangle.begin()) - 1;
-}
-
-MergedParts mergeHierarchyParts(const std::vector<HierarchyPartData>& parts) {
-  MergedParts merged;
-  for (size_t k = 0; k < parts.size(); ++k) {
-    geometry::MeshData part = *parts[k].mesh;
-    geometry::primitives::transform(part, glm::mat4(parts[k].toParent));
-    if (part.submeshes.empty()) part.submeshes.push_back({0, uint32_t(part.indices.size()), 0});
-    merged.firstTriangle.push_back(static_cast<uint32_t>(merged.mesh.triangleCount()));
-    merged.mesh = merged.mesh.positions.empty() ? std::move(part) : geometry::primitives::merge(merged.mesh, part);
-  }
-  merged.firstTriangle.push_back(static_cast<uint32_t>(merged.mesh.triangleCount()));
-  return merged;
 }
 
 geometry::Plane planeInMeshSpace(const geometry::Plane& world, const glm::dmat4& model) {
@@ -390,64 +282,6 @@ ColliderPlan planCollider(const geometry::MeshData& mesh, const glm::dmat4& mesh
   return plan;
 }
 
-// A shatter: the container broken into the Voronoi cells of the request's seeds (cut space), the
-// pieces put into s.result as a split's would be (side +1, their cell's caps as the cap run).
-geometry::SplitStatus shatterInto(const SplitJob& job, SplitComputeScratch& s, std::string& message,
-                                  std::vector<geometry::ConvexCell>& cells, std::vector<uint32_t>& pieceCell) {
-  const ShatterSpec& spec = job.request.shatterSpec;
-  const glm::dvec3 lo = s.container.boundsMin(), hi = s.container.boundsMax();
-  const glm::dvec3 margin = 0.01 * (hi - lo) + glm::dvec3(1e-6);
-  const std::vector<glm::dvec3> seeds =
-      geometry::fractureSeeds(std::max<uint32_t>(spec.cells, 1), spec.seed, lo, hi, spec.impactPoint, spec.impactRadius);
-  cells = geometry::voronoiCells(seeds, lo - margin, hi + margin);
-  // A posed skinned mesh is broken in its pose: the cells of a shatter are rigid (baked) pieces, so
-  // the mesh is baked first and every plane of a cell cuts the same posed surface (a part cut by
-  // one plane and posed again would move its cut points: skinning is not linear along an edge).
-  geometry::MeshContainer baked;
-  const geometry::MeshContainer* source = &s.container;
-  if (job.skinned()) {
-    geometry::MeshData posed;
-    bakeSkin(s.container.mesh(), job.jointMatrices, posed);
-    geometry::MeshWeld weld;
-    s.container.copyWeld(weld);
-    if (geometry::MeshStatus set = baked.setMesh(posed, weld); !set.ok()) {
-      message = std::move(set.message);
-      return set.code;
-    }
-    baked.setTransform(glm::mat4(job.model));
-    source = &baked;
-  }
-  geometry::FractureResult fractured = geometry::fracture(*source, cells, job.options);
-  message = fractured.message;
-  s.result.pieces.clear();
-  s.result.openChains = fractured.openChains;
-  pieceCell.clear();
-  if (fractured.status != geometry::SplitStatus::Ok) return fractured.status;
-  for (geometry::FracturePiece& f : fractured.pieces) {
-    pieceCell.push_back(f.cell);
-    geometry::SplitPiece piece;
-    piece.mesh = std::move(f.mesh);
-    piece.weld = std::move(f.weld);
-    piece.side = 1;
-    piece.capTriangles = f.capTriangles;
-    piece.mass = f.mass;
-    piece.reached = true;
-    piece.sourceTriangles = std::move(f.sourceTriangles);
-    s.result.pieces.push_back(std::move(piece));
-  }
-  return geometry::SplitStatus::Ok;
-}
-
-// Shatter pieces: named by their order, moving with the parent plus the outward impulse.
-void finishShatterPiece(const SplitJob& job, uint32_t k, PieceSpec& spec) {
-  const ShatterSpec& shatter = job.request.shatterSpec;
-  const glm::dvec3 away = spec.frame.position - shatter.impactPoint;
-  const double length = glm::length(away);
-  spec.impulse = length > 1e-9 ? away * (shatter.outwardImpulse / length) : glm::dvec3(0.0);
-  spec.velocity = job.parent.velocity + glm::cross(job.parent.angularVelocity, spec.offsetFromParent) + spec.impulse;
-  spec.name = (job.targetName.empty() ? std::string("piece") : job.targetName) + "/s" + std::to_string(k);
-}
-
 void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out) {
   const double start = nowMilliseconds();
   out = SplitOutcome{};
@@ -500,7 +334,10 @@ void computeSplit(const SplitJob& job, SplitComputeScratch& s, SplitOutcome& out
   if (job.skinned() && job.settings.skinnedPieces == SkinnedPieceMode::Ragdoll)
     posedJointGlobals(job.skin->skeleton, job.jointMatrices, job.model, c.globals);
   if (job.request.shatter) {
-    clipCarriedPartsToCells(c, out, cells, pieceCell);
+    if (const geometry::SharedColliderParts parts = carriedParts(c, out)) {
+      clipPartsToCells(*parts, job.model, s.result.pieces, cells, pieceCell, c.clipped);
+      c.carried = true;
+    }
   } else {
     clipCarriedParts(c, out);
   }

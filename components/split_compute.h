@@ -51,19 +51,6 @@ ColliderPlan planCollider(const geometry::MeshData& mesh, const glm::dmat4& mesh
 std::vector<HullSpec> hullsInBodyFrame(const geometry::ColliderPartSet& parts, const glm::dmat4& meshOffset,
                                        double* volume = nullptr);
 
-// Hierarchies: one Splitable on a parent cuts the meshes of its whole subtree together. The meshes
-// are merged into the parent entity's space, part after part (part 0 is the parent's own mesh when
-// it has one), their material ids kept. After the cut, each piece's provenance
-// (SplitPiece::sourceTriangles) tells which of its triangles go back to which part, and which are
-// caps; there is no limit on the number of parts or materials.
-struct MergedParts {
-  geometry::MeshData mesh;
-  std::vector<uint32_t> firstTriangle;  // per part, its first triangle in `mesh`; then the total
-  // The part a triangle of `mesh` comes from.
-  uint32_t partOf(uint32_t triangle) const;
-};
-MergedParts mergeHierarchyParts(const std::vector<HierarchyPartData>& parts);
-
 // The world plane {x : dot(n, x) = d} in the mesh space of `model` (mesh -> world).
 geometry::Plane planeInMeshSpace(const geometry::Plane& world, const glm::dmat4& model);
 

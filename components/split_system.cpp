@@ -19,6 +19,7 @@
 
 #include "cleave/components/piece_kind.h"
 #include "cleave/components/split_compute.h"
+#include "cleave/components/split_hierarchy.h"
 #include "cleave/components/split_log.h"
 #include "cleave/components/split_budget.h"
 #include "cleave/components/split_cost.h"
@@ -509,12 +510,8 @@ SplitEvent SplitSystem::commit(SplitWorld& w, Pending& pending, uint64_t tick) {
     return finish(geometry::SplitStatus::InvalidInput, "the target was gone before its pieces were committed");
   if (job.skinned() && !w.world.has<SkinnedMesh>(target))
     return finish(geometry::SplitStatus::InvalidInput, "the target lost its skin before its pieces were committed");
-  for (const HierarchyPartData& part : job.hierarchyParts) {
-    const auto* mr = w.world.tryGet<MeshRenderer>(part.entity);
-    const bool same = w.world.alive(part.entity) && mr && mr->source == part.mesh &&
-                      (part.entity == target || !w.world.has<RigidBody>(part.entity));
-    if (!same) return finish(geometry::SplitStatus::InvalidInput, "a part of the target changed before its pieces were committed");
-  }
+  if (!hierarchyUnchanged(w.world, job))
+    return finish(geometry::SplitStatus::InvalidInput, "a part of the target changed before its pieces were committed");
   if (!job.settings.handler.empty()) {
     const auto it = handlers_.find(job.settings.handler);
     if (it == handlers_.end())
@@ -561,35 +558,6 @@ void addPieceComponents(PieceCommit& c, const PieceSpec& spec, const PieceKindSt
   // copy of the animator keeps playing in the body's frame.
   if (!kind.skinnedByBones() && c.skin && !spec.mesh->joints.empty()) c.commands.add<SkinnedMesh>(e, *c.skin);
   kind.addComponents(c, spec, e, velocity);
-}
-
-void addHierarchyChildren(PieceCommit& c, const PieceSpec& spec, ecs::Entity e, const ecs::Transform& transform) {
-  std::vector<ecs::Entity> children;
-  const size_t slash = spec.name.rfind('/');
-  const std::string suffix = slash == std::string::npos ? std::string() : spec.name.substr(slash);
-  for (const HierarchyChildSpec& childSpec : spec.children) {
-    const HierarchyPartData& part = c.job.hierarchyParts[childSpec.part];
-    const ecs::Entity child = c.commands.create();
-    MeshRenderer renderer;
-    renderer.source = childSpec.mesh;
-    renderer.materials = part.materials;
-    renderer.meshOffset = glm::mat4(spec.frame.meshOffset);  // merged space -> the piece's frame
-    renderer.visible = part.visible;
-    if (c.w.renderer) {
-      const double uploadStart = nowMilliseconds();
-      renderer.gpu = childSpec.packed && childSpec.packedFrom == childSpec.mesh.get()
-                         ? c.w.renderer->uploadPacked(*childSpec.packed).valueOr({})
-                         : c.w.renderer->uploadMesh(*childSpec.mesh).valueOr({});
-      c.ev.times.uploads += nowMilliseconds() - uploadStart;
-    }
-    c.commands.add<ecs::Transform>(child, ecs::Transform{});
-    c.commands.add<ecs::WorldTransform>(child, ecs::WorldTransform{ecs::localMatrix(transform)});
-    c.commands.add<ecs::Name>(child, ecs::Name{(part.name.empty() ? std::string("part") : part.name) + suffix});
-    c.commands.add<ecs::Parent>(child, ecs::Parent{e});
-    c.commands.add<MeshRenderer>(child, std::move(renderer));
-    children.push_back(child);
-  }
-  c.commands.add<ecs::Children>(e, ecs::Children{std::move(children)});
 }
 
 }  // namespace
