@@ -29,7 +29,7 @@ MUTATIONS = [
      "ConcaveSplitter|PassThreads"),
     ("split workers never used", "components/split_workers.cpp",
      "  } else if (threads_.empty()) {", "  } else if (true) {",
-     "SplitPipeline|SplitSystem"),
+     "SplitPipeline|SplitSystem|Shatter|EveryReplayGivesTheSameState"),
     ("worker-time budget check off", "components/split_budget.cpp",
      " ||\n                                stats_.workerMillisecondsCharged >= settings_.workerMillisecondsPerTick)",
      ")",

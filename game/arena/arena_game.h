@@ -76,6 +76,8 @@ class ArenaGame {
 
   // What the physics world and the renderer hold now (physics 0 before setup).
   components::ResourceCounts resources() const;
+  // Split jobs computed off the main thread so far (the proof a run on N split threads used them).
+  uint64_t splitJobsOffMainThread() const { return sim_ ? sim_->splits().jobsComputedOffTheCallingThread() : 0; }
   // Destroys every entity (their hooks free what they hold), then the level's colliders and the
   // player's, the blade's and the disc's GPU meshes, which no entity holds: the counts are then
   // those from before setup. For the --resource-report leak check, after the run.

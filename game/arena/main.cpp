@@ -30,6 +30,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   const int code = app.run();
+  // Beside the state hash: a run on N split threads shows its workers computed jobs.
+  if (options.printStateHash)
+    std::printf("split-jobs-off-main-thread: %llu\n", static_cast<unsigned long long>(game.splitJobsOffMainThread()));
   if (options.resourceReport) {
     // Every entity goes, and with it (through its destroy hooks) what it held: what is left leaked.
     game.releaseAll();

@@ -68,6 +68,8 @@ class DemoGame {
 
   // What the physics world and the renderer hold now (physics 0 before setup).
   components::ResourceCounts resources() const;
+  // Split jobs computed off the main thread so far (the proof a run on N split threads used them).
+  uint64_t splitJobsOffMainThread() const { return sim_ ? sim_->splits().jobsComputedOffTheCallingThread() : 0; }
   // Destroys every entity (their hooks free what they hold). The demo holds nothing else, so the
   // counts are then those from before setup. For the --resource-report leak check, after the run.
   void releaseAll();

@@ -71,6 +71,9 @@ int main(int argc, char** argv) {
   // Mouse look from the start (the game frees the cursor for split mode, Escape and the inspector).
   if (!app.platform().headless()) app.platform().setCursorMode(cleave::app::CursorMode::Captured);
   const int code = app.run();
+  // Beside the state hash: a run on N split threads shows its workers computed jobs.
+  if (options.printStateHash)
+    std::printf("split-jobs-off-main-thread: %llu\n", static_cast<unsigned long long>(game.splitJobsOffMainThread()));
   if (options.resourceReport) {
     // Every entity goes, and with it (through its destroy hooks) what it held: what is left leaked.
     game.releaseAll();

@@ -4,9 +4,11 @@
 // pieces rigid bodies with the parent's mass and momentum, the same pieces on 0 or 2 threads.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <thread>
 #include <vector>
 
 #include "cleave/geometry/mass_properties.h"
@@ -47,6 +49,7 @@ struct Shattered {
   testing::Momenta before, after;                 // the tick before the pieces, right after them
   std::vector<std::vector<glm::vec3>> positions;  // per piece, for determinism
   std::vector<glm::vec3> velocities, centres;     // per piece, right after the commit
+  uint64_t offThread = 0;                          // split jobs computed by a worker
 };
 
 Shattered shatterCrate(uint32_t threads, uint32_t cells, double outward,
@@ -79,7 +82,10 @@ Shattered shatterCrate(uint32_t threads, uint32_t cells, double outward,
         }
       }
     });
+    // A job in flight: leave the workers (a lower priority) a moment to take it before the commit.
+    if (threads > 0 && sim.splits.jobsInFlight() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(30));
   }
+  out.offThread = sim.splits.jobsComputedOffTheCallingThread();
   return out;
 }
 
@@ -126,6 +132,8 @@ TEST(Shatter, OutwardImpulseSendsPiecesAwayFromTheImpact) {
 
 TEST(Shatter, SamePiecesOnZeroAndTwoThreads) {
   const Shattered a = shatterCrate(0, 16, 1.0), b = shatterCrate(2, 16, 1.0);
+  EXPECT_EQ(a.offThread, 0u);
+  EXPECT_EQ(b.offThread, 1u) << "the shatter was computed on a worker";
   ASSERT_EQ(a.positions.size(), b.positions.size());
   ASSERT_GT(a.positions.size(), 0u);
   for (size_t k = 0; k < a.positions.size(); ++k) {
