@@ -6,12 +6,12 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <cstdlib>
 
 #include <glm/gtc/constants.hpp>
 
 #include "cleave/components/activation_throttle.h"
 #include "cleave/components/split_system.h"
+#include "cleave/log/log.h"
 
 namespace cleave::components {
 
@@ -64,7 +64,11 @@ const PieceKindStrategy& pieceKind(PieceKind kind) {
 
 PieceKind registerPieceKind(const PieceKindStrategy& strategy) {
   const size_t k = registered.load();
-  if (k >= kMaxKinds) std::abort();  // a game registering kinds in a loop: a bug to find at once
+  if (k >= kMaxKinds) {  // a game registering kinds in a loop: said, and its pieces stay rigid
+    log::error("cleave", "piece kind '%s' not registered: %zu kinds of a game's own at most; its pieces are rigid",
+               strategy.name(), kMaxKinds - kBuiltIn);
+    return PieceKind::Rigid;
+  }
   kinds()[k].store(&strategy, std::memory_order_release);
   registered.store(k + 1);
   return PieceKind(k);

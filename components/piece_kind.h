@@ -103,7 +103,8 @@ class PieceKindStrategy {
 // The strategy of a kind (Rigid's for a kind never registered).
 const PieceKindStrategy& pieceKind(PieceKind kind);
 // Adds a kind; returns its PieceKind (after the built-in ones). The strategy must outlive every
-// split that uses it. Main thread, before those splits. At most 32 kinds of a game's own.
+// split that uses it. Main thread, before those splits. At most 32 kinds of a game's own: past that
+// the call logs an error and returns Rigid.
 PieceKind registerPieceKind(const PieceKindStrategy& strategy);
 
 // For kinds' commits: a dynamic body with the spec's planned collider, woken now or queued by the

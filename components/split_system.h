@@ -82,8 +82,6 @@ struct SplitEvent {
 };
 
 struct PieceCommit;  // piece_kind.h
-namespace detail {
-}
 
 class SplitSystem {
  public:
